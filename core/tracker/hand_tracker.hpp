@@ -1,0 +1,53 @@
+// One eye's CONDENSATION hand tracker: acquisition by motion + skin, then factored sampling
+// over (x, y, rotation, scale) with a skin-edge measurement along the contour normals.
+#pragma once
+
+#include "common/types.hpp"
+
+#include <opencv2/core.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <span>
+
+namespace gc {
+
+struct TrackerParams {
+    int particles = 1000;            // N, the sample-set size (>= 1)
+    std::uint64_t seed = 1;          // same seed + same frames = same output
+    double lost_ratio = 0.6;         // lost when every likelihood < lost_ratio * P_init
+    int lost_frames = 3;             // ... for this many consecutive frames
+    bool adapt_skin = true;          // update the skin mean from inside the tracked contour
+};
+
+// A weighted hypothesis, exposed for drawing the marginal distributions.
+struct Particle {
+    HandState state;
+    double weight = 0.0;
+};
+
+class HandTracker {
+public:
+    explicit HandTracker(const TrackerParams& params = {});
+    ~HandTracker();
+    HandTracker(HandTracker&&) noexcept;
+    HandTracker& operator=(HandTracker&&) noexcept;
+
+    // Processes one frame (CV_8UC3, BGR, any size >= 32x32; the size must stay the same
+    // until reset()). `camera_motion` is C_t: the image motion the head caused since the
+    // previous frame. Throws std::invalid_argument on an empty or wrongly typed frame.
+    const EyeEstimate& process(const cv::Mat& bgr, const ImageMotion& camera_motion = {});
+
+    // Forgets the hand: the next frame starts acquisition again.
+    void reset();
+
+    const EyeEstimate& estimate() const;
+    std::span<const Particle> particles() const;
+    const TrackerParams& params() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace gc

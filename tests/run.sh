@@ -1,0 +1,75 @@
+#!/usr/bin/env bash
+# The one test command: installs what is missing, builds, runs every test.
+#   1. release build: unit, element and pipeline tests (meson test)
+#   2. AddressSanitizer + UBSan build: unit and element tests
+#   3. clang libFuzzer build: every parser fuzzed for a bounded time
+# Environment: GESTURECAM_FUZZ_SECONDS (default 30 per target), GESTURECAM_SKIP_ASAN=1,
+# GESTURECAM_SKIP_FUZZ=1 to skip a stage locally.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+cd "$root"
+. tests/deps.sh
+gesturecam_install_deps
+
+jobs=$(nproc)
+passed=0
+failed=0
+failures=()
+
+# Adds one stage's counts from meson's test log.
+count_meson() {
+  local log=$1/meson-logs/testlog.json stage=$2
+  [ -f "$log" ] || { failed=$((failed + 1)); failures+=("$stage: no test log"); return; }
+  local p f
+  p=$(python3 -c 'import json,sys; r=[json.loads(l) for l in open(sys.argv[1])]; print(sum(x["result"] in ("OK","EXPECTEDFAIL") for x in r))' "$log")
+  f=$(python3 -c 'import json,sys; r=[json.loads(l) for l in open(sys.argv[1])]; print(sum(x["result"] in ("FAIL","TIMEOUT","ERROR","UNEXPECTEDPASS") for x in r))' "$log")
+  passed=$((passed + p))
+  failed=$((failed + f))
+  [ "$f" -eq 0 ] || failures+=("$stage: $f failed")
+}
+
+echo "== release build =="
+gesturecam_setup build -Dbuildtype=release
+meson compile -C build -j "$jobs"
+meson test -C build --print-errorlogs --num-processes "$jobs" || true
+count_meson build release
+
+if [ "${GESTURECAM_SKIP_ASAN:-0}" != 1 ]; then
+  echo "== AddressSanitizer + UBSan build =="
+  gesturecam_setup build-asan -Dbuildtype=debugoptimized -Db_sanitize=address,undefined -Db_lundef=false
+  meson compile -C build-asan -j "$jobs"
+  ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    meson test -C build-asan --suite unit --suite gst --print-errorlogs --num-processes "$jobs" \
+      --timeout-multiplier 4 || true
+  count_meson build-asan asan
+fi
+
+if [ "${GESTURECAM_SKIP_FUZZ:-0}" != 1 ]; then
+  echo "== libFuzzer build =="
+  CC=clang CXX=clang++ gesturecam_setup build-fuzz -Dbuildtype=debugoptimized -Dfuzz=true \
+    -Dplugin=false -Dtests=enabled -Db_lundef=false
+  meson compile -C build-fuzz -j "$jobs"
+  seconds=${GESTURECAM_FUZZ_SECONDS:-30}
+  for target in build-fuzz/tests/fuzz/fuzz_*; do
+    [ -x "$target" ] || continue
+    name=$(basename "$target")
+    corpus="tests/fuzz/corpus/${name#fuzz_}"
+    work=$(mktemp -d)
+    [ -d "$corpus" ] && cp -r "$corpus"/. "$work"/
+    echo "-- $name for ${seconds}s"
+    if "$target" -max_total_time="$seconds" -max_len=4096 -print_final_stats=1 "$work" \
+        > "build-fuzz/$name.log" 2>&1; then
+      passed=$((passed + 1))
+    else
+      failed=$((failed + 1))
+      failures+=("fuzz: $name (see build-fuzz/$name.log)")
+      tail -40 "build-fuzz/$name.log"
+    fi
+    rm -rf "$work"
+  done
+fi
+
+echo
+for f in "${failures[@]+"${failures[@]}"}"; do echo "FAILED: $f"; done
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]
