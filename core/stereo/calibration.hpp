@@ -31,4 +31,26 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+// Reads a calibration file (YAML or XML, chosen by OpenCV from the content) and validates
+// it fully: every required key present, matrices of the right shape and finite, R a proper
+// rotation, a positive image size, distortion of a length OpenCV accepts. The optional head
+// geometry keys are head_left_eye, head_right_eye, head_tilt_centre, head_nodal_offset
+// (3x1, millimetres, head frame); when absent, the geometry is derived from T (eyes at
+// -/+ |T| / 2 on the x axis). Throws CalibrationError naming the file and the key.
+StereoCalibration load_calibration(const std::string& path);
+
+// Throws CalibrationError naming both sizes when the stream size differs from the
+// calibrated one.
+void validate_calibration_size(const StereoCalibration& calibration, cv::Size stream);
+
+// Writes every field load_calibration reads (head geometry only when it is set); the
+// format follows the extension (.yml/.yaml or .xml). Throws CalibrationError on failure.
+void save_calibration(const StereoCalibration& calibration, const std::string& path);
+
+// The rig's nominal geometry: 120 mm baseline, 60 degree horizontal field of view, square
+// pixels, principal point at the image centre, no distortion, parallel cameras at the zero
+// pose, head geometry with the eyes at -/+60 mm on the x axis. Throws CalibrationError on a
+// non-positive size.
+StereoCalibration default_calibration(cv::Size image_size);
+
 }  // namespace gc

@@ -1,0 +1,182 @@
+#include "contour/hand_template.hpp"
+
+#include "measure/edge_search.hpp"
+
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+namespace gc {
+
+namespace {
+
+constexpr double kMinHandArea = 120.0;  // pixels; below this there is no finger to see
+
+double norm(const cv::Point2d& p) { return std::hypot(p.x, p.y); }
+
+// Circular Gaussian smoothing of a pixel chain: removes the staircase of the raster outline
+// before points are taken from it.
+std::vector<cv::Point2d> smooth_ring(const std::vector<cv::Point>& ring, double sigma) {
+    const int n = static_cast<int>(ring.size());
+    const int half = std::max(1, static_cast<int>(std::ceil(2.5 * sigma)));
+    std::vector<double> kernel(2 * half + 1);
+    for (int k = -half; k <= half; ++k) kernel[k + half] = std::exp(-0.5 * k * k / (sigma * sigma));
+    const double total = std::accumulate(kernel.begin(), kernel.end(), 0.0);
+    std::vector<cv::Point2d> out(n);
+    for (int i = 0; i < n; ++i) {
+        cv::Point2d acc(0, 0);
+        for (int k = -half; k <= half; ++k) {
+            const cv::Point& q = ring[((i + k) % n + n) % n];
+            acc += kernel[k + half] * cv::Point2d(q.x, q.y);
+        }
+        out[i] = acc * (1.0 / total);
+    }
+    return out;
+}
+
+}  // namespace
+
+HandLandmarks find_hand_landmarks(const cv::Mat& mask) {
+    if (mask.empty()) throw std::invalid_argument("hand template: empty mask");
+    if (mask.type() != CV_8UC1)
+        throw std::invalid_argument("hand template: mask must be CV_8UC1, got " +
+                                    std::to_string(mask.channels()) + " channel(s)");
+    std::vector<std::vector<cv::Point>> contours;
+    cv::findContours(mask, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
+    if (contours.empty()) throw std::invalid_argument("hand template: mask has no shape");
+    const auto largest = std::max_element(contours.begin(), contours.end(), [](auto& a, auto& b) {
+        return cv::contourArea(a) < cv::contourArea(b);
+    });
+    const double area = cv::contourArea(*largest);
+    if (area < kMinHandArea)
+        throw std::invalid_argument("hand template: shape of " + std::to_string(int(area)) +
+                                    " px is too small (need " +
+                                    std::to_string(int(kMinHandArea)) + ")");
+    HandLandmarks lm;
+    lm.outline = std::move(*largest);
+
+    // The palm is the thickest part: the maximum of the distance transform of the filled
+    // outline (holes filled, so a shadowed spot on the palm cannot move it).
+    const cv::Rect box = cv::boundingRect(lm.outline);
+    cv::Mat1b filled(box.height + 2, box.width + 2, uchar(0));
+    std::vector<std::vector<cv::Point>> one{lm.outline};
+    cv::drawContours(filled, one, 0, 255, cv::FILLED, cv::LINE_8, cv::noArray(), 0,
+                     cv::Point(1 - box.x, 1 - box.y));
+    cv::Mat1f dist;
+    cv::distanceTransform(filled, dist, cv::DIST_L2, cv::DIST_MASK_5);
+    double max_dist = 0.0;
+    cv::Point at;
+    cv::minMaxLoc(dist, nullptr, &max_dist, nullptr, &at);
+    lm.palm = cv::Point2d(at.x - 1 + box.x, at.y - 1 + box.y);
+    lm.palm_radius = max_dist;
+
+    // The index fingertip: the outline point farthest from the palm, skipping points that
+    // touch the image border (a forearm leaving the frame, or a hand cut off by it).
+    const int w = mask.cols, h = mask.rows;
+    double best = -1.0;
+    for (const cv::Point& p : lm.outline) {
+        if (p.x <= 0 || p.y <= 0 || p.x >= w - 1 || p.y >= h - 1) continue;
+        const double d = norm(cv::Point2d(p) - lm.palm);
+        if (d > best) {
+            best = d;
+            lm.fingertip = cv::Point2d(p);
+        }
+    }
+    if (best < 0.0) throw std::invalid_argument("hand template: shape lies entirely on the image border");
+    return lm;
+}
+
+HandTemplate HandTemplate::from_mask(const cv::Mat& mask, const cv::Mat1b& membership,
+                                     const TemplateOptions& options) {
+    if (options.measurement_normals < 8 || options.outline_points < 16 ||
+        options.palm_points < 8 || !(options.finger_density >= 1.0) ||
+        !(options.finger_weight > 0.0) || !(options.snap_range >= 0.0))
+        throw std::invalid_argument("hand template: invalid options");
+    if (!membership.empty() && membership.size() != mask.size())
+        throw std::invalid_argument("hand template: membership map size differs from mask size");
+    const HandLandmarks lm = find_hand_landmarks(mask);
+    const double reach = norm(lm.fingertip - lm.palm);
+    if (reach < 1.5 * lm.palm_radius || reach < 6.0)
+        throw std::invalid_argument("hand template: no finger protrudes from the palm");
+
+    // Points along the smoothed outline by arc length, the step shrinking on the finger:
+    // there the curve must be faithful, and more normals there weight the orientation.
+    const std::vector<cv::Point2d> ring = smooth_ring(lm.outline, 1.2);
+    const int n = static_cast<int>(ring.size());
+    double perimeter = 0.0;
+    for (int i = 0; i < n; ++i) perimeter += norm(ring[(i + 1) % n] - ring[i]);
+    const double palm_step = std::max(2.0, perimeter / options.palm_points);
+    const double finger_step = std::max(1.5, palm_step / options.finger_density);
+    const double finger_zone = 0.6 * reach;  // around the tip: the index finger
+    auto on_finger = [&](const cv::Point2d& p) { return norm(p - lm.fingertip) < finger_zone; };
+
+    std::vector<cv::Point2d> through;
+    double travelled = 0.0, next = 0.0;
+    for (int i = 0; i < n; ++i) {
+        const cv::Point2d& a = ring[i];
+        const cv::Point2d& b = ring[(i + 1) % n];
+        const double seg = norm(b - a);
+        while (next <= travelled + seg && seg > 0.0) {
+            const cv::Point2d p = a + (b - a) * ((next - travelled) / seg);
+            through.push_back(p);
+            next += on_finger(p) ? finger_step : palm_step;
+        }
+        travelled += seg;
+    }
+    // The last point must not nearly coincide with the first one on the ring.
+    while (through.size() > 4 && norm(through.back() - through.front()) < 0.5 * finger_step)
+        through.pop_back();
+    if (through.size() < 8)
+        throw std::invalid_argument("hand template: outline too short to model");
+
+    // Sub-pixel snapping to the skin boundary of the image, so the template sits where the
+    // measurement will look for edges (the raster outline is half a pixel inside).
+    if (!membership.empty() && options.snap_range > 0.0) {
+        const ClosedBSpline rough = ClosedBSpline::interpolate(through);
+        for (std::size_t i = 0; i < through.size(); ++i) {
+            const cv::Point2d nrm = rough.outward_normal(double(i));
+            double off = 0.0;
+            if (find_skin_edge_precise(membership, through[i], nrm, options.snap_range, 0.25, off))
+                through[i] += off * nrm;
+        }
+        for (std::size_t i = 0; i + 1 < through.size();) {  // snapping may merge neighbours
+            if (norm(through[i + 1] - through[i]) < 0.3) through.erase(through.begin() + i + 1);
+            else ++i;
+        }
+    }
+
+    HandTemplate t;
+    t.origin_px = lm.palm;
+    t.palm_radius = lm.palm_radius;
+    for (auto& p : through) p -= lm.palm;
+    t.spline = ClosedBSpline::interpolate(through);
+    t.fingertip = cv::Point2f(lm.fingertip - lm.palm);
+    const cv::Point2d tip_rel = lm.fingertip - lm.palm;
+
+    const int knots = t.spline.size();
+    auto sample = [&](int count, std::vector<cv::Point2f>& pts, std::vector<cv::Point2f>& nrms,
+                      std::vector<float>& wts) {
+        pts.resize(count);
+        nrms.resize(count);
+        wts.resize(count);
+        double total = 0.0;
+        for (int k = 0; k < count; ++k) {
+            const double u = double(k) * knots / count;
+            const cv::Point2d p = t.spline.point(u);
+            pts[k] = cv::Point2f(p);
+            nrms[k] = cv::Point2f(t.spline.outward_normal(u));
+            wts[k] = static_cast<float>(norm(p - tip_rel) < finger_zone ? options.finger_weight : 1.0);
+            total += wts[k];
+        }
+        for (float& w : wts) w = static_cast<float>(w / total);
+    };
+    sample(options.measurement_normals, t.points, t.normals, t.weights);
+    sample(options.outline_points, t.outline, t.outline_normals, t.outline_weights);
+    return t;
+}
+
+}  // namespace gc

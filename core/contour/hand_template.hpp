@@ -1,0 +1,56 @@
+// The hand's shape model: a closed cubic B-spline through points of the segmented outline,
+// taken more densely on the index finger than on the palm, with the palm centre as origin.
+// Everything the per-particle measurement needs is precomputed here once, so a hypothesis
+// only transforms these points (x = s R(r) u + t) and never allocates.
+#pragma once
+
+#include "contour/closed_bspline.hpp"
+
+#include <opencv2/core.hpp>
+
+#include <vector>
+
+namespace gc {
+
+struct TemplateOptions {
+    int measurement_normals = 48;  // M, spread uniformly in the spline parameter
+    int outline_points = 128;      // the reported polygon
+    int palm_points = 36;          // outline points per perimeter away from the finger
+    double finger_density = 2.5;   // how many times denser the finger is sampled
+    double finger_weight = 2.0;    // measurement weight of a finger normal vs a palm normal
+    double snap_range = 2.5;       // sub-pixel snapping of outline points to the skin edge
+};
+
+struct HandTemplate {
+    // All geometry relative to the origin (the palm centre), in pixels at scale 1.
+    ClosedBSpline spline;
+    std::vector<cv::Point2f> outline;   // closed polygon, dense
+    std::vector<cv::Point2f> points;    // measurement points on the curve
+    std::vector<cv::Point2f> normals;   // their unit outward normals
+    std::vector<float> weights;         // their measurement weights, summing to 1
+    std::vector<float> outline_weights; // finger-weighting of the outline points, sum 1
+    std::vector<cv::Point2f> outline_normals;
+    cv::Point2f fingertip;              // index fingertip
+    double palm_radius = 0.0;           // largest inscribed circle of the palm
+    cv::Point2d origin_px;              // where the origin was in the capture image
+
+    // Builds the template from a binary hand mask (CV_8UC1, non-zero = hand). When
+    // `membership` (SkinModel::membership of the same frame) is given, outline points are
+    // moved to the sub-pixel skin edge. Throws std::invalid_argument on a wrong type, an
+    // empty mask, or a shape too small to carry a finger and a palm.
+    static HandTemplate from_mask(const cv::Mat& mask, const cv::Mat1b& membership = {},
+                                  const TemplateOptions& options = {});
+};
+
+// The palm (centre of the largest inscribed circle) and the index fingertip (the outline
+// point farthest from it, ignoring points on the image border, where an arm or a cut-off
+// shape ends) of a binary hand mask, found from the shape alone.
+struct HandLandmarks {
+    cv::Point2d palm;
+    double palm_radius = 0.0;
+    cv::Point2d fingertip;
+    std::vector<cv::Point> outline;  // the largest outer contour, pixel chain
+};
+HandLandmarks find_hand_landmarks(const cv::Mat& mask);
+
+}  // namespace gc

@@ -1,0 +1,200 @@
+#include "detect/motion_detector.hpp"
+
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace gc {
+
+namespace {
+
+constexpr int kHistBins = 64;  // per normalised channel, for the moving pixels' colours
+
+void check_frame(const cv::Mat& bgr) {
+    if (bgr.empty()) throw std::invalid_argument("MotionDetector: empty frame");
+    if (bgr.type() != CV_8UC3)
+        throw std::invalid_argument("MotionDetector: expected CV_8UC3 (BGR), got " +
+                                    std::to_string(bgr.channels()) + " channel(s)");
+}
+
+// The skin colour of the moving pixels: the mode of their normalised-colour histogram
+// (within a gate around the prior, weighted by it), then a Gaussian fitted to the pixels near the
+// mode, refitted once on the pixels it accepts.
+std::optional<SkinModel> learn_skin(const cv::Mat& bgr, const cv::Mat1b& moving,
+                                    const SkinModel& prior, double gate_sigma) {
+    const double gate2 = gate_sigma * gate_sigma;
+    cv::Mat1f hist(kHistBins, kHistBins, 0.0f);
+    cv::Mat1b candidates(bgr.size(), uchar(0));
+    int total = 0;
+    for (int y = 0; y < bgr.rows; ++y) {
+        const auto* p = bgr.ptr<cv::Vec3b>(y);
+        const auto* m = moving.ptr<std::uint8_t>(y);
+        for (int x = 0; x < bgr.cols; ++x) {
+            if (!m[x]) continue;
+            const int sum = p[x][0] + p[x][1] + p[x][2];
+            if (sum < prior.dark_threshold() || sum == 0) continue;
+            const double r = p[x][2] / double(sum), g = p[x][1] / double(sum);
+            const double d2 = prior.mahalanobis2(r, g);
+            if (d2 > gate2) continue;
+            // Weighted by the prior: grey and other weakly chromatic moving things (a sleeve,
+            // uncovered wall) must outnumber the hand by far to take the mode.
+            hist(std::min(int(g * kHistBins), kHistBins - 1), std::min(int(r * kHistBins), kHistBins - 1)) +=
+                static_cast<float>(std::exp(-0.5 * d2));
+            candidates(y, x) = 255;
+            ++total;
+        }
+    }
+    if (total < 30) return std::nullopt;
+    cv::GaussianBlur(hist, hist, cv::Size(5, 5), 1.0);
+    cv::Point mode;
+    cv::minMaxLoc(hist, nullptr, nullptr, nullptr, &mode);
+    const double mr = (mode.x + 0.5) / kHistBins, mg = (mode.y + 0.5) / kHistBins;
+    // Seed: pixels within two bins of the mode.
+    const double radius = 2.0 / kHistBins;
+    cv::Mat1b near(bgr.size(), uchar(0));
+    for (int y = 0; y < bgr.rows; ++y) {
+        const auto* p = bgr.ptr<cv::Vec3b>(y);
+        for (int x = 0; x < bgr.cols; ++x) {
+            if (!candidates(y, x)) continue;
+            const double sum = p[x][0] + p[x][1] + p[x][2];
+            if (std::hypot(p[x][2] / sum - mr, p[x][1] / sum - mg) <= radius) near(y, x) = 255;
+        }
+    }
+    try {
+        SkinModel model = SkinModel::fit(bgr, near, prior.dark_threshold());
+        cv::Mat1b accepted;
+        model.segment(bgr, accepted);
+        cv::bitwise_and(accepted, candidates, accepted);
+        return SkinModel::fit(bgr, accepted, prior.dark_threshold());
+    } catch (const std::invalid_argument&) {
+        return std::nullopt;  // too few consistent pixels: not a hand
+    }
+}
+
+}  // namespace
+
+std::optional<Detection> segment_hand(const cv::Mat& bgr, const cv::Mat1b& moving,
+                                      const cv::Rect& box, const SkinModel& prior,
+                                      const DetectionParams& params,
+                                      const cv::Mat1b& recent_motion, bool history_mature) {
+    check_frame(bgr);
+    if (moving.size() != bgr.size() || moving.type() != CV_8UC1)
+        throw std::invalid_argument("segment_hand: moving-pixel mask must be CV_8UC1 of the frame size");
+    const cv::Rect roi = box & cv::Rect(0, 0, bgr.cols, bgr.rows);
+    if (roi.area() == 0) return std::nullopt;
+    auto skin = learn_skin(bgr(roi), moving(roi), prior, params.prior_gate_sigma);
+    if (!skin) return std::nullopt;
+    // Segment the whole frame: the moving pixels may be only the waving fingers, and the
+    // hand must not be cut at the box. The hand is the skin component holding the most
+    // moving pixels.
+    // Colour and the brightness band together: a face or an object of the hand's skin tone
+    // touching it is usually brighter or darker.
+    cv::Mat1b seg;
+    skin->membership(bgr, cv::Rect(0, 0, bgr.cols, bgr.rows), seg);
+    cv::threshold(seg, seg, 127, 255, cv::THRESH_BINARY);
+    const cv::Mat kernel = cv::getStructuringElement(
+        cv::MORPH_ELLIPSE, cv::Size(params.close_size, params.close_size));
+    cv::morphologyEx(seg, seg, cv::MORPH_CLOSE, kernel);
+    cv::Mat1i labels;
+    cv::Mat stats, centroids;
+    const int count = cv::connectedComponentsWithStats(seg, labels, stats, centroids, 8, CV_32S);
+    if (count < 2) return std::nullopt;
+    std::vector<int> votes(count, 0);
+    for (int y = roi.y; y < roi.y + roi.height; ++y) {
+        const auto* m = moving.ptr<std::uint8_t>(y);
+        const auto* l = labels.ptr<int>(y);
+        for (int x = roi.x; x < roi.x + roi.width; ++x)
+            if (m[x]) ++votes[l[x]];
+    }
+    votes[0] = 0;
+    const int best = static_cast<int>(std::max_element(votes.begin(), votes.end()) - votes.begin());
+    if (votes[best] == 0) return std::nullopt;
+    cv::Mat1b blob = labels == best;
+    int area = stats.at<int>(best, cv::CC_STAT_AREA);
+    if (!recent_motion.empty() && recent_motion.size() == bgr.size()) {
+        cv::Mat1b near;
+        const int k = 2 * params.history_reach + 1;
+        cv::dilate(recent_motion, near, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(k, k)));
+        cv::bitwise_and(near, blob, near);
+        const int kept = cv::countNonZero(near);
+        // Cut only when a large part is static: a hand that barely moved keeps its palm.
+        // Until motion has been seen for a while, a mostly static blob is not trusted
+        // either way: wait for more of the hand to move.
+        if (kept < 0.75 * area && !history_mature) return std::nullopt;
+        if (kept < 0.75 * area) {
+            cv::morphologyEx(near, near, cv::MORPH_OPEN, kernel);
+            cv::Mat1i cut_labels;
+            cv::Mat cut_stats, cut_centroids;
+            const int n = cv::connectedComponentsWithStats(near, cut_labels, cut_stats, cut_centroids, 8, CV_32S);
+            int keep = 0, keep_area = 0;
+            for (int i = 1; i < n; ++i)
+                if (cut_stats.at<int>(i, cv::CC_STAT_AREA) > keep_area) {
+                    keep_area = cut_stats.at<int>(i, cv::CC_STAT_AREA);
+                    keep = i;
+                }
+            if (keep == 0) return std::nullopt;
+            blob = cut_labels == keep;
+            area = keep_area;
+        }
+    }
+    if (area < params.min_hand_area ||
+        area > params.max_hand_fraction * double(bgr.rows) * bgr.cols)
+        return std::nullopt;
+    Detection d{blob, roi, *skin, double(area)};
+    // Refit on the whole blob: the moving pixels were only part of the hand.
+    try {
+        d.skin = SkinModel::fit(bgr, d.mask, prior.dark_threshold());
+    } catch (const std::invalid_argument&) {
+    }
+    return d;
+}
+
+MotionDetector::MotionDetector(const DetectionParams& params) : p_(params) {
+    if (p_.diff_threshold < 1 || p_.diff_threshold > 254 || p_.min_changed_pixels < 1 ||
+        p_.box_margin < 0 || p_.close_size < 1 || p_.close_size % 2 == 0 ||
+        p_.min_hand_area < 1 || !(p_.max_hand_fraction > 0.0 && p_.max_hand_fraction <= 1.0) ||
+        !(p_.prior_gate_sigma > 0.0) || p_.history_frames < 1 || p_.history_frames > 250 ||
+        p_.history_reach < 0)
+        throw std::invalid_argument("MotionDetector: invalid detection parameters");
+}
+
+void MotionDetector::reset() {
+    previous_.release();
+    history_.release();
+}
+
+std::optional<Detection> MotionDetector::process(const cv::Mat& bgr, const SkinModel& prior) {
+    check_frame(bgr);
+    cv::cvtColor(bgr, grey_, cv::COLOR_BGR2GRAY);
+    if (previous_.empty() || previous_.size() != grey_.size()) {
+        grey_.copyTo(previous_);
+        history_ = cv::Mat1b(grey_.size(), uchar(0));
+        motion_frames_ = 0;
+        return std::nullopt;
+    }
+    cv::absdiff(grey_, previous_, changed_);
+    grey_.copyTo(previous_);
+    // No morphological opening: a slowly waving hand changes only thin strips along its
+    // edges, and the threshold alone leaves just a handful of noise pixels.
+    cv::threshold(changed_, changed_, p_.diff_threshold, 255, cv::THRESH_BINARY);
+    cv::subtract(history_, cv::Scalar::all(1), history_);  // saturates at 0
+    history_.setTo(p_.history_frames, changed_);
+    if (cv::countNonZero(changed_) < p_.min_changed_pixels) {
+        motion_frames_ = 0;
+        return std::nullopt;
+    }
+    ++motion_frames_;
+    cv::Rect box = cv::boundingRect(changed_);
+    box.x -= p_.box_margin;
+    box.y -= p_.box_margin;
+    box.width += 2 * p_.box_margin;
+    box.height += 2 * p_.box_margin;
+    box &= cv::Rect(0, 0, bgr.cols, bgr.rows);
+    return segment_hand(bgr, changed_, box, prior, p_, history_,
+                        motion_frames_ >= p_.history_frames);
+}
+
+}  // namespace gc

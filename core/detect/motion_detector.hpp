@@ -1,0 +1,68 @@
+// Acquisition of the hand (thesis 3.1): the user waves, the cameras hold still, and the
+// hand is the only moving object. Two consecutive frames are differenced; inside the box of
+// the change, the skin colour of the moving pixels is learnt (no fixed skin prior is
+// trusted beyond a broad gate), the frame is segmented with it and closed, and the
+// connected component that holds the motion is the hand.
+#pragma once
+
+#include "skin/skin_model.hpp"
+
+#include <opencv2/core.hpp>
+
+#include <optional>
+
+namespace gc {
+
+struct DetectionParams {
+    int diff_threshold = 12;        // grey levels: ~4 sigma of the difference of sensor noise
+    int min_changed_pixels = 40;    // less change than this is not a waving hand
+    int box_margin = 24;            // pixels added around the change box
+    int close_size = 5;             // morphological close kernel (pixels, odd)
+    int min_hand_area = 400;        // pixels
+    double max_hand_fraction = 0.3; // of the frame: a larger blob is not a hand
+    double prior_gate_sigma = 3.0;  // candidate colours must lie this close to the prior
+    int history_frames = 6;         // motion remembered for separating the hand from
+    int history_reach = 15;         // ... static skin-coloured things it touches (pixels)
+};
+
+struct Detection {
+    cv::Mat1b mask;     // frame-sized, 255 on the hand
+    cv::Rect box;       // where the motion was
+    SkinModel skin;     // fitted to the hand's pixels
+    double area = 0.0;  // hand pixels
+};
+
+class MotionDetector {
+public:
+    // Throws std::invalid_argument on invalid parameters.
+    explicit MotionDetector(const DetectionParams& params = {});
+
+    // Compares `bgr` (CV_8UC3) with the previous frame given; returns the hand when a
+    // moving skin-coloured blob is found. The first frame, or one whose size changed, only
+    // primes the detector. Throws std::invalid_argument on an empty or non-BGR frame.
+    std::optional<Detection> process(const cv::Mat& bgr,
+                                     const SkinModel& prior = SkinModel::generic());
+
+    void reset();
+
+private:
+    DetectionParams p_;
+    cv::Mat1b previous_, grey_, changed_;
+    cv::Mat1b history_;  // frames since each pixel last changed, counting down to 0
+    int motion_frames_ = 0;  // consecutive frames with motion
+};
+
+// The part of detection after the motion box: learns the skin colour of the `moving` pixels
+// (CV_8UC1, frame-sized) inside `box`, segments the frame with it and returns the skin
+// component that holds the most moving pixels, or nullopt. When `recent_motion` (pixels
+// that changed in the last frames) is given and much of the component lies far from it,
+// the component is cut to within `history_reach` of it when `history_mature` (motion was
+// seen for history_frames frames), and rejected otherwise: a static face or object of skin
+// colour that the hand touches is not part of the hand.
+std::optional<Detection> segment_hand(const cv::Mat& bgr, const cv::Mat1b& moving,
+                                      const cv::Rect& box, const SkinModel& prior,
+                                      const DetectionParams& params,
+                                      const cv::Mat1b& recent_motion = {},
+                                      bool history_mature = true);
+
+}  // namespace gc

@@ -1,0 +1,32 @@
+// Refinement of one hypothesis against the image ("refine the best contour"): a few
+// Gauss-Newton steps of a weighted least-squares fit of the similarity transform
+// (x, y, rotation, scale) to the skin edges found along the dense outline's normals
+// (point-to-line distances, which are linear in a = s cos r, b = s sin r, x, y).
+#pragma once
+
+#include "common/types.hpp"
+#include "contour/hand_template.hpp"
+
+#include <opencv2/core.hpp>
+
+namespace gc {
+
+struct FitParams {
+    int iterations = 4;
+    double half_window = 5.0;   // pixels searched either side of the current contour
+    double step = 0.5;          // bilinear sampling step along a normal
+    double robust_scale = 1.5;  // pixels: Cauchy weight 1 / (1 + (d / scale)^2)
+    double min_found = 0.5;     // fraction of the outline's normals that must find an edge
+};
+
+struct FitResult {
+    HandState state;
+    double found_fraction = 0.0;  // of the last iteration
+    double rms_px = 0.0;          // weighted RMS distance to the edges found, last iteration
+    bool converged = false;       // false: too few edges, the input state is returned
+};
+
+FitResult refine_fit(const cv::Mat1b& membership, const HandTemplate& shape,
+                     const HandState& start, const FitParams& params = {});
+
+}  // namespace gc

@@ -1,0 +1,61 @@
+// The observation model p(Z | X) of one hypothesis: the template's measurement normals are
+// placed by the state, the skin edge is searched along each (interior to exterior), and the
+// finger-weighted, capped squared distances are combined:
+//
+//   q(X)        = sum_m w_m min(d_m^2, mu^2) / mu^2            (in [0, 1]; sum w_m = 1)
+//   p(Z | X)    = exp(-M_eff mu^2 q / (2 sigma^2))
+//
+// mu is the half window (no edge found costs as much as an edge at the window's end) and
+// M_eff the number of effectively independent normals (neighbouring normals see the same
+// blur and shading, so they are not M independent measurements). See docs/tracker.md.
+#pragma once
+
+#include "common/types.hpp"
+#include "contour/hand_template.hpp"
+
+#include <opencv2/core.hpp>
+
+namespace gc {
+
+struct ObservationParams {
+    int half_window = 8;              // mu, pixels: the search runs over [-mu, +mu]
+    double sigma = 2.0;               // pixels: expected edge localisation error
+    double effective_normals = 12.0;  // M_eff
+};
+
+class ContourMeasurement {
+public:
+    // Throws std::invalid_argument on invalid parameters.
+    explicit ContourMeasurement(const ObservationParams& params = {});
+
+    const ObservationParams& params() const { return p_; }
+
+    // q(X) of the template placed by `state` on a membership map (SkinModel::membership).
+    // No allocation: safe to call for every particle. The sum stops early once it exceeds
+    // `give_up` (then some value > give_up is returned): a hypothesis that much worse than
+    // the best one so far has a negligible weight anyway.
+    double misfit(const cv::Mat1b& membership, const HandTemplate& shape,
+                  const HandState& state, double give_up = 2.0) const;
+
+    // The misfit margin over the best hypothesis beyond which a weight is below e^-12 of
+    // the best one: a safe give_up bound for weighting.
+    double negligible_margin() const { return 12.0 / log_scale_; }
+
+    double log_likelihood(double misfit) const { return -log_scale_ * misfit; }
+    // The per-normal (geometric-mean) likelihood exp(-mu^2 q / (2 sigma^2)): comparable
+    // across frames and template sizes; confidence and loss detection use this.
+    double normal_likelihood(double misfit) const;
+
+private:
+    ObservationParams p_;
+    double log_scale_;
+    float cap2_;
+};
+
+// Where a state puts a template point: s R(r) u + t (image axes, y down).
+inline cv::Point2d place(const HandState& s, const cv::Point2f& u) {
+    const double c = std::cos(s.rotation) * s.scale, sn = std::sin(s.rotation) * s.scale;
+    return {s.x + c * u.x - sn * u.y, s.y + sn * u.x + c * u.y};
+}
+
+}  // namespace gc

@@ -1,0 +1,53 @@
+// The one-directional skin-edge search along a contour normal: walk from the interior
+// outward and stop at the first fall of the skin-membership map through `level`. Skin
+// clutter beyond the hand's own edge is never reached first, unlike a search for the
+// nearest edge in both directions.
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include <cmath>
+#include <cstdint>
+
+namespace gc {
+
+// The membership level of the skin boundary (see SkinModel::membership).
+inline constexpr int kSkinEdgeLevel = 128;
+
+// Nearest-pixel search, for scoring many hypotheses: samples at t = -half .. +half (pixel
+// steps) along p + t * n (n unit, pointing outward); pixels outside `map` count as
+// non-skin. On success stores the signed sub-pixel offset of the crossing in `offset` and
+// returns true; false when no high-to-low crossing lies in the window.
+inline bool find_skin_edge_fast(const cv::Mat1b& map, float px, float py, float nx, float ny,
+                                int half, float& offset) {
+    const int w = map.cols, h = map.rows;
+    const std::uint8_t* data = map.data;
+    const std::size_t step = map.step[0];
+    int prev = -1;  // membership at the previous sample, -1 before the first
+    for (int k = -half; k <= half; ++k) {
+        const int x = cvRound(px + k * nx);
+        const int y = cvRound(py + k * ny);
+        int v = 0;
+        // Unsigned comparison folds the < 0 test in: off-image counts as background.
+        if (static_cast<unsigned>(x) < static_cast<unsigned>(w) &&
+            static_cast<unsigned>(y) < static_cast<unsigned>(h))
+            v = data[y * step + x];
+        if (prev >= kSkinEdgeLevel && v < kSkinEdgeLevel) {
+            offset = static_cast<float>(k - 1) +
+                     static_cast<float>(prev - kSkinEdgeLevel) / static_cast<float>(prev - v);
+            return true;
+        }
+        prev = v;
+    }
+    return false;
+}
+
+// Bilinear search at a finer step, for the few contours that are refined each frame.
+// Same contract as find_skin_edge_fast with a real-valued half length and step.
+bool find_skin_edge_precise(const cv::Mat1b& map, cv::Point2d p, cv::Point2d n, double half,
+                            double step, double& offset);
+
+// Bilinear sample of a CV_8U map, 0 outside.
+double sample_bilinear(const cv::Mat1b& map, double x, double y);
+
+}  // namespace gc

@@ -1,0 +1,388 @@
+#include "sim/scene.hpp"
+
+#include "sim/appearance.hpp"
+#include "sim/figures.hpp"
+#include "sim/hand_model.hpp"
+#include "sim/motion_script.hpp"
+#include "sim/rig.hpp"
+#include "sim/room.hpp"
+#include "skin/skin_model.hpp"
+
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace gc::sim {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kWallDistanceMm = 3000.0;
+constexpr int kNoiseMargin = 64;          // noise pool border: 64 x 64 distinct offsets
+constexpr double kMinHandDepthMm = 50.0;  // nearer than this to a camera, the hand is not drawn
+constexpr int kMinVisiblePixels = 150;
+
+// Independent random streams of one seed.
+enum Stream : std::uint64_t { kHandStream = 1, kRoomStream, kMotionStream, kPersonStream, kNoiseStream, kFrameStream };
+
+// Direction towards the key light (head frame): above, left, in front.
+const cv::Vec3d kLight = cv::normalize(cv::Vec3d(-0.35, -0.6, -0.72));
+
+std::string fmt(double v) { return std::to_string(v); }
+
+void require(bool ok, const std::string& message)
+{
+    if (!ok) throw std::invalid_argument(message);
+}
+
+void validate(const SceneConfig& c)
+{
+    require(c.preset >= Preset::Clean && c.preset <= Preset::FacePass, "SceneConfig: unknown preset");
+    require(c.motion >= Motion::Static && c.motion <= Motion::LeaveReturn, "SceneConfig: unknown motion");
+    require(c.width >= 32 && c.width <= 4096 && c.height >= 32 && c.height <= 4096,
+            "SceneConfig: image size " + std::to_string(c.width) + "x" + std::to_string(c.height) +
+                " outside 32..4096");
+    require(std::isfinite(c.fps) && c.fps > 0.0 && c.fps <= 1000.0,
+            "SceneConfig: fps " + fmt(c.fps) + " outside (0, 1000]");
+    require(std::isfinite(c.focal_px) && c.focal_px >= 0.0 && c.focal_px <= 100.0 * c.width,
+            "SceneConfig: focal_px " + fmt(c.focal_px) + " must be 0 (default) or a positive length");
+    require(std::isfinite(c.baseline_mm) && c.baseline_mm > 0.0 && c.baseline_mm <= 1000.0,
+            "SceneConfig: baseline_mm " + fmt(c.baseline_mm) + " outside (0, 1000]");
+    require(std::isfinite(c.hand_distance_mm) && c.hand_distance_mm >= 300.0 &&
+                c.hand_distance_mm <= 2500.0,
+            "SceneConfig: hand_distance_mm " + fmt(c.hand_distance_mm) + " outside [300, 2500]");
+    require(std::isfinite(c.noise_sigma) && c.noise_sigma >= 0.0 && c.noise_sigma <= 50.0,
+            "SceneConfig: noise_sigma " + fmt(c.noise_sigma) + " outside [0, 50]");
+}
+
+void validate(const HeadPose& h)
+{
+    const double v[] = {h.pan_deg, h.tilt_deg, h.verge_left_deg, h.verge_right_deg};
+    for (double x : v)
+        require(std::isfinite(x) && std::abs(x) <= 90.0,
+                "HeadPose: angles must be finite and within +/-90 degrees");
+}
+
+void validate(const HandPose& p)
+{
+    for (int i = 0; i < 3; ++i)
+        require(std::isfinite(p.palm_mm[i]) && std::abs(p.palm_mm[i]) <= 1.0e5,
+                "HandPose: palm_mm must be finite and within 100 m");
+    require(std::isfinite(p.roll_deg) && std::isfinite(p.yaw_deg) && std::isfinite(p.pitch_deg),
+            "HandPose: angles must be finite");
+    require(std::isfinite(p.forearm_mm) && p.forearm_mm >= 100.0 && p.forearm_mm <= 600.0,
+            "HandPose: forearm_mm " + fmt(p.forearm_mm) + " outside [100, 600]");
+}
+
+// The hand's plane in the head frame: u to the fingertip, v to the thumb side, n its normal.
+struct HandFrame {
+    cv::Vec3d origin, u, v, n;
+};
+
+HandFrame hand_frame(const HandPose& p)
+{
+    const double r = p.roll_deg * kPi / 180.0;
+    const cv::Matx33d R = rotation_about_y(p.yaw_deg) * rotation_about_x(p.pitch_deg);
+    // At yaw = pitch = 0 the plane faces the cameras; roll turns it in the image plane
+    // (counter-clockwise on screen, y down).
+    return {p.palm_mm, R * cv::Vec3d(std::cos(r), -std::sin(r), 0.0),
+            R * cv::Vec3d(-std::sin(r), -std::cos(r), 0.0), R * cv::Vec3d(0.0, 0.0, -1.0)};
+}
+
+// Coverage of each pixel's 3 x 3 neighbourhood by the mask: 255 inside, about half on the
+// silhouette.
+void box_blur3(const cv::Mat1b& mask, cv::Mat1b& out)
+{
+    cv::blur(mask, out, cv::Size(3, 3), cv::Point(-1, -1), cv::BORDER_REPLICATE);
+    cv::max(out, 128, out);  // a silhouette pixel is at least half hand
+}
+
+cv::Point2d nan_point()
+{
+    const double n = std::numeric_limits<double>::quiet_NaN();
+    return {n, n};
+}
+
+}  // namespace
+
+namespace {
+
+// The scene's state, or an error for a moved-from scene.
+template <class Pointer>
+const auto& checked(const Pointer& impl)
+{
+    if (!impl) throw std::logic_error("gc::sim::Scene: used after being moved from");
+    return *impl;
+}
+
+}  // namespace
+
+struct Scene::Impl {
+    SceneConfig config;
+    cv::Matx33d K;
+    HeadGeometry geometry;
+    cv::Vec3f skin;
+    HandModel hand;
+    Wall wall;
+    std::unique_ptr<MotionScript> script;
+    std::optional<Billboard> person;
+    cv::Vec3f sleeve;
+    std::vector<double> folds;
+    cv::Mat noise_pool;  // CV_16SC3, (height + margin) x (width + margin)
+    double light_phase[2] = {0.0, 0.0};
+
+    explicit Impl(const SceneConfig& c);
+    void draw_arm(cv::Mat& bgr, const EyeCamera& cam, const HandPose& pose, const HandFrame& f) const;
+    void draw_hand(cv::Mat& bgr, const EyeCamera& cam, const HandFrame& f, EyeTruth* truth) const;
+    void apply_lighting(cv::Mat& bgr, int frame) const;
+    void apply_noise(cv::Mat& bgr, int frame, Eye eye) const;
+};
+
+Scene::Impl::Impl(const SceneConfig& c) : config(c)
+{
+    validate(c);
+    K = rig_intrinsics(c);
+    geometry = rig_geometry(c);
+    const double half_x = 0.5 * (c.width - 1) / K(0, 0), half_y = 0.5 * (c.height - 1) / K(1, 1);
+
+    Rng hand_rng(mix_seed(c.seed, kHandStream));
+    skin = pick_skin_tone(hand_rng);
+    const bool mirrored = uniform(hand_rng, 0, 1) < 0.5;
+    hand = build_hand_model(skin, mirrored, hand_rng);
+    sleeve = non_skin_colour(hand_rng, 0.15, 0.6, 0.6);
+    for (int i = 0; i < 3; ++i) folds.push_back(uniform(hand_rng, 0.15, 0.85));
+
+    // The rest view of both eyes on the wall.
+    const double D = kWallDistanceMm;
+    const cv::Rect2d view(-0.5 * c.baseline_mm - D * half_x, -D * half_y,
+                          c.baseline_mm + 2.0 * D * half_x, 2.0 * D * half_y);
+    const double texel = std::clamp(D / K(0, 0), 2.0, 12.0);
+    Rng room_rng(mix_seed(c.seed, kRoomStream));
+    wall = build_wall(c.preset, skin, view, D, texel, room_rng);
+
+    Rng motion_rng(mix_seed(c.seed, kMotionStream));
+    script = std::make_unique<MotionScript>(c, half_x, half_y, hand.finger_length_mm, motion_rng);
+    light_phase[0] = uniform(motion_rng, 0, 2 * kPi);
+    light_phase[1] = uniform(motion_rng, 0, 2 * kPi);
+
+    if (c.preset == Preset::FacePass) {
+        // A person sits behind the hand's path: the face is where the palm will be at a
+        // seeded moment, seen from the head, further back.
+        Rng person_rng(mix_seed(c.seed, kPersonStream));
+        const double when = MotionScript::kWaveSeconds + uniform(person_rng, 2.5, 5.0);
+        const cv::Vec3d palm = script->at(when).palm_mm;
+        const double depth = c.hand_distance_mm + 600.0;
+        person = build_person(palm * (depth / palm[2]), skin, person_rng);
+    }
+
+    if (c.noise_sigma > 0.0) {
+        noise_pool.create(c.height + kNoiseMargin, c.width + kNoiseMargin, CV_16SC3);
+        cv::RNG noise_rng(mix_seed(c.seed, kNoiseStream));
+        noise_rng.fill(noise_pool, cv::RNG::NORMAL, 0.0, c.noise_sigma);
+    }
+}
+
+void Scene::Impl::draw_arm(cv::Mat& bgr, const EyeCamera& cam, const HandPose& pose,
+                           const HandFrame& f) const
+{
+    const cv::Vec3d back = hand.palm_axis.x * f.u + hand.palm_axis.y * f.v;  // towards the elbow
+    const cv::Vec3d elbow = f.origin + pose.forearm_mm * back;
+    // The upper arm runs from the elbow down and back to the shoulder of a person standing
+    // behind the hand.
+    const cv::Vec3d shoulder = elbow + 320.0 * cv::normalize(0.35 * back + cv::Vec3d(0.0, 0.75, 0.6));
+    draw_tube(bgr, cam, {elbow, shoulder, 50.0, 58.0}, sleeve * 0.9f, {0.5});
+    draw_tube(bgr, cam, {f.origin + 0.8 * hand.wrist_mm * back, elbow, 36.0, 47.0}, sleeve, folds);
+}
+
+void Scene::Impl::draw_hand(cv::Mat& bgr, const EyeCamera& cam, const HandFrame& f,
+                            EyeTruth* truth) const
+{
+    thread_local std::vector<std::vector<cv::Point>> parts;
+    thread_local cv::Mat1b roi_mask;
+    thread_local cv::Mat warped;
+    thread_local cv::Mat1b alpha;
+    const cv::Rect frame(0, 0, bgr.cols, bgr.rows);
+
+    parts.resize(hand.parts.size());
+    bool in_front = true;
+    cv::Rect box;
+    for (std::size_t i = 0; i < hand.parts.size() && in_front; ++i) {
+        in_front = project_polygon(cam, f.origin, f.u, f.v, hand.parts[i], parts[i], {}, kMinHandDepthMm);
+        for (const cv::Point& p : parts[i]) {
+            const cv::Rect px(p.x >> kDrawShift, p.y >> kDrawShift, 2, 2);
+            box = box.empty() ? px : (box | px);
+        }
+    }
+    const cv::Rect roi = in_front ? (box & frame) : cv::Rect();
+    if (truth) {
+        truth->mask.create(bgr.size());
+        truth->mask.setTo(0);
+        truth->bbox = cv::Rect();
+    }
+    if (roi.empty()) return;
+
+    roi_mask.create(roi.size());
+    roi_mask.setTo(0);
+    const cv::Point shift(roi.x << kDrawShift, roi.y << kDrawShift);
+    for (auto& part : parts) {
+        for (cv::Point& p : part) p -= shift;
+        cv::fillConvexPoly(roi_mask, part, cv::Scalar(255), cv::LINE_8, kDrawShift);
+    }
+
+    // The skin texture through the homography of the hand's plane, lit by its orientation.
+    const cv::Matx33d to_roi(1, 0, -roi.x, 0, 1, -roi.y, 0, 0, 1);
+    const cv::Matx33d H = to_roi * cam.plane_homography(f.origin, f.u, f.v) * hand.texel_to_model();
+    cv::warpPerspective(hand.texture, warped, H, roi.size(), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+    const double rest = 0.35 + 0.65 * std::abs(kLight[2]);
+    const float light = float((0.35 + 0.65 * std::abs(f.n.dot(kLight))) / rest);
+
+    // Composite with the lens's soft edge kept inside the mask: the silhouette pixels mix
+    // with the background, but no skin leaks outside the truth.
+    box_blur3(roi_mask, alpha);
+    cv::Mat target = bgr(roi);
+    for (int y = 0; y < roi.height; ++y) {
+        const std::uint8_t* m = roi_mask.ptr<std::uint8_t>(y);
+        const std::uint8_t* a = alpha.ptr<std::uint8_t>(y);
+        const cv::Vec3b* src = warped.ptr<cv::Vec3b>(y);
+        cv::Vec3b* dst = target.ptr<cv::Vec3b>(y);
+        for (int x = 0; x < roi.width; ++x) {
+            if (!m[x]) continue;
+            const float k = light * float(a[x]) / 255.0f, keep = 1.0f - float(a[x]) / 255.0f;
+            for (int c = 0; c < 3; ++c)
+                dst[x][c] = cv::saturate_cast<std::uint8_t>(k * src[x][c] + keep * dst[x][c]);
+        }
+    }
+
+    if (truth) {
+        roi_mask.copyTo(truth->mask(roi));
+        const cv::Rect b = cv::boundingRect(roi_mask);
+        truth->bbox = b.empty() ? cv::Rect() : b + roi.tl();
+    }
+}
+
+void Scene::Impl::apply_lighting(cv::Mat& bgr, int frame) const
+{
+    if (!config.lighting_change) return;
+    const double t = frame / config.fps;
+    const double brightness = 1.0 + 0.2 * std::sin(2.0 * kPi * t / 9.0 + light_phase[0]);
+    const double warmth = 0.07 * std::sin(2.0 * kPi * t / 13.0 + light_phase[1]);
+    const double gain[3] = {brightness * (1.0 - warmth), brightness, brightness * (1.0 + warmth)};
+    // A per-channel table: one lookup per sample instead of floating-point arithmetic.
+    thread_local cv::Mat lut(1, 256, CV_8UC3);
+    for (int v = 0; v < 256; ++v)
+        for (int c = 0; c < 3; ++c)
+            lut.at<cv::Vec3b>(0, v)[c] = cv::saturate_cast<std::uint8_t>(v * gain[c]);
+    cv::LUT(bgr, lut, bgr);
+}
+
+void Scene::Impl::apply_noise(cv::Mat& bgr, int frame, Eye eye) const
+{
+    if (noise_pool.empty()) return;
+    // A window of the pool at an offset seeded by (seed, frame, eye).
+    const std::uint64_t h =
+        mix_seed(config.seed ^ (std::uint64_t(frame) << 1 | std::uint64_t(eye == Eye::Right)), kFrameStream);
+    const int ox = int(h % kNoiseMargin), oy = int((h >> 16) % kNoiseMargin);
+    cv::add(bgr, noise_pool(cv::Rect(ox, oy, bgr.cols, bgr.rows)), bgr, cv::noArray(), CV_8U);
+}
+
+Scene::Scene(const SceneConfig& config) : impl_(std::make_unique<Impl>(config)) {}
+Scene::~Scene() = default;
+Scene::Scene(Scene&&) noexcept = default;
+Scene& Scene::operator=(Scene&&) noexcept = default;
+
+const SceneConfig& Scene::config() const { return checked(impl_).config; }
+
+HandPose Scene::hand_pose(int frame) const
+{
+    const Impl& s = checked(impl_);
+    require(frame >= 0, "Scene::hand_pose: negative frame index " + std::to_string(frame));
+    return s.script->at(frame / s.config.fps);
+}
+
+HandTruth Scene::hand_truth(const HandPose& pose) const
+{
+    const Impl& s = checked(impl_);
+    validate(pose);
+    const HandFrame f = hand_frame(pose);
+    const cv::Vec3d back = s.hand.palm_axis.x * f.u + s.hand.palm_axis.y * f.v;
+    return {f.origin + s.hand.finger_length_mm * f.u, f.origin,
+            f.origin + pose.forearm_mm * back, f.u};
+}
+
+void Scene::render(int frame, Eye eye, const HeadPose& head, cv::Mat& bgr, EyeTruth* truth) const
+{
+    render_pose(hand_pose(frame), frame, eye, head, bgr, truth);
+}
+
+void Scene::render_pose(const HandPose& pose, int frame, Eye eye, const HeadPose& head,
+                        cv::Mat& bgr, EyeTruth* truth) const
+{
+    require(frame >= 0, "Scene::render: negative frame index " + std::to_string(frame));
+    require(eye == Eye::Left || eye == Eye::Right, "Scene::render: unknown eye");
+    validate(head);
+    validate(pose);
+    const Impl& s = checked(impl_);
+    const EyeCamera cam = eye_camera(s.K, s.geometry, head, eye);
+    const cv::Size size(s.config.width, s.config.height);
+
+    // Every corner ray must meet the wall in front of the head.
+    for (const cv::Point2d corner : {cv::Point2d(0, 0), cv::Point2d(size.width - 1, 0),
+                                     cv::Point2d(0, size.height - 1),
+                                     cv::Point2d(size.width - 1, size.height - 1)}) {
+        const cv::Vec3d ray = cam.ray_in_head(corner.x, corner.y);
+        require(ray[2] > 0.1 * cv::norm(ray),
+                "Scene::render: head pose (pan " + fmt(head.pan_deg) + ", tilt " + fmt(head.tilt_deg) +
+                    ") looks past the simulated room's wall");
+    }
+
+    bgr.create(size, CV_8UC3);
+    const Wall& w = s.wall;
+    const cv::Matx33d H = cam.plane_homography({w.origin_mm.x, w.origin_mm.y, w.distance_mm},
+                                               {w.texel_mm, 0, 0}, {0, w.texel_mm, 0});
+    cv::warpPerspective(w.image, bgr, H, size, cv::INTER_LINEAR, cv::BORDER_REFLECT_101);
+    if (s.person) draw_billboard(bgr, cam, *s.person);
+
+    const HandFrame f = hand_frame(pose);
+    s.draw_arm(bgr, cam, pose, f);
+    s.draw_hand(bgr, cam, f, truth);
+    s.apply_lighting(bgr, frame);
+    s.apply_noise(bgr, frame, eye);
+
+    if (truth) {
+        const HandTruth t3 = hand_truth(pose);
+        const cv::Vec3d palm_c = cam.to_camera(t3.palm_mm), tip_c = cam.to_camera(t3.fingertip_mm);
+        truth->palm_px = palm_c[2] > 0 ? cam.project_camera(palm_c) : nan_point();
+        truth->fingertip_px = tip_c[2] > 0 ? cam.project_camera(tip_c) : nan_point();
+        const cv::Point2d d = truth->fingertip_px - truth->palm_px;
+        truth->pointing_deg = std::atan2(-d.y, d.x) * 180.0 / kPi;
+        const cv::Rect2d frame_box(0, 0, size.width, size.height);
+        truth->visible = frame_box.contains(truth->palm_px) && frame_box.contains(truth->fingertip_px) &&
+                         cv::countNonZero(truth->mask) >= kMinVisiblePixels;
+    }
+}
+
+StereoCalibration Scene::calibration() const { return rig_calibration(checked(impl_).config); }
+
+double Scene::measured_skin_fraction(int frame) const
+{
+    cv::Mat bgr;
+    EyeTruth truth;
+    render(frame, Eye::Left, HeadPose{}, bgr, &truth);
+    const int hand_pixels = cv::countNonZero(truth.mask);
+    if (hand_pixels < kMinVisiblePixels)
+        throw std::runtime_error("Scene::measured_skin_fraction: the hand is not in view at frame " +
+                                 std::to_string(frame));
+    const SkinModel model = SkinModel::fit(bgr, truth.mask);
+    cv::Mat1b skin = model.segment(bgr);
+    skin.setTo(0, truth.mask);
+    const double background = double(truth.mask.total()) - hand_pixels;
+    return cv::countNonZero(skin) / background;
+}
+
+}  // namespace gc::sim

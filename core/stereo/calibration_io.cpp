@@ -1,0 +1,291 @@
+// Loading, validating and saving the stereo calibration file (format in DESIGN.md and
+// docs/calibration.md).
+#include "stereo/calibration_io.hpp"
+
+#include "stereo/file_storage_guard.hpp"
+
+#include <opencv2/core/persistence.hpp>
+
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string_view>
+
+namespace gc {
+
+namespace {
+
+// A calibration never needs a larger matrix; checking before OpenCV allocates keeps a
+// corrupt "rows: 1000000000" from exhausting memory.
+constexpr int kMaxMatrixSide = 16;
+constexpr int kMaxImageSide = 1 << 15;
+// Tolerance on R^T R - I: files written with six significant digits stay well inside it.
+constexpr double kRotationTolerance = 1e-4;
+
+[[noreturn]] void fail(const std::string& source, std::string_view key, const std::string& what)
+{
+    std::ostringstream msg;
+    msg << "calibration file '" << source << "': ";
+    if (!key.empty()) msg << "key '" << key << "': ";
+    msg << what;
+    throw CalibrationError(msg.str());
+}
+
+std::string shape_string(int rows, int cols)
+{
+    return std::to_string(rows) + "x" + std::to_string(cols);
+}
+
+bool all_finite(const cv::Mat& m)
+{
+    return cv::checkRange(m, true, nullptr, -1e12, 1e12);
+}
+
+// Reads `key` as a CV_64F matrix after checking that the node really is one of a sane size.
+cv::Mat read_matrix(const cv::FileNode& root, const char* key, const std::string& source,
+                    bool allow_empty = false)
+{
+    const cv::FileNode node = root[key];
+    if (node.empty() || node.isNone()) fail(source, key, "missing");
+    if (!node.isMap()) fail(source, key, "not a matrix (expected an opencv-matrix node)");
+    const cv::FileNode rows_node = node["rows"], cols_node = node["cols"];
+    const cv::FileNode dt_node = node["dt"], data_node = node["data"];
+    if (!rows_node.isInt() || !cols_node.isInt() || !dt_node.isString())
+        fail(source, key, "not a matrix (rows, cols or dt missing or of the wrong type)");
+    const int rows = static_cast<int>(rows_node), cols = static_cast<int>(cols_node);
+    if (rows < 0 || cols < 0 || rows > kMaxMatrixSide || cols > kMaxMatrixSide)
+        fail(source, key, "implausible matrix size " + shape_string(rows, cols));
+    if (rows * cols == 0) {
+        if (allow_empty) return {};
+        fail(source, key, "empty matrix");
+    }
+    const std::string dt = static_cast<std::string>(dt_node);
+    if (dt.size() != 1 || std::string_view("ucwsifd").find(dt[0]) == std::string_view::npos)
+        fail(source, key, "unsupported element type '" + dt + "' (expected a single-channel type such as d)");
+    if (!data_node.isSeq() && !(rows * cols == 1 && (data_node.isInt() || data_node.isReal())))
+        fail(source, key, "matrix data missing or not a sequence");
+    if (data_node.isSeq() && data_node.size() != static_cast<size_t>(rows) * static_cast<size_t>(cols))
+        fail(source, key, "matrix data has " + std::to_string(data_node.size()) + " values, expected " +
+                              std::to_string(rows * cols) + " for " + shape_string(rows, cols));
+    for (auto it = data_node.begin(); data_node.isSeq() && it != data_node.end(); ++it)
+        if (!(*it).isInt() && !(*it).isReal()) fail(source, key, "matrix data holds a non-number");
+
+    cv::Mat m;
+    try {
+        node >> m;
+    } catch (const cv::Exception& e) {
+        fail(source, key, std::string("unreadable matrix: ") + e.what());
+    }
+    if (m.rows != rows || m.cols != cols || m.channels() != 1)
+        fail(source, key, "unreadable matrix");
+    cv::Mat d;
+    m.convertTo(d, CV_64F);
+    if (!all_finite(d)) fail(source, key, "non-finite or absurdly large value");
+    return d;
+}
+
+cv::Mat expect_shape(cv::Mat m, const char* key, const std::string& source, int rows, int cols)
+{
+    if (m.rows == rows && m.cols == cols) return m;
+    // A vector may be stored as a row or a column.
+    if (cols == 1 && m.rows == 1 && m.cols == rows) return m.t();
+    fail(source, key, "wrong shape " + shape_string(m.rows, m.cols) + ", expected " + shape_string(rows, cols));
+}
+
+int read_positive_int(const cv::FileNode& root, const char* key, const std::string& source)
+{
+    const cv::FileNode node = root[key];
+    if (node.empty() || node.isNone()) fail(source, key, "missing");
+    if (!node.isInt()) fail(source, key, "not an integer");
+    const int v = static_cast<int>(node);
+    if (v <= 0 || v > kMaxImageSide)
+        fail(source, key, "out of range: " + std::to_string(v) + " (expected 1.." + std::to_string(kMaxImageSide) + ")");
+    return v;
+}
+
+void check_intrinsics(const cv::Matx33d& M, const char* key, const std::string& source)
+{
+    for (double v : M.val)
+        if (!std::isfinite(v)) fail(source, key, "non-finite value");
+    if (!(M(0, 0) > 0.0) || !(M(1, 1) > 0.0))
+        fail(source, key, "focal lengths must be positive (fx = " + std::to_string(M(0, 0)) +
+                              ", fy = " + std::to_string(M(1, 1)) + ")");
+    if (M(1, 0) != 0.0 || M(2, 0) != 0.0 || M(2, 1) != 0.0 || M(2, 2) != 1.0)
+        fail(source, key, "not an intrinsic matrix (expected [fx s cx; 0 fy cy; 0 0 1])");
+}
+
+void check_distortion(const cv::Mat& D, const char* key, const std::string& source)
+{
+    if (D.empty()) return;
+    const int n = static_cast<int>(D.total());
+    if ((D.rows != 1 && D.cols != 1) || (n != 4 && n != 5 && n != 8 && n != 12 && n != 14))
+        fail(source, key, "wrong shape " + shape_string(D.rows, D.cols) +
+                              ", expected 1xN with N = 4, 5, 8, 12 or 14");
+    if (D.type() != CV_64F || !all_finite(D)) fail(source, key, "non-finite value");
+}
+
+// Distortion as stored (a row or a column), checked, then as the 1xN row OpenCV expects.
+cv::Mat read_distortion(const cv::FileNode& root, const char* key, const std::string& source)
+{
+    const cv::Mat D = read_matrix(root, key, source, true);
+    check_distortion(D, key, source);
+    return D.empty() ? D : D.reshape(1, 1);
+}
+
+void check_rotation(const cv::Matx33d& R, const std::string& source)
+{
+    for (double v : R.val)
+        if (!std::isfinite(v)) fail(source, "R", "non-finite value");
+    const double orthogonality = cv::norm(R.t() * R - cv::Matx33d::eye(), cv::NORM_INF);
+    const double det = cv::determinant(R);
+    if (orthogonality > kRotationTolerance || std::abs(det - 1.0) > kRotationTolerance) {
+        std::ostringstream what;
+        what << "not a rotation matrix (max |R^T R - I| = " << orthogonality << ", det = " << det << ")";
+        fail(source, "R", what.str());
+    }
+}
+
+void check_translation(const cv::Vec3d& T, const std::string& source)
+{
+    for (double v : T.val)
+        if (!std::isfinite(v)) fail(source, "T", "non-finite value");
+    if (cv::norm(T) < 1.0) fail(source, "T", "baseline shorter than 1 mm (T is in millimetres)");
+}
+
+constexpr std::array<const char*, 4> kHeadKeys{"head_left_eye", "head_right_eye", "head_tilt_centre",
+                                               "head_nodal_offset"};
+
+HeadGeometry geometry_from_baseline(const cv::Vec3d& T)
+{
+    HeadGeometry g;
+    const double half = 0.5 * cv::norm(T);
+    g.left_eye_mm = {-half, 0.0, 0.0};
+    g.right_eye_mm = {half, 0.0, 0.0};
+    return g;
+}
+
+StereoCalibration read_fields(const cv::FileNode& root, const std::string& source)
+{
+    if (!root.isMap()) fail(source, "", "the top level is not a map of keys");
+    StereoCalibration c;
+    c.source = source;
+    c.image_size.width = read_positive_int(root, "image_width", source);
+    c.image_size.height = read_positive_int(root, "image_height", source);
+    c.M1 = cv::Matx33d(expect_shape(read_matrix(root, "M1", source), "M1", source, 3, 3));
+    check_intrinsics(c.M1, "M1", source);
+    c.D1 = read_distortion(root, "D1", source);
+    c.M2 = cv::Matx33d(expect_shape(read_matrix(root, "M2", source), "M2", source, 3, 3));
+    check_intrinsics(c.M2, "M2", source);
+    c.D2 = read_distortion(root, "D2", source);
+    c.R = cv::Matx33d(expect_shape(read_matrix(root, "R", source), "R", source, 3, 3));
+    check_rotation(c.R, source);
+    c.T = cv::Vec3d(expect_shape(read_matrix(root, "T", source), "T", source, 3, 1));
+    check_translation(c.T, source);
+
+    int present = 0;
+    for (const char* key : kHeadKeys) present += !root[key].empty() && !root[key].isNone();
+    if (present == 0) {
+        c.has_head_geometry = false;
+        c.head = geometry_from_baseline(c.T);
+        return c;
+    }
+    std::array<cv::Vec3d, 4> v;
+    for (size_t i = 0; i < kHeadKeys.size(); ++i) {
+        const cv::FileNode node = root[kHeadKeys[i]];
+        if (node.empty() || node.isNone())
+            fail(source, kHeadKeys[i], "missing (the head geometry keys come all together or not at all)");
+        v[i] = cv::Vec3d(expect_shape(read_matrix(root, kHeadKeys[i], source), kHeadKeys[i], source, 3, 1));
+    }
+    c.has_head_geometry = true;
+    c.head.left_eye_mm = v[0];
+    c.head.right_eye_mm = v[1];
+    c.head.tilt_centre_mm = v[2];
+    c.head.nodal_offset_mm = v[3];
+    if (c.head.baseline_mm() < 1.0) fail(source, "head_right_eye", "the eye centres coincide");
+    return c;
+}
+
+}  // namespace
+
+StereoCalibration parse_calibration(const std::string& content, const std::string& source)
+{
+    if (content.empty()) fail(source, "", "empty file");
+    if (const auto hazard = file_storage_hazard(content)) fail(source, "", "syntax error: " + *hazard);
+    cv::FileStorage fs;
+    try {
+        if (!fs.open(content, cv::FileStorage::READ | cv::FileStorage::MEMORY))
+            fail(source, "", "not a YAML, XML or JSON file that OpenCV can read");
+        return read_fields(fs.root(), source);
+    } catch (const CalibrationError&) {
+        throw;
+    } catch (const cv::Exception& e) {
+        fail(source, "", std::string("syntax error or truncated file: ") + e.what());
+    } catch (const std::exception& e) {
+        fail(source, "", std::string("unreadable: ") + e.what());
+    }
+}
+
+StereoCalibration load_calibration(const std::string& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    if (!in) fail(path, "", "cannot be opened for reading");
+    std::string content{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    if (in.bad()) fail(path, "", "read error");
+    return parse_calibration(content, path);
+}
+
+void validate_calibration(const StereoCalibration& c)
+{
+    const std::string& source = c.source;
+    if (c.image_size.width <= 0 || c.image_size.width > kMaxImageSide) fail(source, "image_width", "out of range");
+    if (c.image_size.height <= 0 || c.image_size.height > kMaxImageSide) fail(source, "image_height", "out of range");
+    check_intrinsics(c.M1, "M1", source);
+    check_distortion(c.D1, "D1", source);
+    check_intrinsics(c.M2, "M2", source);
+    check_distortion(c.D2, "D2", source);
+    check_rotation(c.R, source);
+    check_translation(c.T, source);
+    if (c.has_head_geometry) {
+        const std::array<cv::Vec3d, 4> v{c.head.left_eye_mm, c.head.right_eye_mm, c.head.tilt_centre_mm,
+                                         c.head.nodal_offset_mm};
+        for (size_t i = 0; i < v.size(); ++i)
+            for (double x : v[i].val)
+                if (!std::isfinite(x)) fail(source, kHeadKeys[i], "non-finite value");
+    }
+}
+
+void validate_calibration_size(const StereoCalibration& c, cv::Size stream)
+{
+    if (c.image_size == stream) return;
+    std::ostringstream what;
+    what << "calibrated for " << c.image_size.width << "x" << c.image_size.height << " images but the stream is "
+         << stream.width << "x" << stream.height;
+    fail(c.source, "image_width/image_height", what.str());
+}
+
+void save_calibration(const StereoCalibration& c, const std::string& path)
+{
+    validate_calibration(c);
+    try {
+        cv::FileStorage fs(path, cv::FileStorage::WRITE);
+        if (!fs.isOpened()) fail(path, "", "cannot be opened for writing");
+        fs.writeComment("GestureCAM stereo calibration: X_right = R * X_left + T, millimetres");
+        fs << "image_width" << c.image_size.width << "image_height" << c.image_size.height;
+        // No distortion is written as five zeros, the form every OpenCV reader expects.
+        const cv::Mat no_distortion = cv::Mat::zeros(1, 5, CV_64F);
+        fs << "M1" << cv::Mat(c.M1) << "D1" << (c.D1.empty() ? no_distortion : c.D1);
+        fs << "M2" << cv::Mat(c.M2) << "D2" << (c.D2.empty() ? no_distortion : c.D2);
+        fs << "R" << cv::Mat(c.R) << "T" << cv::Mat(c.T);
+        if (c.has_head_geometry) {
+            fs << kHeadKeys[0] << cv::Mat(c.head.left_eye_mm) << kHeadKeys[1] << cv::Mat(c.head.right_eye_mm);
+            fs << kHeadKeys[2] << cv::Mat(c.head.tilt_centre_mm) << kHeadKeys[3] << cv::Mat(c.head.nodal_offset_mm);
+        }
+        fs.release();
+    } catch (const cv::Exception& e) {
+        fail(path, "", std::string("write failed: ") + e.what());
+    }
+}
+
+}  // namespace gc

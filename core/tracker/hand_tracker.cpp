@@ -1,0 +1,450 @@
+#include "tracker/hand_tracker.hpp"
+
+#include "contour/hand_template.hpp"
+#include "detect/motion_detector.hpp"
+#include "filter/adaptive_noise.hpp"
+#include "filter/quasi_random.hpp"
+#include "filter/resampling.hpp"
+#include "measure/contour_fit.hpp"
+#include "measure/contour_measurement.hpp"
+#include "measure/edge_search.hpp"
+#include "skin/skin_model.hpp"
+
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <random>
+#include <stdexcept>
+#include <string>
+
+namespace gc {
+
+namespace {
+
+// Scale is relative to the template: a hand does not halve or double its distance while
+// tracked, and tiny hypotheses would otherwise fit any small skin blob.
+constexpr double kMinScale = 0.5;
+constexpr double kMaxScale = 2.0;
+constexpr double kAdaptConfidence = 0.8;  // skin mean adapts only from a trusted contour
+constexpr double kAdaptRate = 0.05;
+constexpr int kMinFrameSide = 32;
+constexpr double kRimSkinFraction = 0.85;  // inner rim this much skin: the hand is there
+
+void check_frame(const cv::Mat& bgr) {
+    if (bgr.empty()) throw std::invalid_argument("HandTracker: empty frame");
+    if (bgr.type() != CV_8UC3)
+        throw std::invalid_argument("HandTracker: expected a CV_8UC3 (BGR) frame, got " +
+                                    std::to_string(bgr.channels()) + " channel(s) of depth " +
+                                    std::to_string(bgr.depth()));
+    if (bgr.cols < kMinFrameSide || bgr.rows < kMinFrameSide)
+        throw std::invalid_argument("HandTracker: frame " + std::to_string(bgr.cols) + "x" +
+                                    std::to_string(bgr.rows) + " is smaller than 32x32");
+}
+
+void check_params(const TrackerParams& p) {
+    if (p.particles < 1) throw std::invalid_argument("HandTracker: particles must be >= 1");
+    if (p.particles > 1'000'000)
+        throw std::invalid_argument("HandTracker: particles must be <= 1000000");
+    if (!(p.lost_ratio > 0.0 && p.lost_ratio < 1.0))
+        throw std::invalid_argument("HandTracker: lost_ratio must be in (0, 1)");
+    if (p.lost_frames < 1) throw std::invalid_argument("HandTracker: lost_frames must be >= 1");
+}
+
+void check_motion(const ImageMotion& m) {
+    if (!std::isfinite(m.dx) || !std::isfinite(m.dy) || !std::isfinite(m.drotation) ||
+        !(m.scale_factor > 0.0) || !std::isfinite(m.scale_factor))
+        throw std::invalid_argument("HandTracker: camera motion must be finite with scale_factor > 0");
+}
+
+double wrap_angle(double a) { return std::remainder(a, 2.0 * std::numbers::pi); }
+
+}  // namespace
+
+struct HandTracker::Impl {
+    TrackerParams params;
+    ContourMeasurement measurement;
+    AdaptiveNoise noise;
+    QuasiNormalSampler sampler;
+    std::mt19937_64 rng;
+    MotionDetector detector;
+
+    std::optional<SkinModel> skin;
+    std::optional<HandTemplate> shape;
+    double template_radius = 0.0;  // largest |u| of the outline, at scale 1
+
+    std::vector<Particle> particles, predicted;
+    std::vector<double> log_weights, weights, deviates;
+    std::vector<std::uint32_t> ancestors;
+    cv::Mat1b membership;
+    cv::Rect membership_roi;
+    cv::Mat1b contour_fill;
+    std::vector<cv::Point> fill_points;
+
+    EyeEstimate estimate;
+    cv::Size frame_size;
+    double p_init = 0.0;           // per-normal likelihood of the first tracked iteration
+    bool awaiting_p_init = false;
+    int low_frames = 0;
+    HandState previous;            // the last reported (refined) state
+
+    explicit Impl(const TrackerParams& p)
+        : params(p), sampler(4, p.seed ^ 0x5EEDULL), rng(p.seed) {
+        check_params(p);
+        particles.resize(p.particles);
+        predicted.resize(p.particles);
+        log_weights.resize(p.particles);
+        weights.resize(p.particles);
+        deviates.resize(4 * static_cast<std::size_t>(p.particles));
+        ancestors.resize(p.particles);
+    }
+
+    void reset() {
+        detector.reset();
+        noise.reset();
+        skin.reset();
+        shape.reset();
+        estimate = EyeEstimate{};
+        frame_size = {};
+        membership.release();
+        p_init = 0.0;
+        awaiting_p_init = false;
+        low_frames = 0;
+        for (auto& p : particles) p = Particle{};
+    }
+
+    const EyeEstimate& process(const cv::Mat& bgr, const ImageMotion& motion) {
+        check_frame(bgr);
+        check_motion(motion);
+        if (frame_size.area() > 0 && bgr.size() != frame_size)
+            throw std::invalid_argument(
+                "HandTracker: frame size changed from " + std::to_string(frame_size.width) + "x" +
+                std::to_string(frame_size.height) + " to " + std::to_string(bgr.cols) + "x" +
+                std::to_string(bgr.rows) + " without reset()");
+        frame_size = bgr.size();
+        if (membership.size() != frame_size) {
+            membership = cv::Mat1b(frame_size, uchar(0));
+            membership_roi = {};
+        }
+        if (estimate.state == TrackState::Tracking) {
+            track(bgr, motion);
+        } else {
+            acquire(bgr);
+        }
+        return estimate;
+    }
+
+    // --- acquisition -------------------------------------------------------------------
+
+    void acquire(const cv::Mat& bgr) {
+        // A known hand that was lost may return without waving: look for it by skin first.
+        if (estimate.state == TrackState::Lost && shape && skin && reacquire_by_skin(bgr)) return;
+        const SkinModel prior = skin ? *skin : SkinModel::generic();
+        const auto found = detector.process(bgr, prior);
+        if (!found) return;
+        // A template is only captured from a hand wholly in view: a shape cut by the image
+        // border would be tracked as that cut shape from then on.
+        const cv::Rect box = cv::boundingRect(found->mask);
+        if (box.x <= 1 || box.y <= 1 || box.br().x >= bgr.cols - 1 || box.br().y >= bgr.rows - 1)
+            return;
+        cv::Mat1b memb(bgr.size(), uchar(0));
+        found->skin.membership(bgr, cv::Rect(0, 0, bgr.cols, bgr.rows), memb);
+        // The hand seen before is kept when it fits the detection: a new capture could
+        // include skin-coloured things the hand touches at this moment.
+        if (shape && skin && refit_known_shape(*found, memb)) return;
+        try {
+            shape = HandTemplate::from_mask(found->mask, memb);
+        } catch (const std::invalid_argument&) {
+            return;  // a moving blob without a finger: keep waiting
+        }
+        skin = found->skin;
+        template_radius = 0.0;
+        for (const auto& p : shape->outline)
+            template_radius = std::max(template_radius, double(std::hypot(p.x, p.y)));
+        start_tracking(HandState{shape->origin_px.x, shape->origin_px.y, 0.0, 1.0});
+        report(HandState{shape->origin_px.x, shape->origin_px.y, 0.0, 1.0});
+    }
+
+    // Places the known template on a detected blob (palm to palm, finger direction to
+    // finger direction), refines, and resumes tracking if it measures as well as tracking
+    // did (lost_ratio x P_init).
+    bool refit_known_shape(const Detection& found, const cv::Mat1b& memb) {
+        HandLandmarks lm;
+        try {
+            lm = find_hand_landmarks(found.mask);
+        } catch (const std::invalid_argument&) {
+            return false;
+        }
+        const double reach = std::hypot(shape->fingertip.x, shape->fingertip.y);
+        const double found_reach = std::hypot(lm.fingertip.x - lm.palm.x, lm.fingertip.y - lm.palm.y);
+        if (reach <= 0.0 || found_reach <= 0.0) return false;
+        const HandState guess{
+            lm.palm.x, lm.palm.y,
+            std::atan2(lm.fingertip.y - lm.palm.y, lm.fingertip.x - lm.palm.x) -
+                std::atan2(shape->fingertip.y, shape->fingertip.x),
+            std::clamp(found_reach / reach, kMinScale, kMaxScale)};
+        const FitResult fit = refine_fit(memb, *shape, guess, FitParams{8, 8.0, 0.5, 2.0, 0.5});
+        if (!fit.converged) return false;
+        const double like = measurement.normal_likelihood(measurement.misfit(memb, *shape, fit.state));
+        if (like < params.lost_ratio * p_init) return false;
+        skin = found.skin;
+        start_tracking(fit.state);
+        awaiting_p_init = false;
+        report(fit.state);
+        return true;
+    }
+
+    void start_tracking(const HandState& x0) {
+        noise.reset();
+        const NoiseVector& sd = noise.sigma();
+        std::normal_distribution<double> z;
+        const double w = 1.0 / particles.size();
+        for (std::size_t i = 0; i < particles.size(); ++i) {
+            HandState s = x0;
+            if (i > 0) {  // keep X0 itself among the hypotheses
+                s.x += sd[0] * z(rng);
+                s.y += sd[1] * z(rng);
+                s.rotation += sd[2] * z(rng);
+                s.scale *= std::exp(sd[3] * z(rng));
+            }
+            particles[i] = Particle{s, w};
+        }
+        estimate.state = TrackState::Tracking;
+        estimate.mean = estimate.best = x0;
+        estimate.confidence = 1.0;
+        previous = x0;
+        awaiting_p_init = true;
+        low_frames = 0;
+        detector.reset();
+    }
+
+    // Re-initialisation guided by the skin map: the largest skin blobs of a plausible size
+    // are tried as palm positions at the last rotation and scale; the best fit is taken if
+    // it measures as well as tracking did (lost_ratio x P_init).
+    bool reacquire_by_skin(const cv::Mat& bgr) {
+        cv::Mat1b seg;
+        skin->segment(bgr, seg);
+        cv::morphologyEx(seg, seg, cv::MORPH_CLOSE,
+                         cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(5, 5)));
+        cv::Mat1i labels;
+        cv::Mat stats, centroids;
+        const int count = cv::connectedComponentsWithStats(seg, labels, stats, centroids, 8, CV_32S);
+        const double template_area = std::max(1.0, cv::contourArea(shape->outline));
+        const double scale = estimate.mean.scale;
+        skin->membership(bgr, cv::Rect(0, 0, bgr.cols, bgr.rows), membership);
+        membership_roi = cv::Rect(0, 0, bgr.cols, bgr.rows);
+        double best_like = 0.0;
+        HandState best_state;
+        for (int i = 1; i < count; ++i) {
+            const double area = stats.at<int>(i, cv::CC_STAT_AREA);
+            const double ratio = area / (template_area * scale * scale);
+            if (ratio < 0.4 || ratio > 3.0) continue;
+            // The palm is the blob's thickest point.
+            const cv::Rect box(stats.at<int>(i, cv::CC_STAT_LEFT), stats.at<int>(i, cv::CC_STAT_TOP),
+                               stats.at<int>(i, cv::CC_STAT_WIDTH), stats.at<int>(i, cv::CC_STAT_HEIGHT));
+            cv::Mat1b blob = labels(box) == i;
+            cv::copyMakeBorder(blob, blob, 1, 1, 1, 1, cv::BORDER_CONSTANT, 0);
+            cv::Mat1f dist;
+            cv::distanceTransform(blob, dist, cv::DIST_L2, cv::DIST_MASK_5);
+            cv::Point at;
+            cv::minMaxLoc(dist, nullptr, nullptr, nullptr, &at);
+            const HandState guess{double(box.x + at.x - 1), double(box.y + at.y - 1),
+                                  estimate.mean.rotation, scale};
+            const FitResult fit = refine_fit(membership, *shape, guess, FitParams{8, 8.0, 0.5, 2.0, 0.5});
+            if (!fit.converged) continue;
+            const double like = measurement.normal_likelihood(
+                measurement.misfit(membership, *shape, fit.state));
+            if (like > best_like) {
+                best_like = like;
+                best_state = fit.state;
+            }
+        }
+        if (best_like < params.lost_ratio * p_init || best_like <= 0.0) return false;
+        start_tracking(best_state);
+        awaiting_p_init = false;  // the hand is known: keep the reference likelihood
+        report(best_state);
+        return true;
+    }
+
+    // --- one CONDENSATION iteration ----------------------------------------------------
+
+    void track(const cv::Mat& bgr, const ImageMotion& motion) {
+        const std::size_t n = particles.size();
+        // Resample (systematic, O(N)), then predict through the zero-order dynamics plus the
+        // camera-motion offset, with quasi-random noise.
+        for (std::size_t i = 0; i < n; ++i) weights[i] = particles[i].weight;
+        std::uniform_real_distribution<double> unit(0.0, 1.0);
+        systematic_resample(weights, unit(rng), ancestors);
+        sampler.next_frame(deviates);
+        const NoiseVector& sd = noise.sigma();
+        double min_x = 1e300, min_y = 1e300, max_x = -1e300, max_y = -1e300, max_s = 0.0;
+        for (std::size_t i = 0; i < n; ++i) {
+            HandState s = particles[ancestors[i]].state;
+            const double* w = &deviates[4 * i];
+            s.x += motion.dx + sd[0] * w[0];
+            s.y += motion.dy + sd[1] * w[1];
+            s.rotation += motion.drotation + sd[2] * w[2];
+            s.scale = std::clamp(s.scale * motion.scale_factor * std::exp(sd[3] * w[3]), kMinScale,
+                                 kMaxScale);
+            predicted[i].state = s;
+            min_x = std::min(min_x, s.x);
+            max_x = std::max(max_x, s.x);
+            min_y = std::min(min_y, s.y);
+            max_y = std::max(max_y, s.y);
+            max_s = std::max(max_s, s.scale);
+        }
+        std::swap(particles, predicted);
+
+        // The skin map once per frame, over the region the hypotheses can reach; the rest
+        // of the map stays 0 (cleared where the previous region was).
+        const double reach = max_s * template_radius + measurement.params().half_window + 2.0;
+        const cv::Rect frame(0, 0, bgr.cols, bgr.rows);
+        const cv::Rect roi = cv::Rect(cv::Point(int(std::floor(min_x - reach)), int(std::floor(min_y - reach))),
+                                      cv::Point(int(std::ceil(max_x + reach)) + 1, int(std::ceil(max_y + reach)) + 1)) &
+                             frame;
+        if (membership_roi.area() > 0) membership(membership_roi).setTo(0);
+        skin->membership(bgr, roi, membership);
+        membership_roi = roi;
+
+        // Weight by the observation density.
+        std::size_t best = 0;
+        double best_misfit = 2.0;
+        const double margin = measurement.negligible_margin();
+        for (std::size_t i = 0; i < n; ++i) {
+            const double q =
+                measurement.misfit(membership, *shape, particles[i].state, best_misfit + margin);
+            log_weights[i] = measurement.log_likelihood(q);
+            if (q < best_misfit) {
+                best_misfit = q;
+                best = i;
+            }
+        }
+        normalise_log_weights(log_weights);
+        for (std::size_t i = 0; i < n; ++i) particles[i].weight = log_weights[i];
+
+        // Estimates: the weighted mean (rotation about the best one, scale geometric) and
+        // the best hypothesis.
+        const HandState& b = particles[best].state;
+        HandState mean{0.0, 0.0, 0.0, 0.0};
+        double log_s = 0.0;
+        for (const Particle& p : particles) {
+            mean.x += p.weight * p.state.x;
+            mean.y += p.weight * p.state.y;
+            mean.rotation += p.weight * wrap_angle(p.state.rotation - b.rotation);
+            log_s += p.weight * std::log(p.state.scale);
+        }
+        mean.rotation += b.rotation;
+        mean.scale = std::exp(log_s);
+        estimate.mean = mean;
+        estimate.best = b;
+
+        const double best_like = measurement.normal_likelihood(best_misfit);
+        if (awaiting_p_init) {
+            p_init = best_like;
+            awaiting_p_init = false;
+        }
+        estimate.confidence = p_init > 0.0 ? std::clamp(best_like / p_init, 0.0, 1.0) : 0.0;
+        // Lost when the edges no longer fit (thesis: every likelihood < lost_ratio x P_init)
+        // and the contour's inner rim is no longer skin. Edges also vanish where the hand
+        // passes in front of a face or a skin-coloured object; there the hand is still
+        // under the contour and tracking goes on.
+        if (best_like < params.lost_ratio * p_init && inner_rim_skin(b) < kRimSkinFraction) {
+            if (++low_frames >= params.lost_frames) {
+                lose();
+                return;
+            }
+        } else {
+            low_frames = 0;
+        }
+
+        // Refine from the better of mean and best; report that.
+        const double mean_misfit = measurement.misfit(membership, *shape, mean);
+        const HandState start = mean_misfit <= best_misfit ? mean : b;
+        const FitResult fit = refine_fit(membership, *shape, start);
+        const HandState out = fit.converged ? fit.state : start;
+        noise.update({out.x - previous.x - motion.dx, out.y - previous.y - motion.dy,
+                      wrap_angle(out.rotation - previous.rotation - motion.drotation),
+                      std::log(out.scale / (previous.scale * motion.scale_factor))});
+        previous = out;
+        report(out);
+        if (params.adapt_skin && estimate.confidence >= kAdaptConfidence) adapt_skin(bgr);
+    }
+
+    // Fraction of points just inside the contour (2.5 px in along the normals) where the
+    // skin membership is above the boundary level.
+    double inner_rim_skin(const HandState& s) const {
+        const double c = std::cos(s.rotation), sn = std::sin(s.rotation);
+        int skin_points = 0;
+        for (std::size_t i = 0; i < shape->outline.size(); ++i) {
+            const cv::Point2d p = place(s, shape->outline[i]);
+            const cv::Point2f& n = shape->outline_normals[i];
+            const int x = cvRound(p.x - 2.5 * (c * n.x - sn * n.y));
+            const int y = cvRound(p.y - 2.5 * (sn * n.x + c * n.y));
+            if (x >= 0 && y >= 0 && x < membership.cols && y < membership.rows &&
+                membership(y, x) >= kSkinEdgeLevel)
+                ++skin_points;
+        }
+        return double(skin_points) / double(shape->outline.size());
+    }
+
+    void lose() {
+        estimate.state = TrackState::Lost;
+        estimate.confidence = 0.0;
+        estimate.contour.clear();
+        estimate.bbox = {};
+        low_frames = 0;
+        detector.reset();
+    }
+
+    // --- reporting ---------------------------------------------------------------------
+
+    void report(const HandState& s) {
+        estimate.contour.resize(shape->outline.size());
+        for (std::size_t i = 0; i < shape->outline.size(); ++i)
+            estimate.contour[i] = cv::Point2f(place(s, shape->outline[i]));
+        estimate.bbox = cv::boundingRect(estimate.contour);
+        estimate.palm = cv::Point2f(float(s.x), float(s.y));
+        estimate.fingertip = cv::Point2f(place(s, shape->fingertip));
+        // Image y points down; the reported angle is counter-clockwise with y up.
+        estimate.pointing_deg = std::atan2(-(estimate.fingertip.y - estimate.palm.y),
+                                           estimate.fingertip.x - estimate.palm.x) *
+                                180.0 / std::numbers::pi;
+    }
+
+    // The skin mean follows the lighting, sampled inside the tracked contour (shrunk by
+    // a few pixels so the boundary's mixed pixels stay out). Only the contour's box is
+    // touched.
+    void adapt_skin(const cv::Mat& bgr) {
+        const cv::Rect box = estimate.bbox & cv::Rect(0, 0, bgr.cols, bgr.rows);
+        if (box.width < 8 || box.height < 8) return;
+        contour_fill.create(box.size());
+        contour_fill.setTo(0);
+        fill_points.resize(estimate.contour.size());
+        for (std::size_t i = 0; i < fill_points.size(); ++i)
+            fill_points[i] = cv::Point(cvRound(estimate.contour[i].x) - box.x,
+                                       cvRound(estimate.contour[i].y) - box.y);
+        const cv::Point* poly = fill_points.data();
+        const int count = static_cast<int>(fill_points.size());
+        cv::fillPoly(contour_fill, &poly, &count, 1, 255);
+        cv::erode(contour_fill, contour_fill, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(5, 5)));
+        skin->update_mean(bgr(box), contour_fill, kAdaptRate);
+    }
+};
+
+HandTracker::HandTracker(const TrackerParams& params) : impl_(std::make_unique<Impl>(params)) {}
+HandTracker::~HandTracker() = default;
+HandTracker::HandTracker(HandTracker&&) noexcept = default;
+HandTracker& HandTracker::operator=(HandTracker&&) noexcept = default;
+
+const EyeEstimate& HandTracker::process(const cv::Mat& bgr, const ImageMotion& camera_motion) {
+    return impl_->process(bgr, camera_motion);
+}
+
+void HandTracker::reset() { impl_->reset(); }
+const EyeEstimate& HandTracker::estimate() const { return impl_->estimate; }
+std::span<const Particle> HandTracker::particles() const { return impl_->particles; }
+const TrackerParams& HandTracker::params() const { return impl_->params; }
+
+}  // namespace gc

@@ -1,0 +1,524 @@
+// handscenesrc: GObject glue over gc::sim::Scene. Frame n of the scene is rendered for
+// buffer offset n, so two instances with the same scene, motion and seed (one per eye)
+// form a consistent stereo pair whatever order they run in.
+#include "gsthandscenesrc.hpp"
+
+#include "video_bgr.hpp"
+
+#include "sim/scene.hpp"
+
+#include <gst/video/video.h>
+#include <opencv2/core.hpp>
+
+#include <exception>
+#include <memory>
+#include <optional>
+
+GST_DEBUG_CATEGORY_STATIC(gst_hand_scene_src_debug);
+#define GST_CAT_DEFAULT gst_hand_scene_src_debug
+
+namespace {
+
+enum {
+    PROP_0,
+    PROP_EYE,
+    PROP_SCENE,
+    PROP_MOTION,
+    PROP_SEED,
+    PROP_NOISE,
+    PROP_LIGHTING_CHANGE,
+    PROP_IS_LIVE,
+    PROP_TRUTH_MESSAGES,
+};
+
+constexpr guint64 kDefaultSeed = 1;
+constexpr double kDefaultNoise = 2.0;
+
+struct SceneSettings {
+    gc::Eye eye = gc::Eye::Left;
+    gc::sim::Preset preset = gc::sim::Preset::Clean;
+    gc::sim::Motion motion = gc::sim::Motion::Mixed;
+    guint64 seed = kDefaultSeed;
+    double noise = kDefaultNoise;
+    bool lighting_change = false;
+    bool truth_messages = true;
+};
+
+struct SceneState {
+    std::optional<gc::sim::Scene> scene;
+    GstVideoInfo info;
+    guint64 next_frame = 0;  // the offset of the next buffer
+    cv::Mat bgr;
+    cv::Mat yuv_scratch;
+    gc::sim::EyeTruth truth;
+};
+
+}  // namespace
+
+struct _GstHandSceneSrc {
+    GstPushSrc parent;
+    SceneSettings* settings;
+    SceneState* state;
+};
+
+G_DEFINE_TYPE(GstHandSceneSrc, gst_hand_scene_src, GST_TYPE_PUSH_SRC)
+GST_ELEMENT_REGISTER_DEFINE(handscenesrc, "handscenesrc", GST_RANK_NONE, GST_TYPE_HAND_SCENE_SRC)
+
+#define GST_TYPE_HAND_SCENE_EYE (gst_hand_scene_eye_get_type())
+static GType gst_hand_scene_eye_get_type()
+{
+    static GType type = 0;
+    static const GEnumValue values[] = {
+        {int(gc::Eye::Left), "The left camera", "left"},
+        {int(gc::Eye::Right), "The right camera", "right"},
+        {0, nullptr, nullptr},
+    };
+    if (g_once_init_enter(&type))
+        g_once_init_leave(&type, g_enum_register_static("GstHandSceneEye", values));
+    return type;
+}
+
+#define GST_TYPE_HAND_SCENE_PRESET (gst_hand_scene_preset_get_type())
+static GType gst_hand_scene_preset_get_type()
+{
+    static GType type = 0;
+    static const GEnumValue values[] = {
+        {int(gc::sim::Preset::Clean), "Plain background (0.03 % skin-like pixels)", "clean"},
+        {int(gc::sim::Preset::Light), "Light clutter (3.7 % skin-like pixels)", "light"},
+        {int(gc::sim::Preset::Heavy), "Heavy clutter (9.4 % skin-like pixels)", "heavy"},
+        {int(gc::sim::Preset::FacePass), "Light clutter and a face that the hand's path crosses", "face-pass"},
+        {0, nullptr, nullptr},
+    };
+    if (g_once_init_enter(&type))
+        g_once_init_leave(&type, g_enum_register_static("GstHandScenePreset", values));
+    return type;
+}
+
+#define GST_TYPE_HAND_SCENE_MOTION (gst_hand_scene_motion_get_type())
+static GType gst_hand_scene_motion_get_type()
+{
+    static GType type = 0;
+    static const GEnumValue values[] = {
+        {int(gc::sim::Motion::Static), "Holds still after the initial wave", "static"},
+        {int(gc::sim::Motion::Translate), "Moves in the image plane", "translate"},
+        {int(gc::sim::Motion::Rotate), "Rotates the pointing direction in the image plane", "rotate"},
+        {int(gc::sim::Motion::Scale), "Moves towards and away from the cameras", "scale"},
+        {int(gc::sim::Motion::Yaw), "Turns the hand plane about the vertical", "yaw"},
+        {int(gc::sim::Motion::Mixed), "All of the above at once", "mixed"},
+        {int(gc::sim::Motion::LeaveReturn), "Leaves the view, stays out for a while, comes back", "leave-return"},
+        {0, nullptr, nullptr},
+    };
+    if (g_once_init_enter(&type))
+        g_once_init_leave(&type, g_enum_register_static("GstHandSceneMotion", values));
+    return type;
+}
+
+static GstStaticPadTemplate src_template = GST_STATIC_PAD_TEMPLATE(
+    "src", GST_PAD_SRC, GST_PAD_ALWAYS,
+    GST_STATIC_CAPS("video/x-raw, format = (string) { " GC_OUTPUT_FORMATS " }, width = (int) [ 32, 4096 ], "
+                    "height = (int) [ 32, 4096 ], framerate = (fraction) [ 1/1, 240/1 ]"));
+
+// ---------------------------------------------------------------------------------------
+// Negotiation
+
+static GstCaps* gst_hand_scene_src_fixate(GstBaseSrc* src, GstCaps* caps)
+{
+    caps = gst_caps_make_writable(caps);
+    GstStructure* s = gst_caps_get_structure(caps, 0);
+    gst_structure_fixate_field_nearest_int(s, "width", 640);
+    gst_structure_fixate_field_nearest_int(s, "height", 480);
+    gst_structure_fixate_field_nearest_fraction(s, "framerate", 30, 1);
+    return GST_BASE_SRC_CLASS(gst_hand_scene_src_parent_class)->fixate(src, caps);
+}
+
+static gboolean gst_hand_scene_src_set_caps(GstBaseSrc* src, GstCaps* caps)
+{
+    GstHandSceneSrc* self = GST_HAND_SCENE_SRC(src);
+    GstVideoInfo info;
+    if (!gst_video_info_from_caps(&info, caps) || GST_VIDEO_INFO_FPS_N(&info) <= 0) {
+        GST_ELEMENT_ERROR(self, CORE, NEGOTIATION, ("handscenesrc needs raw video caps with a frame rate."),
+                          ("got %" GST_PTR_FORMAT, caps));
+        return FALSE;
+    }
+    GST_OBJECT_LOCK(self);
+    const SceneSettings settings = *self->settings;
+    GST_OBJECT_UNLOCK(self);
+    gc::sim::SceneConfig config;
+    config.preset = settings.preset;
+    config.motion = settings.motion;
+    config.seed = settings.seed;
+    config.width = GST_VIDEO_INFO_WIDTH(&info);
+    config.height = GST_VIDEO_INFO_HEIGHT(&info);
+    config.fps = double(GST_VIDEO_INFO_FPS_N(&info)) / GST_VIDEO_INFO_FPS_D(&info);
+    config.noise_sigma = settings.noise;
+    config.lighting_change = settings.lighting_change;
+    try {
+        self->state->scene.emplace(config);
+    } catch (const std::exception& err) {
+        GST_ELEMENT_ERROR(self, CORE, NEGOTIATION, ("Cannot build the scene for %" GST_PTR_FORMAT ".", caps),
+                          ("%s", err.what()));
+        return FALSE;
+    }
+    self->state->info = info;
+    return TRUE;
+}
+
+// Buffers of a full frame from a video buffer pool (downstream's when it offers one).
+static gboolean gst_hand_scene_src_decide_allocation(GstBaseSrc* src, GstQuery* query)
+{
+    GstCaps* caps = nullptr;
+    gst_query_parse_allocation(query, &caps, nullptr);
+    GstVideoInfo info;
+    if (!caps || !gst_video_info_from_caps(&info, caps))
+        return FALSE;
+    GstBufferPool* pool = nullptr;
+    guint size = guint(GST_VIDEO_INFO_SIZE(&info)), min = 0, max = 0;
+    const bool update = gst_query_get_n_allocation_pools(query) > 0;
+    if (update) {
+        guint offered = 0;
+        gst_query_parse_nth_allocation_pool(query, 0, &pool, &offered, &min, &max);
+        size = MAX(size, offered);
+    }
+    if (!pool)
+        pool = gst_video_buffer_pool_new();
+    GstStructure* config = gst_buffer_pool_get_config(pool);
+    gst_buffer_pool_config_set_params(config, caps, size, min, max);
+    if (gst_query_find_allocation_meta(query, GST_VIDEO_META_API_TYPE, nullptr))
+        gst_buffer_pool_config_add_option(config, GST_BUFFER_POOL_OPTION_VIDEO_META);
+    if (!gst_buffer_pool_set_config(pool, config)) {
+        // A downstream pool may refuse the options; fall back to one of our own.
+        gst_object_unref(pool);
+        pool = gst_video_buffer_pool_new();
+        config = gst_buffer_pool_get_config(pool);
+        gst_buffer_pool_config_set_params(config, caps, size, min, max);
+        gst_buffer_pool_set_config(pool, config);
+    }
+    if (update)
+        gst_query_set_nth_allocation_pool(query, 0, pool, size, min, max);
+    else
+        gst_query_add_allocation_pool(query, pool, size, min, max);
+    gst_object_unref(pool);
+    return GST_BASE_SRC_CLASS(gst_hand_scene_src_parent_class)->decide_allocation(src, query);
+}
+
+// ---------------------------------------------------------------------------------------
+// Timing
+
+static GstClockTime frame_time(const GstVideoInfo& info, guint64 frame)
+{
+    return gst_util_uint64_scale(frame, GST_SECOND * GST_VIDEO_INFO_FPS_D(&info), GST_VIDEO_INFO_FPS_N(&info));
+}
+
+// A live source is synchronised on its buffers' timestamps.
+static void gst_hand_scene_src_get_times(GstBaseSrc* src, GstBuffer* buffer, GstClockTime* start, GstClockTime* end)
+{
+    *start = GST_CLOCK_TIME_NONE;
+    *end = GST_CLOCK_TIME_NONE;
+    if (!gst_base_src_is_live(src))
+        return;
+    const GstClockTime pts = GST_BUFFER_PTS(buffer);
+    if (GST_CLOCK_TIME_IS_VALID(pts)) {
+        *start = pts;
+        if (GST_BUFFER_DURATION_IS_VALID(buffer))
+            *end = pts + GST_BUFFER_DURATION(buffer);
+    }
+}
+
+static gboolean gst_hand_scene_src_is_seekable(GstBaseSrc* src) { return !gst_base_src_is_live(src); }
+
+static gboolean gst_hand_scene_src_do_seek(GstBaseSrc* src, GstSegment* segment)
+{
+    GstHandSceneSrc* self = GST_HAND_SCENE_SRC(src);
+    const GstVideoInfo& info = self->state->info;
+    segment->time = segment->start;
+    if (info.finfo && GST_VIDEO_INFO_FPS_N(&info) > 0) {
+        // The first frame that starts at or after the segment start.
+        const guint64 d = GST_SECOND * guint64(GST_VIDEO_INFO_FPS_D(&info));
+        const guint64 n = guint64(GST_VIDEO_INFO_FPS_N(&info));
+        self->state->next_frame = gst_util_uint64_scale_ceil(segment->start, n, d);
+    } else {
+        self->state->next_frame = 0;
+    }
+    return TRUE;
+}
+
+static gboolean gst_hand_scene_src_query(GstBaseSrc* src, GstQuery* query)
+{
+    GstHandSceneSrc* self = GST_HAND_SCENE_SRC(src);
+    if (GST_QUERY_TYPE(query) == GST_QUERY_LATENCY && gst_base_src_is_live(src)) {
+        const GstVideoInfo& info = self->state->info;
+        if (!info.finfo || GST_VIDEO_INFO_FPS_N(&info) <= 0)
+            return FALSE;
+        // A frame is complete one frame duration after its timestamp.
+        const GstClockTime latency = frame_time(info, 1);
+        gst_query_set_latency(query, TRUE, latency, latency);
+        return TRUE;
+    }
+    return GST_BASE_SRC_CLASS(gst_hand_scene_src_parent_class)->query(src, query);
+}
+
+// ---------------------------------------------------------------------------------------
+// Frames
+
+static void post_truth(GstHandSceneSrc* self, guint64 frame, GstClockTime pts, const SceneSettings& settings)
+{
+    const gc::sim::Scene& scene = *self->state->scene;
+    const gc::sim::EyeTruth& t = self->state->truth;
+    const gc::sim::HandTruth hand = scene.hand_truth(scene.hand_pose(int(frame)));
+    auto vec3 = [](GstStructure* s, const char* name, const cv::Vec3d& v) {
+        GValue array = G_VALUE_INIT;
+        gst_value_array_init(&array, 3);
+        for (int i = 0; i < 3; ++i) {
+            GValue item = G_VALUE_INIT;
+            g_value_init(&item, G_TYPE_DOUBLE);
+            g_value_set_double(&item, v[i]);
+            gst_value_array_append_and_take_value(&array, &item);
+        }
+        gst_structure_take_value(s, name, &array);
+    };
+    GstStructure* s = gst_structure_new(
+        "hand-truth", "frame", G_TYPE_UINT64, frame, "timestamp", G_TYPE_UINT64, pts, "eye", G_TYPE_STRING,
+        settings.eye == gc::Eye::Left ? "left" : "right", "visible", G_TYPE_BOOLEAN, gboolean(t.visible), "palm-x",
+        G_TYPE_DOUBLE, t.palm_px.x, "palm-y", G_TYPE_DOUBLE, t.palm_px.y, "fingertip-x", G_TYPE_DOUBLE,
+        t.fingertip_px.x, "fingertip-y", G_TYPE_DOUBLE, t.fingertip_px.y, "pointing-deg", G_TYPE_DOUBLE,
+        t.pointing_deg, "bbox-x", G_TYPE_INT, t.bbox.x, "bbox-y", G_TYPE_INT, t.bbox.y, "bbox-width", G_TYPE_INT,
+        t.bbox.width, "bbox-height", G_TYPE_INT, t.bbox.height, nullptr);
+    vec3(s, "fingertip-head-mm", hand.fingertip_mm);
+    vec3(s, "palm-head-mm", hand.palm_mm);
+    vec3(s, "direction-head", hand.direction);
+    gst_element_post_message(GST_ELEMENT(self), gst_message_new_element(GST_OBJECT(self), s));
+}
+
+static GstFlowReturn gst_hand_scene_src_fill(GstPushSrc* src, GstBuffer* buffer)
+{
+    GstHandSceneSrc* self = GST_HAND_SCENE_SRC(src);
+    SceneState& st = *self->state;
+    if (!st.scene) {
+        GST_ELEMENT_ERROR(self, CORE, NEGOTIATION, ("No caps were negotiated before the first frame."), (nullptr));
+        return GST_FLOW_NOT_NEGOTIATED;
+    }
+    GST_OBJECT_LOCK(self);
+    const SceneSettings settings = *self->settings;
+    GST_OBJECT_UNLOCK(self);
+
+    const guint64 frame = st.next_frame;
+    if (frame > guint64(G_MAXINT)) {
+        GST_ELEMENT_ERROR(self, STREAM, FAILED, ("The scene has no frame %" G_GUINT64_FORMAT ".", frame), (nullptr));
+        return GST_FLOW_ERROR;
+    }
+    GstVideoFrame out;
+    if (!gst_video_frame_map(&out, &st.info, buffer, GST_MAP_WRITE)) {
+        GST_ELEMENT_ERROR(self, STREAM, FAILED, ("Cannot map the output buffer."), (nullptr));
+        return GST_FLOW_ERROR;
+    }
+    try {
+        st.scene->render(int(frame), settings.eye, gc::HeadPose{}, st.bgr,
+                         settings.truth_messages ? &st.truth : nullptr);
+        gc::gst::write_bgr(st.bgr, out, st.yuv_scratch);
+    } catch (const std::exception& err) {
+        gst_video_frame_unmap(&out);
+        GST_ELEMENT_ERROR(self, STREAM, FAILED, ("Cannot render frame %" G_GUINT64_FORMAT ".", frame),
+                          ("%s", err.what()));
+        return GST_FLOW_ERROR;
+    }
+    gst_video_frame_unmap(&out);
+
+    const GstClockTime pts = frame_time(st.info, frame);
+    GST_BUFFER_PTS(buffer) = pts;
+    GST_BUFFER_DTS(buffer) = GST_CLOCK_TIME_NONE;
+    GST_BUFFER_DURATION(buffer) = frame_time(st.info, frame + 1) - pts;
+    GST_BUFFER_OFFSET(buffer) = frame;
+    GST_BUFFER_OFFSET_END(buffer) = frame + 1;
+    if (frame == 0)
+        GST_BUFFER_FLAG_SET(buffer, GST_BUFFER_FLAG_DISCONT);
+    st.next_frame = frame + 1;
+
+    if (settings.truth_messages)
+        post_truth(self, frame, pts, settings);
+    return GST_FLOW_OK;
+}
+
+static gboolean gst_hand_scene_src_start(GstBaseSrc* src)
+{
+    GstHandSceneSrc* self = GST_HAND_SCENE_SRC(src);
+    self->state->next_frame = 0;
+    gst_video_info_init(&self->state->info);
+    return TRUE;
+}
+
+static gboolean gst_hand_scene_src_stop(GstBaseSrc* src)
+{
+    GstHandSceneSrc* self = GST_HAND_SCENE_SRC(src);
+    self->state->scene.reset();
+    self->state->bgr.release();
+    self->state->truth = {};
+    return TRUE;
+}
+
+// ---------------------------------------------------------------------------------------
+// Properties
+
+static void gst_hand_scene_src_set_property(GObject* object, guint prop_id, const GValue* value, GParamSpec* pspec)
+{
+    GstHandSceneSrc* self = GST_HAND_SCENE_SRC(object);
+    if (prop_id == PROP_IS_LIVE) {
+        gst_base_src_set_live(GST_BASE_SRC(self), g_value_get_boolean(value));
+        return;
+    }
+    GST_OBJECT_LOCK(self);
+    SceneSettings& s = *self->settings;
+    switch (prop_id) {
+    case PROP_EYE:
+        s.eye = gc::Eye(g_value_get_enum(value));
+        break;
+    case PROP_SCENE:
+        s.preset = gc::sim::Preset(g_value_get_enum(value));
+        break;
+    case PROP_MOTION:
+        s.motion = gc::sim::Motion(g_value_get_enum(value));
+        break;
+    case PROP_SEED:
+        s.seed = g_value_get_uint64(value);
+        break;
+    case PROP_NOISE:
+        s.noise = g_value_get_double(value);
+        break;
+    case PROP_LIGHTING_CHANGE:
+        s.lighting_change = g_value_get_boolean(value);
+        break;
+    case PROP_TRUTH_MESSAGES:
+        s.truth_messages = g_value_get_boolean(value);
+        break;
+    default:
+        G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
+        break;
+    }
+    GST_OBJECT_UNLOCK(self);
+}
+
+static void gst_hand_scene_src_get_property(GObject* object, guint prop_id, GValue* value, GParamSpec* pspec)
+{
+    GstHandSceneSrc* self = GST_HAND_SCENE_SRC(object);
+    if (prop_id == PROP_IS_LIVE) {
+        g_value_set_boolean(value, gst_base_src_is_live(GST_BASE_SRC(self)));
+        return;
+    }
+    GST_OBJECT_LOCK(self);
+    const SceneSettings& s = *self->settings;
+    switch (prop_id) {
+    case PROP_EYE:
+        g_value_set_enum(value, int(s.eye));
+        break;
+    case PROP_SCENE:
+        g_value_set_enum(value, int(s.preset));
+        break;
+    case PROP_MOTION:
+        g_value_set_enum(value, int(s.motion));
+        break;
+    case PROP_SEED:
+        g_value_set_uint64(value, s.seed);
+        break;
+    case PROP_NOISE:
+        g_value_set_double(value, s.noise);
+        break;
+    case PROP_LIGHTING_CHANGE:
+        g_value_set_boolean(value, s.lighting_change);
+        break;
+    case PROP_TRUTH_MESSAGES:
+        g_value_set_boolean(value, s.truth_messages);
+        break;
+    default:
+        G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
+        break;
+    }
+    GST_OBJECT_UNLOCK(self);
+}
+
+static void gst_hand_scene_src_finalize(GObject* object)
+{
+    GstHandSceneSrc* self = GST_HAND_SCENE_SRC(object);
+    delete self->state;
+    delete self->settings;
+    G_OBJECT_CLASS(gst_hand_scene_src_parent_class)->finalize(object);
+}
+
+static void gst_hand_scene_src_class_init(GstHandSceneSrcClass* klass)
+{
+    GObjectClass* gobject_class = G_OBJECT_CLASS(klass);
+    GstElementClass* element_class = GST_ELEMENT_CLASS(klass);
+    GstBaseSrcClass* basesrc_class = GST_BASE_SRC_CLASS(klass);
+    GstPushSrcClass* pushsrc_class = GST_PUSH_SRC_CLASS(klass);
+
+    GST_DEBUG_CATEGORY_INIT(gst_hand_scene_src_debug, "handscenesrc", 0, "synthetic pointing-hand camera");
+
+    gobject_class->set_property = gst_hand_scene_src_set_property;
+    gobject_class->get_property = gst_hand_scene_src_get_property;
+    gobject_class->finalize = gst_hand_scene_src_finalize;
+
+    const auto flags = GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY);
+    g_object_class_install_property(gobject_class, PROP_EYE,
+                                    g_param_spec_enum("eye", "Eye", "Which camera of the stereo head to render",
+                                                      GST_TYPE_HAND_SCENE_EYE, int(gc::Eye::Left), flags));
+    g_object_class_install_property(
+        gobject_class, PROP_SCENE,
+        g_param_spec_enum("scene", "Scene", "Background clutter preset", GST_TYPE_HAND_SCENE_PRESET,
+                          int(gc::sim::Preset::Clean), flags));
+    g_object_class_install_property(
+        gobject_class, PROP_MOTION,
+        g_param_spec_enum("motion", "Motion", "Scripted hand motion (every script starts with a short wave)",
+                          GST_TYPE_HAND_SCENE_MOTION, int(gc::sim::Motion::Mixed), flags));
+    g_object_class_install_property(
+        gobject_class, PROP_SEED,
+        g_param_spec_uint64("seed", "Seed",
+                            "Background layout, skin tone and noise: the same seed renders the same scene", 0,
+                            G_MAXUINT64, kDefaultSeed, flags));
+    g_object_class_install_property(
+        gobject_class, PROP_NOISE,
+        g_param_spec_double("noise", "Noise", "Standard deviation of the sensor noise, grey levels", 0.0, 64.0,
+                            kDefaultNoise, flags));
+    g_object_class_install_property(
+        gobject_class, PROP_LIGHTING_CHANGE,
+        g_param_spec_boolean("lighting-change", "Lighting change",
+                             "A slow global change of brightness and colour temperature", FALSE, flags));
+    g_object_class_install_property(
+        gobject_class, PROP_IS_LIVE,
+        g_param_spec_boolean("is-live", "Is live", "Behave as a live camera: frames come at the frame rate",
+                             FALSE, flags));
+    g_object_class_install_property(
+        gobject_class, PROP_TRUTH_MESSAGES,
+        g_param_spec_boolean("truth-messages", "Truth messages",
+                             "Post a hand-truth element message with the ground truth of every frame", TRUE,
+                             GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_PLAYING)));
+
+    gst_element_class_add_static_pad_template(element_class, &src_template);
+    gst_element_class_set_static_metadata(
+        element_class, "Pointing hand scene source", "Source/Video",
+        "Renders one camera of a synthetic stereo scene with a person pointing, frame n for buffer offset n, and "
+        "posts the ground truth of every frame as a hand-truth element message",
+        "GestureCAM <gesturecam@localhost>");
+
+    basesrc_class->fixate = gst_hand_scene_src_fixate;
+    basesrc_class->set_caps = gst_hand_scene_src_set_caps;
+    basesrc_class->decide_allocation = gst_hand_scene_src_decide_allocation;
+    basesrc_class->get_times = gst_hand_scene_src_get_times;
+    basesrc_class->is_seekable = gst_hand_scene_src_is_seekable;
+    basesrc_class->do_seek = gst_hand_scene_src_do_seek;
+    basesrc_class->query = gst_hand_scene_src_query;
+    basesrc_class->start = gst_hand_scene_src_start;
+    basesrc_class->stop = gst_hand_scene_src_stop;
+    pushsrc_class->fill = gst_hand_scene_src_fill;
+
+    gst_type_mark_as_plugin_api(GST_TYPE_HAND_SCENE_EYE, GstPluginAPIFlags(0));
+    gst_type_mark_as_plugin_api(GST_TYPE_HAND_SCENE_PRESET, GstPluginAPIFlags(0));
+    gst_type_mark_as_plugin_api(GST_TYPE_HAND_SCENE_MOTION, GstPluginAPIFlags(0));
+}
+
+static void gst_hand_scene_src_init(GstHandSceneSrc* self)
+{
+    self->settings = new SceneSettings();
+    self->state = new SceneState();
+    gst_video_info_init(&self->state->info);
+    GstBaseSrc* base = GST_BASE_SRC(self);
+    gst_base_src_set_format(base, GST_FORMAT_TIME);
+    gst_base_src_set_live(base, FALSE);
+}

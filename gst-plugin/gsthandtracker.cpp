@@ -1,0 +1,796 @@
+// handtracker: GObject glue over gc::PointingTracker. GstVideoAggregator pairs the views
+// by running time and hands aggregate_frames() the prepared frame of every pad for one
+// output slot; this file converts them to BGR, runs the shared tracker code path and
+// publishes the result (meta, region of interest, bus message, optional JSON lines).
+#include "gsthandtracker.hpp"
+
+#include "attention_window.hpp"
+#include "pointing_report.hpp"
+#include "tracking_overlay.hpp"
+#include "video_bgr.hpp"
+
+#include "stereo/calibration.hpp"
+#include "tracker/pointing_tracker.hpp"
+
+#include <gst/gesturecam/gsthandpointingmeta.h>
+#include <gst/video/gstvideometa.h>
+#include <gst/video/video.h>
+#include <opencv2/imgproc.hpp>
+
+#include <atomic>
+#include <cstdio>
+#include <exception>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+GST_DEBUG_CATEGORY_STATIC(gst_hand_tracker_debug);
+#define GST_CAT_DEFAULT gst_hand_tracker_debug
+
+namespace {
+
+constexpr int kDefaultParticles = 1000;
+constexpr int kMaxParticles = 100000;
+constexpr guint64 kDefaultSeed = 1;
+constexpr double kDefaultLostThreshold = 0.6;
+constexpr int kDefaultLostFrames = 3;
+constexpr GstHandTrackerOutput kDefaultOutput = GST_HAND_TRACKER_OUTPUT_LEFT;
+constexpr GstHandTrackerMessageUpdates kDefaultMessageUpdates = GST_HAND_TRACKER_MESSAGES_EVERY_FRAME;
+
+enum {
+    PROP_0,
+    PROP_PARTICLES,
+    PROP_SEED,
+    PROP_CALIBRATION,
+    PROP_OUTPUT,
+    PROP_DRAW,
+    PROP_LOST_THRESHOLD,
+    PROP_LOST_FRAMES,
+    PROP_MESSAGE_UPDATES,
+    PROP_JSON_LOCATION,
+};
+
+// Property values, read and written under the object lock.
+struct Settings {
+    int particles = kDefaultParticles;
+    guint64 seed = kDefaultSeed;
+    std::string calibration;  // empty: the nominal rig for the stream's size
+    GstHandTrackerOutput output = kDefaultOutput;
+    bool draw = false;
+    double lost_threshold = kDefaultLostThreshold;
+    int lost_frames = kDefaultLostFrames;
+    GstHandTrackerMessageUpdates message_updates = kDefaultMessageUpdates;
+    std::string json_location;
+};
+
+// Everything the streaming thread owns.
+struct Engine {
+    std::unique_ptr<gc::PointingTracker> tracker;
+    std::optional<gc::StereoCalibration> calibration;
+    std::string calibration_path;  // the file `calibration` was loaded from
+    cv::Size view_size;            // of the tracked views, to reset on renegotiation
+    bool stereo = false;
+    gc::gst::BgrReader readers[2];
+    cv::Mat halves[2];             // the two views of a side-by-side frame
+    cv::Mat canvas;                // the view being drawn on
+    cv::Mat scaled;                // the view at the output size
+    cv::Mat yuv_scratch;
+    std::vector<float> contour_scratch;
+    gc::gst::AttentionWindow attention;
+    gc::gst::TrackingOverlay overlay;
+    std::FILE* json = nullptr;
+    std::string json_line;
+    std::optional<gc::TrackState> last_posted_state;
+
+    ~Engine() { close_json(); }
+    void close_json()
+    {
+        if (json)
+            std::fclose(json);
+        json = nullptr;
+    }
+    void forget()
+    {
+        if (tracker)
+            tracker->reset();
+        attention.reset();
+        view_size = {};
+        last_posted_state.reset();
+    }
+};
+
+}  // namespace
+
+struct _GstHandTracker {
+    GstVideoAggregator parent;
+    Settings* settings;
+    Engine* engine;
+    std::atomic<bool>* rebuild;  // tracker parameters changed
+    std::atomic<bool>* flushed;  // a flushing seek: the frames jump
+};
+
+G_DEFINE_TYPE(GstHandTracker, gst_hand_tracker, GST_TYPE_VIDEO_AGGREGATOR)
+GST_ELEMENT_REGISTER_DEFINE(handtracker, "handtracker", GST_RANK_NONE, GST_TYPE_HAND_TRACKER)
+
+#define GST_TYPE_HAND_TRACKER_OUTPUT (gst_hand_tracker_output_get_type())
+static GType gst_hand_tracker_output_get_type()
+{
+    static GType type = 0;
+    static const GEnumValue values[] = {
+        {GST_HAND_TRACKER_OUTPUT_LEFT, "The left view", "left"},
+        {GST_HAND_TRACKER_OUTPUT_RIGHT, "The right view (the left one for mono input)", "right"},
+        {GST_HAND_TRACKER_OUTPUT_ATTENDED,
+         "A smoothed crop of the left view around the hand and where it points, scaled to the output size",
+         "attended"},
+        {0, nullptr, nullptr},
+    };
+    if (g_once_init_enter(&type))
+        g_once_init_leave(&type, g_enum_register_static("GstHandTrackerOutput", values));
+    return type;
+}
+
+#define GST_TYPE_HAND_TRACKER_MESSAGE_UPDATES (gst_hand_tracker_message_updates_get_type())
+static GType gst_hand_tracker_message_updates_get_type()
+{
+    static GType type = 0;
+    static const GEnumValue values[] = {
+        {GST_HAND_TRACKER_MESSAGES_EVERY_FRAME, "A hand-pointing message for every output frame",
+         "every-frame"},
+        {GST_HAND_TRACKER_MESSAGES_ON_CHANGE, "A hand-pointing message when the tracking state changes",
+         "on-change"},
+        {GST_HAND_TRACKER_MESSAGES_NONE, "No hand-pointing messages", "none"},
+        {0, nullptr, nullptr},
+    };
+    if (g_once_init_enter(&type))
+        g_once_init_leave(&type, g_enum_register_static("GstHandTrackerMessageUpdates", values));
+    return type;
+}
+
+#define VIDEO_CAPS(formats)                                                                        \
+    "video/x-raw, format = (string) { " formats " }, width = (int) [ 32, 16384 ], "              \
+    "height = (int) [ 32, 16384 ], framerate = (fraction) [ 0/1, 2147483647/1 ]"
+
+static GstStaticPadTemplate sink_left_template =
+    GST_STATIC_PAD_TEMPLATE("sink_left", GST_PAD_SINK, GST_PAD_REQUEST, GST_STATIC_CAPS(VIDEO_CAPS(GC_INPUT_FORMATS)));
+static GstStaticPadTemplate sink_right_template =
+    GST_STATIC_PAD_TEMPLATE("sink_right", GST_PAD_SINK, GST_PAD_REQUEST, GST_STATIC_CAPS(VIDEO_CAPS(GC_INPUT_FORMATS)));
+static GstStaticPadTemplate sink_packed_template =
+    GST_STATIC_PAD_TEMPLATE("sink", GST_PAD_SINK, GST_PAD_REQUEST, GST_STATIC_CAPS(VIDEO_CAPS(GC_INPUT_FORMATS)));
+static GstStaticPadTemplate src_template =
+    GST_STATIC_PAD_TEMPLATE("src", GST_PAD_SRC, GST_PAD_ALWAYS, GST_STATIC_CAPS(VIDEO_CAPS(GC_OUTPUT_FORMATS)));
+
+static GstVideoAggregatorPad* sink_pad(GstHandTracker* self, const char* name)
+{
+    GstPad* pad = gst_element_get_static_pad(GST_ELEMENT(self), name);
+    if (pad)
+        gst_object_unref(pad);  // the element keeps its pads alive while streaming
+    return pad ? GST_VIDEO_AGGREGATOR_PAD(pad) : nullptr;
+}
+
+// ---------------------------------------------------------------------------------------
+// Pads
+
+static GstAggregatorPad* gst_hand_tracker_create_new_pad(GstAggregator* agg, GstPadTemplate* templ,
+                                                         const gchar* /*req_name*/, const GstCaps* /*caps*/)
+{
+    GstHandTracker* self = GST_HAND_TRACKER(agg);
+    const gchar* name = GST_PAD_TEMPLATE_NAME_TEMPLATE(templ);
+    GstElement* element = GST_ELEMENT(agg);
+    if (GstPad* existing = gst_element_get_static_pad(element, name)) {
+        gst_object_unref(existing);
+        GST_WARNING_OBJECT(self, "pad %s already exists", name);
+        return nullptr;
+    }
+    const bool packed = g_str_equal(name, "sink");
+    const bool have_packed = sink_pad(self, "sink") != nullptr;
+    const bool have_eyes = sink_pad(self, "sink_left") || sink_pad(self, "sink_right");
+    if ((packed && have_eyes) || (!packed && have_packed)) {
+        GST_WARNING_OBJECT(self, "pad %s cannot be combined with %s", name,
+                           packed ? "sink_left/sink_right" : "the side-by-side pad sink");
+        return nullptr;
+    }
+    return GST_AGGREGATOR_PAD(g_object_new(GST_PAD_TEMPLATE_GTYPE(templ), "name", name, "direction",
+                                           GST_PAD_SINK, "template", templ, nullptr));
+}
+
+// Any size and format of the template on every sink pad, whatever downstream wants: the
+// element converts itself, and a size mismatch between the views is reported in words
+// when the frames meet instead of failing upstream's negotiation without a reason.
+static gboolean gst_hand_tracker_sink_query(GstAggregator* agg, GstAggregatorPad* pad, GstQuery* query)
+{
+    switch (GST_QUERY_TYPE(query)) {
+    case GST_QUERY_CAPS: {
+        GstCaps* filter = nullptr;
+        gst_query_parse_caps(query, &filter);
+        GstCaps* caps = gst_pad_get_pad_template_caps(GST_PAD(pad));
+        if (filter) {
+            GstCaps* both = gst_caps_intersect_full(filter, caps, GST_CAPS_INTERSECT_FIRST);
+            gst_caps_unref(caps);
+            caps = both;
+        }
+        gst_query_set_caps_result(query, caps);
+        gst_caps_unref(caps);
+        return TRUE;
+    }
+    case GST_QUERY_ACCEPT_CAPS: {
+        GstCaps* caps = nullptr;
+        gst_query_parse_accept_caps(query, &caps);
+        GstCaps* templ = gst_pad_get_pad_template_caps(GST_PAD(pad));
+        gst_query_set_accept_caps_result(query, gst_caps_is_subset(caps, templ));
+        gst_caps_unref(templ);
+        return TRUE;
+    }
+    default:
+        return GST_AGGREGATOR_CLASS(gst_hand_tracker_parent_class)->sink_query(agg, pad, query);
+    }
+}
+
+// The size of one view as the pads currently describe it.
+static bool current_view_size(GstHandTracker* self, int& width, int& height)
+{
+    for (const char* name : {"sink_left", "sink_right", "sink"}) {
+        GstVideoAggregatorPad* pad = sink_pad(self, name);
+        if (!pad)
+            continue;
+        GST_OBJECT_LOCK(self);
+        GstVideoInfo info = pad->info;
+        GST_OBJECT_UNLOCK(self);
+        if (!info.finfo || GST_VIDEO_INFO_FORMAT(&info) == GST_VIDEO_FORMAT_UNKNOWN || info.width == 0)
+            continue;
+        width = info.width;
+        height = info.height;
+        if (g_str_equal(name, "sink")) {
+            if (GST_VIDEO_INFO_MULTIVIEW_MODE(&info) == GST_VIDEO_MULTIVIEW_MODE_TOP_BOTTOM)
+                height /= 2;
+            else
+                width /= 2;
+        }
+        return true;
+    }
+    return false;
+}
+
+// The output follows the size of one view unless downstream asks for another.
+static GstCaps* gst_hand_tracker_fixate_src_caps(GstAggregator* agg, GstCaps* caps)
+{
+    GstHandTracker* self = GST_HAND_TRACKER(agg);
+    int width = 640, height = 480;
+    current_view_size(self, width, height);
+    gint fps_n = 30, fps_d = 1;
+    for (const char* name : {"sink_left", "sink_right", "sink"}) {
+        GstVideoAggregatorPad* pad = sink_pad(self, name);
+        if (pad && pad->info.finfo && GST_VIDEO_INFO_FPS_N(&pad->info) > 0) {
+            fps_n = GST_VIDEO_INFO_FPS_N(&pad->info);
+            fps_d = GST_VIDEO_INFO_FPS_D(&pad->info);
+            break;
+        }
+    }
+    caps = gst_caps_make_writable(caps);
+    GstStructure* s = gst_caps_get_structure(caps, 0);
+    gst_structure_fixate_field_nearest_int(s, "width", width);
+    gst_structure_fixate_field_nearest_int(s, "height", height);
+    gst_structure_fixate_field_nearest_fraction(s, "framerate", fps_n, fps_d);
+    if (gst_structure_has_field(s, "pixel-aspect-ratio"))
+        gst_structure_fixate_field_nearest_fraction(s, "pixel-aspect-ratio", 1, 1);
+    return gst_caps_fixate(caps);
+}
+
+// ---------------------------------------------------------------------------------------
+// Tracking
+
+static Settings read_settings(GstHandTracker* self)
+{
+    GST_OBJECT_LOCK(self);
+    Settings s = *self->settings;
+    GST_OBJECT_UNLOCK(self);
+    return s;
+}
+
+// (Re)creates the tracker from the settings; loads the calibration file when it changed.
+// Posts an error and returns false when the file cannot be used.
+static bool build_tracker(GstHandTracker* self, const Settings& settings)
+{
+    Engine& e = *self->engine;
+    try {
+        if (settings.calibration != e.calibration_path) {
+            e.calibration.reset();
+            if (!settings.calibration.empty())
+                e.calibration = gc::load_calibration(settings.calibration);
+            e.calibration_path = settings.calibration;
+        }
+    } catch (const std::exception& err) {
+        GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("Cannot use the calibration file \"%s\".", settings.calibration.c_str()),
+                          ("%s", err.what()));
+        return false;
+    }
+    gc::TrackerParams params;
+    params.particles = settings.particles;
+    params.seed = settings.seed;
+    params.lost_ratio = settings.lost_threshold;
+    params.lost_frames = settings.lost_frames;
+    e.tracker = std::make_unique<gc::PointingTracker>(params, e.calibration);
+    e.attention.reset();
+    e.view_size = {};
+    e.last_posted_state.reset();
+    return true;
+}
+
+static bool views_ready(const GstVideoFrame* frame) { return frame && frame->buffer; }
+
+static bool should_post(Engine& e, GstHandTrackerMessageUpdates mode, gc::TrackState state)
+{
+    switch (mode) {
+    case GST_HAND_TRACKER_MESSAGES_NONE:
+        return false;
+    case GST_HAND_TRACKER_MESSAGES_ON_CHANGE:
+        if (e.last_posted_state == state)
+            return false;
+        break;
+    case GST_HAND_TRACKER_MESSAGES_EVERY_FRAME:
+        break;
+    }
+    e.last_posted_state = state;
+    return true;
+}
+
+static void post_message(GstHandTracker* self, GstBuffer* outbuf, const gc::FrameResult& result,
+                         const gc::gst::ReportContext& context)
+{
+    GstAggregator* agg = GST_AGGREGATOR(self);
+    GstStructure* s = gc::gst::pointing_structure(result, context, true);
+    const GstClockTime pts = GST_BUFFER_PTS(outbuf);
+    GST_OBJECT_LOCK(agg->srcpad);
+    const GstSegment* segment = &GST_AGGREGATOR_PAD(agg->srcpad)->segment;
+    const GstClockTime running = gst_segment_to_running_time(segment, GST_FORMAT_TIME, pts);
+    const GstClockTime stream = gst_segment_to_stream_time(segment, GST_FORMAT_TIME, pts);
+    GST_OBJECT_UNLOCK(agg->srcpad);
+    gst_structure_set(s, "timestamp", G_TYPE_UINT64, pts, "running-time", G_TYPE_UINT64, running, "stream-time",
+                      G_TYPE_UINT64, stream, "duration", G_TYPE_UINT64, GST_BUFFER_DURATION(outbuf), nullptr);
+    gst_element_post_message(GST_ELEMENT(self), gst_message_new_element(GST_OBJECT(self), s));
+}
+
+// The region of interest in the output buffer's pixels: the output view's hand box mapped
+// through the crop and the scaling.
+static void add_region_of_interest(GstBuffer* outbuf, const gc::FrameResult& result, bool right_view,
+                                   const cv::Rect& view, cv::Size out, const gc::gst::ReportContext& context)
+{
+    const gc::EyeEstimate& eye = right_view ? result.right : result.left;
+    if (eye.state == gc::TrackState::Acquiring || eye.bbox.area() <= 0 || view.area() <= 0)
+        return;
+    const double sx = double(out.width) / view.width;
+    const double sy = double(out.height) / view.height;
+    cv::Rect box(int((eye.bbox.x - view.x) * sx), int((eye.bbox.y - view.y) * sy), int(eye.bbox.width * sx),
+                 int(eye.bbox.height * sy));
+    box &= cv::Rect(0, 0, out.width, out.height);
+    if (box.area() <= 0)
+        return;
+    GstVideoRegionOfInterestMeta* roi =
+        gst_buffer_add_video_region_of_interest_meta(outbuf, "hand", guint(box.x), guint(box.y), guint(box.width),
+                                                     guint(box.height));
+    gst_video_region_of_interest_meta_add_param(roi, gc::gst::pointing_structure(result, context, false));
+}
+
+static GstFlowReturn size_mismatch(GstHandTracker* self, const GstVideoFrame* left, const GstVideoFrame* right)
+{
+    GST_ELEMENT_ERROR(self, CORE, NEGOTIATION,
+                      ("sink_left is %dx%d but sink_right is %dx%d", GST_VIDEO_FRAME_WIDTH(left),
+                       GST_VIDEO_FRAME_HEIGHT(left), GST_VIDEO_FRAME_WIDTH(right), GST_VIDEO_FRAME_HEIGHT(right)),
+                      ("the two views of a stereo pair must have the same size"));
+    return GST_FLOW_NOT_NEGOTIATED;
+}
+
+static GstFlowReturn gst_hand_tracker_aggregate_frames(GstVideoAggregator* vagg, GstBuffer* outbuf)
+{
+    GstHandTracker* self = GST_HAND_TRACKER(vagg);
+    Engine& e = *self->engine;
+    const Settings settings = read_settings(self);
+
+    if (self->rebuild->exchange(false) || !e.tracker) {
+        if (!build_tracker(self, settings))
+            return GST_FLOW_ERROR;
+    }
+    if (self->flushed->exchange(false))
+        e.forget();
+
+    GstVideoAggregatorPad* packed_pad = sink_pad(self, "sink");
+    GstVideoAggregatorPad* left_pad = sink_pad(self, "sink_left");
+    GstVideoAggregatorPad* right_pad = sink_pad(self, "sink_right");
+    const GstVideoFrame* packed = packed_pad ? gst_video_aggregator_pad_get_prepared_frame(packed_pad) : nullptr;
+    const GstVideoFrame* left = left_pad ? gst_video_aggregator_pad_get_prepared_frame(left_pad) : nullptr;
+    const GstVideoFrame* right = right_pad ? gst_video_aggregator_pad_get_prepared_frame(right_pad) : nullptr;
+
+    // The views of this output slot, as BGR.
+    cv::Mat views[2];
+    bool have[2] = {false, false};
+    const bool stereo = packed_pad != nullptr || (left_pad != nullptr && right_pad != nullptr);
+    try {
+        if (packed_pad) {
+            if (views_ready(packed)) {
+                const cv::Mat& whole = e.readers[0].read(*packed);
+                const bool top_bottom =
+                    GST_VIDEO_INFO_MULTIVIEW_MODE(&packed->info) == GST_VIDEO_MULTIVIEW_MODE_TOP_BOTTOM;
+                const cv::Rect first = top_bottom ? cv::Rect(0, 0, whole.cols, whole.rows / 2)
+                                                  : cv::Rect(0, 0, whole.cols / 2, whole.rows);
+                const cv::Rect second = top_bottom ? cv::Rect(0, whole.rows / 2, whole.cols, whole.rows / 2)
+                                                   : cv::Rect(whole.cols / 2, 0, whole.cols / 2, whole.rows);
+                whole(first).copyTo(e.halves[0]);
+                whole(second).copyTo(e.halves[1]);
+                views[0] = e.halves[0];
+                views[1] = e.halves[1];
+                have[0] = have[1] = true;
+            }
+        } else {
+            if (views_ready(left) && views_ready(right) &&
+                (GST_VIDEO_FRAME_WIDTH(left) != GST_VIDEO_FRAME_WIDTH(right) ||
+                 GST_VIDEO_FRAME_HEIGHT(left) != GST_VIDEO_FRAME_HEIGHT(right)))
+                return size_mismatch(self, left, right);
+            const GstVideoFrame* frames[2] = {left, right};
+            for (int i = 0; i < 2; ++i) {
+                if (!views_ready(frames[i]))
+                    continue;
+                const cv::Mat& bgr = e.readers[i].read(*frames[i]);
+                // The tracker works on whole rows; padded strides are packed first.
+                if (bgr.isContinuous())
+                    views[i] = bgr;
+                else
+                    bgr.copyTo(e.halves[i]), views[i] = e.halves[i];
+                have[i] = true;
+            }
+        }
+    } catch (const std::exception& err) {
+        GST_ELEMENT_ERROR(self, STREAM, FORMAT, ("Cannot read an input frame."), ("%s", err.what()));
+        return GST_FLOW_ERROR;
+    }
+
+    // Track when the pair is complete (mono: the left view alone).
+    const bool complete = stereo ? (have[0] && have[1]) : have[0];
+    if (complete) {
+        const cv::Size size = views[0].size();
+        if (!e.view_size.empty() && (size != e.view_size || stereo != e.stereo)) {
+            GST_INFO_OBJECT(self, "views changed to %dx%d: tracking starts over", size.width, size.height);
+            e.tracker->reset();
+            e.attention.reset();
+        }
+        e.view_size = size;
+        e.stereo = stereo;
+        try {
+            const gint64 pts = GST_CLOCK_TIME_IS_VALID(GST_BUFFER_PTS(outbuf)) ? gint64(GST_BUFFER_PTS(outbuf)) : -1;
+            // The head pose at capture is not known without a head client: nullopt.
+            if (stereo)
+                e.tracker->process_stereo(views[0], views[1], pts, std::nullopt);
+            else
+                e.tracker->process_mono(views[0], pts);
+        } catch (const gc::CalibrationError& err) {
+            GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("The calibration does not fit the stream."), ("%s", err.what()));
+            return GST_FLOW_ERROR;
+        } catch (const std::invalid_argument& err) {
+            GST_ELEMENT_ERROR(self, CORE, NEGOTIATION, ("%s", err.what()), (nullptr));
+            return GST_FLOW_NOT_NEGOTIATED;
+        } catch (const std::exception& err) {
+            GST_ELEMENT_ERROR(self, STREAM, FAILED, ("Tracking failed."), ("%s", err.what()));
+            return GST_FLOW_ERROR;
+        }
+    }
+    const gc::FrameResult& result = e.tracker->last();
+
+    // Compose the output view.
+    GstVideoFrame out;
+    if (!gst_video_frame_map(&out, &vagg->info, outbuf, GST_MAP_WRITE)) {
+        GST_ELEMENT_ERROR(self, STREAM, FAILED, ("Cannot map the output buffer."), (nullptr));
+        return GST_FLOW_ERROR;
+    }
+    const cv::Size out_size(GST_VIDEO_FRAME_WIDTH(&out), GST_VIDEO_FRAME_HEIGHT(&out));
+    const bool want_right = settings.output == GST_HAND_TRACKER_OUTPUT_RIGHT && stereo;
+    int shown = want_right ? 1 : 0;
+    if (!have[shown])
+        shown = have[0] ? 0 : 1;  // an incomplete pair shows the view that is there
+    gc::gst::ReportContext context;
+    context.incomplete = !complete;
+    cv::Rect view;
+    try {
+        if (!have[shown]) {
+            e.scaled.create(out_size, CV_8UC3);
+            e.scaled.setTo(cv::Scalar::all(0));
+            view = cv::Rect(0, 0, out_size.width, out_size.height);
+        } else {
+            const cv::Mat& source = views[shown];
+            const gc::EyeEstimate& eye = shown == 1 ? result.right : result.left;
+            cv::Mat base = source;
+            if (settings.draw) {
+                source.copyTo(e.canvas);
+                const bool show_particles = result.stereo && complete;
+                std::span<const gc::Particle> particles;
+                if (show_particles)
+                    particles = e.tracker->trackers().eye(shown == 1 ? gc::Eye::Right : gc::Eye::Left).particles();
+                e.overlay.draw(e.canvas, eye, particles, result.pointing.valid ? &result.pointing : nullptr);
+                base = e.canvas;
+            }
+            view = cv::Rect(0, 0, source.cols, source.rows);
+            if (settings.output == GST_HAND_TRACKER_OUTPUT_ATTENDED && shown == 0) {
+                view = e.attention.update(source.size(), double(out_size.width) / out_size.height, result.left);
+                context.full_view = false;
+            }
+            const cv::Mat cropped = base(view);
+            if (cropped.size() == out_size) {
+                cropped.copyTo(e.scaled);
+            } else {
+                cv::resize(cropped, e.scaled, out_size, 0, 0,
+                           cropped.cols > out_size.width ? cv::INTER_AREA : cv::INTER_LINEAR);
+            }
+        }
+        context.view = view;
+        gc::gst::write_bgr(e.scaled, out, e.yuv_scratch);
+    } catch (const std::exception& err) {
+        gst_video_frame_unmap(&out);
+        GST_ELEMENT_ERROR(self, STREAM, FAILED, ("Cannot compose the output frame."), ("%s", err.what()));
+        return GST_FLOW_ERROR;
+    }
+    gst_video_frame_unmap(&out);
+
+    // Publish.
+    if (GstHandPointingMeta* meta = gst_buffer_add_hand_pointing_meta(outbuf))
+        gc::gst::fill_meta(*meta, result, context, e.contour_scratch);
+    add_region_of_interest(outbuf, result, shown == 1, view, out_size, context);
+    if (should_post(e, settings.message_updates, result.state))
+        post_message(self, outbuf, result, context);
+    if (complete && e.json) {
+        e.json_line = gc::to_json_line(result);
+        e.json_line += '\n';
+        if (std::fwrite(e.json_line.data(), 1, e.json_line.size(), e.json) != e.json_line.size()) {
+            GST_ELEMENT_ERROR(self, RESOURCE, WRITE, ("Cannot write to \"%s\".", settings.json_location.c_str()),
+                              GST_ERROR_SYSTEM);
+            return GST_FLOW_ERROR;
+        }
+    }
+    return GST_FLOW_OK;
+}
+
+// ---------------------------------------------------------------------------------------
+// State
+
+static gboolean gst_hand_tracker_start(GstAggregator* agg)
+{
+    GstHandTracker* self = GST_HAND_TRACKER(agg);
+    const Settings settings = read_settings(self);
+    // Load the calibration now so a bad file fails the state change with its reason.
+    if (!build_tracker(self, settings))
+        return FALSE;
+    self->rebuild->store(false);
+    Engine& e = *self->engine;
+    e.close_json();
+    if (!settings.json_location.empty()) {
+        e.json = std::fopen(settings.json_location.c_str(), "w");
+        if (!e.json) {
+            GST_ELEMENT_ERROR(self, RESOURCE, OPEN_WRITE,
+                              ("Cannot open \"%s\" for writing.", settings.json_location.c_str()), GST_ERROR_SYSTEM);
+            return FALSE;
+        }
+    }
+    return GST_AGGREGATOR_CLASS(gst_hand_tracker_parent_class)->start(agg);
+}
+
+static gboolean gst_hand_tracker_stop(GstAggregator* agg)
+{
+    GstHandTracker* self = GST_HAND_TRACKER(agg);
+    const gboolean ok = GST_AGGREGATOR_CLASS(gst_hand_tracker_parent_class)->stop(agg);
+    Engine& e = *self->engine;
+    e.tracker.reset();
+    e.close_json();
+    e.attention.reset();
+    e.view_size = {};
+    e.last_posted_state.reset();
+    return ok;
+}
+
+// Any flush (a flushing seek through the element, or upstream flushing a pad) means the
+// next frames do not follow the previous ones: tracking starts over.
+static gboolean gst_hand_tracker_sink_event(GstAggregator* agg, GstAggregatorPad* pad, GstEvent* event)
+{
+    if (GST_EVENT_TYPE(event) == GST_EVENT_FLUSH_STOP)
+        GST_HAND_TRACKER(agg)->flushed->store(true);
+    return GST_AGGREGATOR_CLASS(gst_hand_tracker_parent_class)->sink_event(agg, pad, event);
+}
+
+// ---------------------------------------------------------------------------------------
+// Properties
+
+static void gst_hand_tracker_set_property(GObject* object, guint prop_id, const GValue* value, GParamSpec* pspec)
+{
+    GstHandTracker* self = GST_HAND_TRACKER(object);
+    bool rebuild = false;
+    GST_OBJECT_LOCK(self);
+    Settings& s = *self->settings;
+    switch (prop_id) {
+    case PROP_PARTICLES:
+        s.particles = g_value_get_int(value);
+        rebuild = true;
+        break;
+    case PROP_SEED:
+        s.seed = g_value_get_uint64(value);
+        rebuild = true;
+        break;
+    case PROP_CALIBRATION: {
+        const gchar* path = g_value_get_string(value);
+        s.calibration = path ? path : "";
+        rebuild = true;
+        break;
+    }
+    case PROP_OUTPUT:
+        s.output = GstHandTrackerOutput(g_value_get_enum(value));
+        break;
+    case PROP_DRAW:
+        s.draw = g_value_get_boolean(value);
+        break;
+    case PROP_LOST_THRESHOLD:
+        s.lost_threshold = g_value_get_double(value);
+        rebuild = true;
+        break;
+    case PROP_LOST_FRAMES:
+        s.lost_frames = g_value_get_int(value);
+        rebuild = true;
+        break;
+    case PROP_MESSAGE_UPDATES:
+        s.message_updates = GstHandTrackerMessageUpdates(g_value_get_enum(value));
+        break;
+    case PROP_JSON_LOCATION: {
+        const gchar* path = g_value_get_string(value);
+        s.json_location = path ? path : "";
+        break;
+    }
+    default:
+        G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
+        break;
+    }
+    GST_OBJECT_UNLOCK(self);
+    if (rebuild)
+        self->rebuild->store(true);
+}
+
+static void gst_hand_tracker_get_property(GObject* object, guint prop_id, GValue* value, GParamSpec* pspec)
+{
+    GstHandTracker* self = GST_HAND_TRACKER(object);
+    GST_OBJECT_LOCK(self);
+    const Settings& s = *self->settings;
+    switch (prop_id) {
+    case PROP_PARTICLES:
+        g_value_set_int(value, s.particles);
+        break;
+    case PROP_SEED:
+        g_value_set_uint64(value, s.seed);
+        break;
+    case PROP_CALIBRATION:
+        g_value_set_string(value, s.calibration.empty() ? nullptr : s.calibration.c_str());
+        break;
+    case PROP_OUTPUT:
+        g_value_set_enum(value, s.output);
+        break;
+    case PROP_DRAW:
+        g_value_set_boolean(value, s.draw);
+        break;
+    case PROP_LOST_THRESHOLD:
+        g_value_set_double(value, s.lost_threshold);
+        break;
+    case PROP_LOST_FRAMES:
+        g_value_set_int(value, s.lost_frames);
+        break;
+    case PROP_MESSAGE_UPDATES:
+        g_value_set_enum(value, s.message_updates);
+        break;
+    case PROP_JSON_LOCATION:
+        g_value_set_string(value, s.json_location.empty() ? nullptr : s.json_location.c_str());
+        break;
+    default:
+        G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
+        break;
+    }
+    GST_OBJECT_UNLOCK(self);
+}
+
+static void gst_hand_tracker_finalize(GObject* object)
+{
+    GstHandTracker* self = GST_HAND_TRACKER(object);
+    delete self->engine;
+    delete self->settings;
+    delete self->rebuild;
+    delete self->flushed;
+    G_OBJECT_CLASS(gst_hand_tracker_parent_class)->finalize(object);
+}
+
+static void gst_hand_tracker_class_init(GstHandTrackerClass* klass)
+{
+    GObjectClass* gobject_class = G_OBJECT_CLASS(klass);
+    GstElementClass* element_class = GST_ELEMENT_CLASS(klass);
+    GstAggregatorClass* agg_class = GST_AGGREGATOR_CLASS(klass);
+    GstVideoAggregatorClass* vagg_class = GST_VIDEO_AGGREGATOR_CLASS(klass);
+
+    GST_DEBUG_CATEGORY_INIT(gst_hand_tracker_debug, "handtracker", 0, "stereo pointing-hand tracker");
+
+    gobject_class->set_property = gst_hand_tracker_set_property;
+    gobject_class->get_property = gst_hand_tracker_get_property;
+    gobject_class->finalize = gst_hand_tracker_finalize;
+
+    const auto flags = GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_PLAYING);
+    g_object_class_install_property(
+        gobject_class, PROP_PARTICLES,
+        g_param_spec_int("particles", "Particles",
+                         "Sample-set size N of each eye's particle filter; a change restarts tracking", 1,
+                         kMaxParticles, kDefaultParticles, flags));
+    g_object_class_install_property(
+        gobject_class, PROP_SEED,
+        g_param_spec_uint64("seed", "Seed",
+                            "Seed of the particle filters: the same seed and frames give the same output; "
+                            "a change restarts tracking",
+                            0, G_MAXUINT64, kDefaultSeed, flags));
+    g_object_class_install_property(
+        gobject_class, PROP_CALIBRATION,
+        g_param_spec_string("calibration", "Calibration file",
+                            "Stereo calibration (OpenCV YAML or XML: image_width, image_height, M1, D1, M2, D2, R, "
+                            "T in millimetres); unset: the nominal rig (60 degree field of view, 120 mm baseline)",
+                            nullptr, GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
+    g_object_class_install_property(gobject_class, PROP_OUTPUT,
+                                    g_param_spec_enum("output", "Output", "The view on the src pad",
+                                                      GST_TYPE_HAND_TRACKER_OUTPUT, kDefaultOutput, flags));
+    g_object_class_install_property(
+        gobject_class, PROP_DRAW,
+        g_param_spec_boolean("draw", "Draw",
+                             "Draw the tracked contour, the particles' marginal distributions along the borders, "
+                             "the pointing direction and the state on the output",
+                             FALSE, flags));
+    g_object_class_install_property(
+        gobject_class, PROP_LOST_THRESHOLD,
+        g_param_spec_double("lost-threshold", "Lost threshold",
+                            "A view is lost when every particle's likelihood stays below this fraction of the "
+                            "likelihood at acquisition for lost-frames frames",
+                            0.0, 1.0, kDefaultLostThreshold, flags));
+    g_object_class_install_property(
+        gobject_class, PROP_LOST_FRAMES,
+        g_param_spec_int("lost-frames", "Lost frames",
+                         "Consecutive frames below lost-threshold before a view is lost", 1, 1000,
+                         kDefaultLostFrames, flags));
+    g_object_class_install_property(
+        gobject_class, PROP_MESSAGE_UPDATES,
+        g_param_spec_enum("message-updates", "Message updates", "When to post hand-pointing element messages",
+                          GST_TYPE_HAND_TRACKER_MESSAGE_UPDATES, kDefaultMessageUpdates, flags));
+    g_object_class_install_property(
+        gobject_class, PROP_JSON_LOCATION,
+        g_param_spec_string("json-location", "JSON lines file",
+                            "Write one JSON line per tracked frame to this file (the gesturecam-track schema); "
+                            "unset: none",
+                            nullptr, GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
+
+    gst_element_class_add_static_pad_template_with_gtype(element_class, &sink_left_template,
+                                                         GST_TYPE_VIDEO_AGGREGATOR_PAD);
+    gst_element_class_add_static_pad_template_with_gtype(element_class, &sink_right_template,
+                                                         GST_TYPE_VIDEO_AGGREGATOR_PAD);
+    gst_element_class_add_static_pad_template_with_gtype(element_class, &sink_packed_template,
+                                                         GST_TYPE_VIDEO_AGGREGATOR_PAD);
+    gst_element_class_add_static_pad_template_with_gtype(element_class, &src_template, GST_TYPE_AGGREGATOR_PAD);
+
+    gst_element_class_set_static_metadata(
+        element_class, "Pointing hand tracker", "Filter/Analyzer/Video",
+        "Tracks a pointing hand in the two views of a stereo camera (CONDENSATION particle filter), pairs the "
+        "views by running time, computes the 3D pointing ray and outputs the left, right or attended view with "
+        "GstHandPointingMeta. Request sink_left and sink_right, or sink for side-by-side frames",
+        "GestureCAM <gesturecam@localhost>");
+
+    agg_class->create_new_pad = gst_hand_tracker_create_new_pad;
+    agg_class->sink_query = gst_hand_tracker_sink_query;
+    agg_class->fixate_src_caps = gst_hand_tracker_fixate_src_caps;
+    agg_class->start = gst_hand_tracker_start;
+    agg_class->stop = gst_hand_tracker_stop;
+    agg_class->sink_event = gst_hand_tracker_sink_event;
+    vagg_class->aggregate_frames = gst_hand_tracker_aggregate_frames;
+
+    gst_type_mark_as_plugin_api(GST_TYPE_HAND_TRACKER_OUTPUT, GstPluginAPIFlags(0));
+    gst_type_mark_as_plugin_api(GST_TYPE_HAND_TRACKER_MESSAGE_UPDATES, GstPluginAPIFlags(0));
+}
+
+static void gst_hand_tracker_init(GstHandTracker* self)
+{
+    self->settings = new Settings();
+    self->engine = new Engine();
+    self->rebuild = new std::atomic<bool>(false);
+    self->flushed = new std::atomic<bool>(false);
+}

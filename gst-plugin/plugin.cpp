@@ -1,0 +1,17 @@
+// The gesturecam plugin: registers its elements.
+#include "gsthandscenesrc.hpp"
+#include "gsthandtracker.hpp"
+
+#include <gst/gst.h>
+
+static gboolean plugin_init(GstPlugin* plugin)
+{
+    gboolean ok = FALSE;
+    ok |= GST_ELEMENT_REGISTER(handtracker, plugin);
+    ok |= GST_ELEMENT_REGISTER(handscenesrc, plugin);
+    return ok;
+}
+
+GST_PLUGIN_DEFINE(GST_VERSION_MAJOR, GST_VERSION_MINOR, gesturecam,
+                  "Stereo tracking of a pointing hand (CONDENSATION) for conferencing pipelines",
+                  plugin_init, GC_PLUGIN_VERSION, GC_PLUGIN_LICENSE, GC_PLUGIN_PACKAGE, GC_PLUGIN_ORIGIN)

@@ -1,0 +1,42 @@
+#include "headctl/head_backend.hpp"
+
+#include "headctl/gchp_backend.hpp"
+#include "headctl/visca_backend.hpp"
+
+#include <cstdio>
+
+namespace gc::headctl {
+
+std::string describe(const HeadCommand& c) {
+    std::string out;
+    switch (c.kind) {
+        case CommandKind::Absolute: out = "move abs"; break;
+        case CommandKind::Relative: out = "move rel"; break;
+        case CommandKind::Velocity: out = "move vel"; break;
+        case CommandKind::Stop: return "stop";
+        case CommandKind::Home: return "home";
+    }
+    for (Axis a : kAllAxes) {
+        if (!c.values.has(a)) continue;
+        char b[48];
+        std::snprintf(b, sizeof b, " %s=%g", std::string(axis_name(a)).c_str(), c.values.get(a));
+        out += b;
+    }
+    return out;
+}
+
+std::unique_ptr<HeadBackend> make_backend(const HeadUri& uri, const std::string& token) {
+    switch (uri.scheme) {
+        case HeadScheme::Gchp:
+            return std::make_unique<GchpBackend>(uri.host, uri.port, token.empty() ? uri.param("token").value_or("") : token);
+        case HeadScheme::ViscaUdp:
+            return std::make_unique<ViscaBackend>(uri.host, uri.port, ViscaBackend::Transport::Udp,
+                                                  ViscaSettings::from_uri(uri));
+        case HeadScheme::ViscaTcp:
+            return std::make_unique<ViscaBackend>(uri.host, uri.port, ViscaBackend::Transport::Tcp,
+                                                  ViscaSettings::from_uri(uri));
+    }
+    throw std::invalid_argument("unknown head URI scheme");
+}
+
+}  // namespace gc::headctl

@@ -1,0 +1,54 @@
+// What a head client needs from a head, whatever protocol it speaks. Implementations are
+// synchronous and used by one thread (the client's); they block up to the given deadline.
+#pragma once
+
+#include "headctl/axes.hpp"
+#include "headctl/net.hpp"
+#include "headctl/uri.hpp"
+
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+namespace gc::headctl {
+
+enum class CommandKind { Absolute, Relative, Velocity, Stop, Home };
+
+struct HeadCommand {
+    CommandKind kind = CommandKind::Stop;
+    AxisValues values;  // degrees, or degrees per second for Velocity
+    bool operator==(const HeadCommand&) const = default;
+};
+
+std::string describe(const HeadCommand& command);
+
+// The head refused a command; the connection is still good.
+class HeadRejected : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+class HeadBackend {
+public:
+    using Deadline = net::Clock::time_point;
+    virtual ~HeadBackend() = default;
+
+    // Connects (and authenticates). Throws net::NetError.
+    virtual void open(Deadline deadline) = 0;
+    virtual void close() = 0;
+    // Throw net::NetError when the connection fails, HeadRejected when the head refuses.
+    virtual HeadState query_state(Deadline deadline) = 0;
+    virtual void send(const HeadCommand& command, Deadline deadline) = 0;
+    // nullopt when the head cannot tell.
+    virtual std::optional<HeadLimits> query_limits(Deadline deadline) = 0;
+    // The axes the head has; commands naming others are rejected before they are sent.
+    virtual std::array<bool, kAxisCount> axes() const = 0;
+    virtual std::string name() const = 0;
+};
+
+// The backend for a URI's scheme (tcp: GCHP; visca-udp, visca-tcp: VISCA). The token
+// argument overrides a token in the URI. Throws std::invalid_argument for bad parameters.
+std::unique_ptr<HeadBackend> make_backend(const HeadUri& uri, const std::string& token = {});
+
+}  // namespace gc::headctl

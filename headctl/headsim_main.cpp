@@ -1,0 +1,142 @@
+// headsim: the simulated head server (GCHP/1 over TCP).
+#include "headctl/head_server.hpp"
+
+#include <getopt.h>
+#include <signal.h>
+
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <iostream>
+
+namespace {
+
+using namespace gc::headctl;
+
+HeadServer* g_server = nullptr;
+
+void on_signal(int) {
+    if (g_server) g_server->request_stop();
+}
+
+const char* kUsage = R"(usage: headsim [options]
+Simulated motorised head serving GCHP/1 (docs/head-protocol.md).
+  --listen ADDR:PORT     address to bind (default 127.0.0.1:5050; port 0 = any free port)
+  --token TOKEN          require AUTH TOKEN before any other request
+  --max-clients N        connections served at once (default 16)
+  --latency-ms MS        delay from a command's arrival to its effect (default 0)
+  --angle-error DEG      std. deviation of the reached angle around a target (default 0)
+  --seed N               seed of the angle error (default 1)
+  --limits AXIS=MIN:MAX:VMAX:AMAX
+                         soft limits (deg), velocity (deg/s) and acceleration (deg/s^2)
+                         of one axis (pan, tilt, verge_l, verge_r); repeatable
+  --velocity-timeout S   a velocity move not renewed within S seconds stops (default 1; 0 = never)
+  --verbose              log connections on stderr
+On start it prints "listening ADDR:PORT" on stdout. SIGTERM or SIGINT stops it cleanly.
+)";
+
+double number(const char* option, std::string_view text) {
+    double v = 0.0;
+    auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (ec != std::errc{} || ptr != text.data() + text.size() || !std::isfinite(v))
+        throw std::invalid_argument(std::string(option) + ": '" + std::string(text) + "' is not a number");
+    return v;
+}
+
+void parse_listen(std::string_view text, HeadServerConfig& config) {
+    const auto colon = text.rfind(':');
+    if (colon == std::string_view::npos || colon == 0) throw std::invalid_argument("--listen: expected ADDR:PORT");
+    std::string_view host = text.substr(0, colon);
+    if (host.size() >= 2 && host.front() == '[' && host.back() == ']') host = host.substr(1, host.size() - 2);
+    const double port = number("--listen port", text.substr(colon + 1));
+    if (port < 0 || port > 65535 || port != std::floor(port)) throw std::invalid_argument("--listen: port must be 0..65535");
+    config.host = std::string(host);
+    config.port = static_cast<std::uint16_t>(port);
+}
+
+void parse_limits(std::string_view text, HeadLimits& limits) {
+    const auto eq = text.find('=');
+    if (eq == std::string_view::npos) throw std::invalid_argument("--limits: expected AXIS=MIN:MAX:VMAX:AMAX");
+    const auto axis = axis_from_name(text.substr(0, eq));
+    if (!axis) throw std::invalid_argument("--limits: unknown axis '" + std::string(text.substr(0, eq)) + "'");
+    double v[4];
+    std::string_view rest = text.substr(eq + 1);
+    for (int i = 0; i < 4; ++i) {
+        const auto colon = rest.find(':');
+        if ((i < 3) == (colon == std::string_view::npos)) throw std::invalid_argument("--limits: expected MIN:MAX:VMAX:AMAX");
+        v[i] = number("--limits", rest.substr(0, colon));
+        rest = i < 3 ? rest.substr(colon + 1) : std::string_view{};
+    }
+    limits[*axis] = AxisLimits{v[0], v[1], v[2], v[3]};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    HeadServerConfig config;
+    const option options[] = {
+        {"listen", required_argument, nullptr, 'l'},     {"token", required_argument, nullptr, 't'},
+        {"max-clients", required_argument, nullptr, 'c'}, {"latency-ms", required_argument, nullptr, 'L'},
+        {"angle-error", required_argument, nullptr, 'e'}, {"seed", required_argument, nullptr, 's'},
+        {"limits", required_argument, nullptr, 'm'},      {"velocity-timeout", required_argument, nullptr, 'v'},
+        {"verbose", no_argument, nullptr, 'V'},           {"help", no_argument, nullptr, 'h'},
+        {nullptr, 0, nullptr, 0},
+    };
+    try {
+        int opt;
+        while ((opt = getopt_long(argc, argv, "h", options, nullptr)) != -1) {
+            switch (opt) {
+                case 'l': parse_listen(optarg, config); break;
+                case 't':
+                    config.token = optarg;
+                    if (config.token.empty()) throw std::invalid_argument("--token: must not be empty");
+                    break;
+                case 'c': {
+                    const double n = number("--max-clients", optarg);
+                    if (n < 1 || n > 10000 || n != std::floor(n)) throw std::invalid_argument("--max-clients: must be 1..10000");
+                    config.max_clients = static_cast<std::size_t>(n);
+                    break;
+                }
+                case 'L': config.model.latency_s = number("--latency-ms", optarg) / 1000.0; break;
+                case 'e': config.model.angle_error_deg = number("--angle-error", optarg); break;
+                case 's': {
+                    const double n = number("--seed", optarg);
+                    if (n < 0 || n != std::floor(n)) throw std::invalid_argument("--seed: must be a non-negative integer");
+                    config.model.seed = static_cast<std::uint64_t>(n);
+                    break;
+                }
+                case 'm': parse_limits(optarg, config.model.limits); break;
+                case 'v': config.model.velocity_timeout_s = number("--velocity-timeout", optarg); break;
+                case 'V': config.verbose = true; break;
+                case 'h': std::cout << kUsage; return 0;
+                default: std::cerr << kUsage; return 2;
+            }
+        }
+        if (optind < argc) throw std::invalid_argument(std::string("unexpected argument '") + argv[optind] + "'");
+        config.model.validate();
+    } catch (const std::exception& e) {
+        std::cerr << "headsim: " << e.what() << "\n";
+        return 2;
+    }
+
+    try {
+        HeadServer server(config);
+        g_server = &server;
+        struct sigaction sa{};
+        sa.sa_handler = on_signal;
+        sigemptyset(&sa.sa_mask);
+        sigaction(SIGTERM, &sa, nullptr);
+        sigaction(SIGINT, &sa, nullptr);
+        signal(SIGPIPE, SIG_IGN);
+        const bool v6 = server.host().find(':') != std::string::npos;
+        std::cout << "listening " << (v6 ? "[" + server.host() + "]" : server.host()) << ":" << server.port()
+                  << std::endl;
+        server.run();
+        g_server = nullptr;
+        std::cerr << "headsim: stopped\n";
+    } catch (const std::exception& e) {
+        std::cerr << "headsim: " << e.what() << "\n";
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,37 @@
+// Head addresses: "tcp://host:port" (GCHP), "visca-udp://host[:port]", "visca-tcp://host[:port]".
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace gc::headctl {
+
+enum class HeadScheme { Gchp, ViscaUdp, ViscaTcp };
+
+inline constexpr std::size_t kMaxUriLength = 1024;
+
+struct HeadUri {
+    HeadScheme scheme = HeadScheme::Gchp;
+    std::string host;     // a name or an address; IPv6 without its brackets
+    std::uint16_t port = 0;
+    std::vector<std::pair<std::string, std::string>> params;  // the query, in order
+
+    std::optional<std::string> param(std::string_view key) const;
+    // A numeric query parameter in [min, max], or fallback when absent.
+    double number_param(std::string_view key, double fallback, double min, double max) const;
+};
+
+std::string_view scheme_name(HeadScheme scheme);
+std::uint16_t default_port(HeadScheme scheme);
+
+// Throws std::invalid_argument naming the offending part. Query keys are checked
+// against those the scheme knows (tcp: token; visca-*: address, pan_units_per_deg,
+// tilt_units_per_deg, pan_max_speed_dps, tilt_max_speed_dps, timeout_ms).
+HeadUri parse_head_uri(std::string_view text);
+std::string to_string(const HeadUri& uri);
+
+}  // namespace gc::headctl

@@ -1,0 +1,168 @@
+#include "headctl/visca.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace gc::headctl::visca {
+
+namespace {
+
+std::uint8_t header(int address) {
+    if (address < 1 || address > 7) throw ViscaError("VISCA camera address " + std::to_string(address) + " is not in 1..7");
+    return static_cast<std::uint8_t>(0x80 | address);
+}
+
+std::uint8_t speed(int value, int max) { return static_cast<std::uint8_t>(std::clamp(value, 1, max)); }
+
+std::uint8_t direction(Direction d, std::uint8_t negative, std::uint8_t positive) {
+    return d == Direction::Stop ? 0x03 : (d == Direction::Negative ? negative : positive);
+}
+
+// A signed 16-bit position as four bytes carrying one nibble each, most significant first.
+void append_nibbles(Bytes& out, int units, const char* axis) {
+    if (units < -0x8000 || units > 0x7FFF)
+        throw ViscaError(std::string("VISCA ") + axis + " position " + std::to_string(units) +
+                         " does not fit in 16 bits");
+    const auto u = static_cast<std::uint16_t>(static_cast<std::int16_t>(units));
+    for (int shift = 12; shift >= 0; shift -= 4) out.push_back(static_cast<std::uint8_t>((u >> shift) & 0x0F));
+}
+
+int read_nibbles(std::span<const std::uint8_t> bytes) {
+    std::uint16_t u = 0;
+    for (std::uint8_t b : bytes) {
+        if (b > 0x0F) throw ViscaError("VISCA position byte has its high nibble set");
+        u = static_cast<std::uint16_t>((u << 4) | b);
+    }
+    return static_cast<std::int16_t>(u);
+}
+
+Bytes move(int address, std::uint8_t kind, int pan_speed, int tilt_speed, int pan_units, int tilt_units) {
+    Bytes out{header(address), 0x01, 0x06, kind, speed(pan_speed, kMaxPanSpeed), speed(tilt_speed, kMaxTiltSpeed)};
+    append_nibbles(out, pan_units, "pan");
+    append_nibbles(out, tilt_units, "tilt");
+    out.push_back(0xFF);
+    return out;
+}
+
+std::string hex(std::span<const std::uint8_t> bytes) {
+    std::string out;
+    char b[4];
+    for (std::size_t i = 0; i < std::min<std::size_t>(bytes.size(), 16); ++i) {
+        std::snprintf(b, sizeof b, "%02X ", bytes[i]);
+        out += b;
+    }
+    if (!out.empty()) out.pop_back();
+    return out;
+}
+
+}  // namespace
+
+Bytes pan_tilt_drive(int address, int pan_speed, int tilt_speed, Direction pan, Direction tilt) {
+    return {header(address), 0x01, 0x06, 0x01, speed(pan_speed, kMaxPanSpeed), speed(tilt_speed, kMaxTiltSpeed),
+            direction(pan, 0x01, 0x02), direction(tilt, 0x02, 0x01), 0xFF};
+}
+
+Bytes pan_tilt_absolute(int address, int pan_speed, int tilt_speed, int pan_units, int tilt_units) {
+    return move(address, 0x02, pan_speed, tilt_speed, pan_units, tilt_units);
+}
+
+Bytes pan_tilt_relative(int address, int pan_speed, int tilt_speed, int pan_units, int tilt_units) {
+    return move(address, 0x03, pan_speed, tilt_speed, pan_units, tilt_units);
+}
+
+Bytes pan_tilt_home(int address) { return {header(address), 0x01, 0x06, 0x04, 0xFF}; }
+
+Bytes pan_tilt_stop(int address) {
+    return pan_tilt_drive(address, kMaxPanSpeed, kMaxTiltSpeed, Direction::Stop, Direction::Stop);
+}
+
+Bytes pan_tilt_position_inquiry(int address) { return {header(address), 0x09, 0x06, 0x12, 0xFF}; }
+
+Reply parse_reply(std::span<const std::uint8_t> m) {
+    if (m.size() < 3) throw ViscaError("VISCA reply of " + std::to_string(m.size()) + " bytes is too short");
+    if (m.size() > kMaxMessageSize) throw ViscaError("VISCA reply longer than 16 bytes");
+    if (m.back() != 0xFF) throw ViscaError("VISCA reply [" + hex(m) + "] does not end in FF");
+    if (std::find(m.begin(), m.end() - 1, 0xFF) != m.end() - 1)
+        throw ViscaError("VISCA reply [" + hex(m) + "] has FF before its end");
+    const int from = (m[0] >> 4) - 8;
+    if ((m[0] & 0x0F) != 0 || from < 1 || from > 7)
+        throw ViscaError("VISCA reply [" + hex(m) + "] has a bad header byte");
+    Reply r;
+    r.address = from;
+    r.socket = m[1] & 0x0F;
+    switch (m[1] >> 4) {
+        case 0x4:
+            if (m.size() != 3) throw ViscaError("VISCA ACK [" + hex(m) + "] must be 3 bytes");
+            r.kind = ReplyKind::Ack;
+            return r;
+        case 0x5:
+            if (m.size() == 3) {
+                r.kind = ReplyKind::Completion;
+                return r;
+            }
+            if (m.size() == 11 && r.socket == 0) {
+                r.kind = ReplyKind::Position;
+                r.pan_units = read_nibbles(m.subspan(2, 4));
+                r.tilt_units = read_nibbles(m.subspan(6, 4));
+                return r;
+            }
+            throw ViscaError("VISCA completion [" + hex(m) + "] has an unexpected length");
+        case 0x6:
+            if (m.size() != 4) throw ViscaError("VISCA error reply [" + hex(m) + "] must be 4 bytes");
+            r.kind = ReplyKind::Error;
+            r.error = m[2];
+            return r;
+        default:
+            throw ViscaError("VISCA reply [" + hex(m) + "] is not an ACK, completion or error");
+    }
+}
+
+std::string describe_error(int error) {
+    switch (error) {
+        case 0x01: return "message length error";
+        case 0x02: return "syntax error";
+        case 0x03: return "command buffer full";
+        case 0x04: return "command cancelled";
+        case 0x05: return "no socket";
+        case 0x41: return "command not executable";
+        default: {
+            char b[16];
+            std::snprintf(b, sizeof b, "error 0x%02X", error & 0xFF);
+            return b;
+        }
+    }
+}
+
+Bytes wrap_ip(std::uint16_t type, std::uint32_t seq, std::span<const std::uint8_t> payload) {
+    if (payload.size() > kMaxMessageSize) throw ViscaError("VISCA payload longer than 16 bytes");
+    Bytes out(kIpHeaderSize + payload.size());
+    out[0] = static_cast<std::uint8_t>(type >> 8);
+    out[1] = static_cast<std::uint8_t>(type);
+    out[2] = static_cast<std::uint8_t>(payload.size() >> 8);
+    out[3] = static_cast<std::uint8_t>(payload.size());
+    for (int i = 0; i < 4; ++i) out[4 + i] = static_cast<std::uint8_t>(seq >> (24 - 8 * i));
+    std::copy(payload.begin(), payload.end(), out.begin() + kIpHeaderSize);
+    return out;
+}
+
+IpMessage unwrap_ip(std::span<const std::uint8_t> d) {
+    if (d.size() < kIpHeaderSize) throw ViscaError("VISCA-over-IP datagram shorter than its 8-byte header");
+    IpMessage m;
+    m.payload_type = static_cast<std::uint16_t>((d[0] << 8) | d[1]);
+    const std::size_t length = static_cast<std::size_t>((d[2] << 8) | d[3]);
+    m.sequence = (std::uint32_t{d[4]} << 24) | (std::uint32_t{d[5]} << 16) | (std::uint32_t{d[6]} << 8) | d[7];
+    if (length != d.size() - kIpHeaderSize)
+        throw ViscaError("VISCA-over-IP header says " + std::to_string(length) + " payload bytes, datagram has " +
+                         std::to_string(d.size() - kIpHeaderSize));
+    if (length == 0 || length > kMaxMessageSize)
+        throw ViscaError("VISCA-over-IP payload length " + std::to_string(length) + " is not in 1..16");
+    m.payload.assign(d.begin() + kIpHeaderSize, d.end());
+    return m;
+}
+
+Bytes ip_reset_sequence(std::uint32_t sequence) {
+    const std::uint8_t reset = 0x01;
+    return wrap_ip(kIpControl, sequence, std::span<const std::uint8_t>(&reset, 1));
+}
+
+}  // namespace gc::headctl::visca

@@ -1,0 +1,74 @@
+// VISCA pan-tilt messages and VISCA-over-IP framing: pure encoding and decoding, no I/O.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace gc::headctl::visca {
+
+using Bytes = std::vector<std::uint8_t>;
+
+// Fastest speed codes of the pan-tilt drive (Sony's VISCA command set).
+inline constexpr int kMaxPanSpeed = 0x18;
+inline constexpr int kMaxTiltSpeed = 0x14;
+
+// VISCA-over-IP payload types (the first two bytes of the 8-byte header).
+inline constexpr std::uint16_t kIpCommand = 0x0100;
+inline constexpr std::uint16_t kIpInquiry = 0x0110;
+inline constexpr std::uint16_t kIpReply = 0x0111;
+inline constexpr std::uint16_t kIpControl = 0x0200;
+inline constexpr std::uint16_t kIpControlReply = 0x0201;
+inline constexpr std::size_t kIpHeaderSize = 8;
+inline constexpr std::size_t kMaxMessageSize = 16;  // a VISCA message is at most 16 bytes
+
+class ViscaError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+// Drive direction of one axis: pan -1 = left, +1 = right; tilt -1 = down, +1 = up.
+enum class Direction { Negative = -1, Stop = 0, Positive = 1 };
+
+// Commands to camera `address` (1..7). Speeds are clamped to 1..max; positions are the
+// camera's signed 16-bit units. Throw ViscaError for an address or position out of range.
+Bytes pan_tilt_drive(int address, int pan_speed, int tilt_speed, Direction pan, Direction tilt);
+Bytes pan_tilt_absolute(int address, int pan_speed, int tilt_speed, int pan_units, int tilt_units);
+Bytes pan_tilt_relative(int address, int pan_speed, int tilt_speed, int pan_units, int tilt_units);
+Bytes pan_tilt_home(int address);
+Bytes pan_tilt_stop(int address);
+Bytes pan_tilt_position_inquiry(int address);
+
+enum class ReplyKind { Ack, Completion, Error, Position };
+
+struct Reply {
+    ReplyKind kind = ReplyKind::Ack;
+    int address = 1;   // the replying camera
+    int socket = 0;    // Ack, Completion, Error
+    int error = 0;     // Error: 0x01 length, 0x02 syntax, 0x03 buffer full, 0x04 cancelled, 0x05 no socket, 0x41 not executable
+    int pan_units = 0;   // Position
+    int tilt_units = 0;  // Position
+};
+
+// Parses one reply message (ending in 0xFF). A 3-byte "y0 5z FF" is a Completion; the
+// 11-byte "y0 50 0p 0p 0p 0p 0t 0t 0t 0t FF" answers the position inquiry.
+Reply parse_reply(std::span<const std::uint8_t> message);
+std::string describe_error(int error);
+
+// VISCA over IP: 2-byte payload type, 2-byte payload length, 4-byte sequence number, all
+// big-endian, then the payload.
+Bytes wrap_ip(std::uint16_t payload_type, std::uint32_t sequence, std::span<const std::uint8_t> payload);
+
+struct IpMessage {
+    std::uint16_t payload_type = 0;
+    std::uint32_t sequence = 0;
+    Bytes payload;
+};
+IpMessage unwrap_ip(std::span<const std::uint8_t> datagram);
+
+// The control message that resets the camera's expected sequence number.
+Bytes ip_reset_sequence(std::uint32_t sequence);
+
+}  // namespace gc::headctl::visca

@@ -1,0 +1,204 @@
+#include "headctl/visca_backend.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace gc::headctl {
+
+namespace {
+constexpr int kMaxRepliesPerExchange = 16;
+}
+
+ViscaSettings ViscaSettings::from_uri(const HeadUri& uri) {
+    ViscaSettings s;
+    const double address = uri.number_param("address", 1, 1, 7);
+    if (address != std::floor(address)) throw std::invalid_argument("head URI: parameter address must be an integer in 1..7");
+    s.address = static_cast<int>(address);
+    s.pan_units_per_deg = uri.number_param("pan_units_per_deg", s.pan_units_per_deg, -1000.0, 1000.0);
+    s.tilt_units_per_deg = uri.number_param("tilt_units_per_deg", s.tilt_units_per_deg, -1000.0, 1000.0);
+    if (std::abs(s.pan_units_per_deg) < 1e-3 || std::abs(s.tilt_units_per_deg) < 1e-3)
+        throw std::invalid_argument("head URI: a units-per-degree scale must not be 0");
+    s.pan_max_speed_dps = uri.number_param("pan_max_speed_dps", s.pan_max_speed_dps, 0.1, 1000.0);
+    s.tilt_max_speed_dps = uri.number_param("tilt_max_speed_dps", s.tilt_max_speed_dps, 0.1, 1000.0);
+    s.reply_timeout = std::chrono::milliseconds(
+        static_cast<long>(uri.number_param("timeout_ms", static_cast<double>(s.reply_timeout.count()), 1, 60'000)));
+    return s;
+}
+
+ViscaBackend::ViscaBackend(std::string host, std::uint16_t port, Transport transport, ViscaSettings settings)
+    : host_(std::move(host)), port_(port), transport_(transport), settings_(settings) {}
+
+std::string ViscaBackend::name() const {
+    return std::string(transport_ == Transport::Udp ? "visca-udp://" : "visca-tcp://") + host_ + ":" +
+           std::to_string(port_);
+}
+
+void ViscaBackend::open(Deadline deadline) {
+    close();
+    fd_ = net::connect_to(host_, port_, transport_ == Transport::Udp ? net::Transport::Udp : net::Transport::Tcp,
+                          deadline);
+    if (transport_ == Transport::Tcp) return;
+    // UDP has no connection: the sequence reset doubles as the check that a camera answers.
+    const visca::Bytes reset = visca::ip_reset_sequence(0);
+    net::send_all(fd_.get(), std::span<const std::uint8_t>(reset), deadline);
+    std::array<std::uint8_t, 64> buffer{};
+    for (int i = 0; i < kMaxRepliesPerExchange; ++i) {
+        const auto n = net::receive_some(fd_.get(), buffer, deadline);
+        if (!n) throw net::NetError(name() + " did not acknowledge the sequence reset");
+        try {
+            const auto m = visca::unwrap_ip(std::span<const std::uint8_t>(buffer.data(), *n));
+            if (m.payload_type == visca::kIpControlReply) {
+                sequence_ = 0;
+                return;
+            }
+        } catch (const visca::ViscaError&) {
+            // not ours: keep waiting
+        }
+    }
+    throw net::NetError(name() + " did not acknowledge the sequence reset");
+}
+
+void ViscaBackend::close() {
+    fd_.reset();
+    stream_.clear();
+    last_pose_.reset();
+    drive_dps_ = {};
+}
+
+std::optional<visca::Bytes> ViscaBackend::receive_message(Deadline deadline, std::uint32_t expected_sequence) {
+    std::array<std::uint8_t, 512> buffer{};
+    for (;;) {
+        if (transport_ == Transport::Tcp) {
+            const auto end = std::find(stream_.begin(), stream_.end(), 0xFF);
+            if (end != stream_.end()) {
+                visca::Bytes message(stream_.begin(), end + 1);
+                stream_.erase(stream_.begin(), end + 1);
+                return message;
+            }
+            if (stream_.size() >= visca::kMaxMessageSize) throw net::NetError(name() + " sent an unterminated message");
+        }
+        const auto n = net::receive_some(fd_.get(), buffer, deadline);
+        if (!n) return std::nullopt;
+        const std::span<const std::uint8_t> got(buffer.data(), *n);
+        if (transport_ == Transport::Tcp) {
+            stream_.insert(stream_.end(), got.begin(), got.end());
+            continue;
+        }
+        try {
+            auto m = visca::unwrap_ip(got);
+            if (m.payload_type == visca::kIpReply && m.sequence == expected_sequence) return m.payload;
+        } catch (const visca::ViscaError&) {
+            // a malformed datagram is skipped; the deadline bounds the wait
+        }
+    }
+}
+
+visca::Reply ViscaBackend::exchange(const visca::Bytes& message, bool inquiry, Deadline deadline) {
+    if (!fd_) throw net::NetError("not connected");
+    const std::uint32_t seq = sequence_++;
+    if (transport_ == Transport::Udp) {
+        const auto datagram = visca::wrap_ip(inquiry ? visca::kIpInquiry : visca::kIpCommand, seq, message);
+        net::send_all(fd_.get(), std::span<const std::uint8_t>(datagram), deadline);
+    } else {
+        net::send_all(fd_.get(), std::span<const std::uint8_t>(message), deadline);
+    }
+    const Deadline reply_deadline = std::min(deadline, net::Clock::now() + settings_.reply_timeout);
+    for (int i = 0; i < kMaxRepliesPerExchange; ++i) {
+        const auto bytes = receive_message(reply_deadline, seq);
+        if (!bytes) throw net::NetError(name() + " did not answer in time");
+        visca::Reply r;
+        try {
+            r = visca::parse_reply(*bytes);
+        } catch (const visca::ViscaError& e) {
+            throw net::NetError(name() + ": " + e.what());
+        }
+        if (r.kind == visca::ReplyKind::Error) throw HeadRejected(name() + " refused: " + visca::describe_error(r.error));
+        if (inquiry && r.kind == visca::ReplyKind::Position) return r;
+        // A completion may belong to an earlier command; a command is accepted on its ACK.
+        if (!inquiry && r.kind == visca::ReplyKind::Ack) return r;
+        if (!inquiry && r.kind == visca::ReplyKind::Completion && transport_ == Transport::Udp) return r;
+    }
+    throw net::NetError(name() + " sent too many unrelated replies");
+}
+
+int ViscaBackend::to_units(double deg, double units_per_deg, const char* axis) const {
+    const double units = std::round(deg * units_per_deg);
+    if (!std::isfinite(units) || std::abs(units) > 0x7FFF)
+        throw HeadRejected(std::string(axis) + " " + std::to_string(deg) + " deg is beyond the VISCA range");
+    return static_cast<int>(units);
+}
+
+int ViscaBackend::speed_code(double dps, double max_dps, int max_code) const {
+    return std::clamp(static_cast<int>(std::lround(std::abs(dps) / max_dps * max_code)), 1, max_code);
+}
+
+HeadState ViscaBackend::query_state(Deadline deadline) {
+    const auto r = exchange(visca::pan_tilt_position_inquiry(settings_.address), true, deadline);
+    HeadState s;
+    s.pose.pan_deg = r.pan_units / settings_.pan_units_per_deg;
+    s.pose.tilt_deg = r.tilt_units / settings_.tilt_units_per_deg;
+    // VISCA reports no motion flags: an axis moves if it changed since the last inquiry.
+    if (last_pose_) {
+        s.moving[0] = s.pose.pan_deg != last_pose_->pan_deg;
+        s.moving[1] = s.pose.tilt_deg != last_pose_->tilt_deg;
+    }
+    last_pose_ = s.pose;
+    return s;
+}
+
+void ViscaBackend::send(const HeadCommand& c, Deadline deadline) {
+    if (c.values.has(Axis::VergeLeft) || c.values.has(Axis::VergeRight))
+        throw HeadRejected(name() + " has no vergence axes");
+    const int pan_max = speed_code(settings_.pan_max_speed_dps, settings_.pan_max_speed_dps, visca::kMaxPanSpeed);
+    const int tilt_max = speed_code(settings_.tilt_max_speed_dps, settings_.tilt_max_speed_dps, visca::kMaxTiltSpeed);
+    const int a = settings_.address;
+    switch (c.kind) {
+        case CommandKind::Home:
+            drive_dps_ = {};
+            exchange(visca::pan_tilt_home(a), false, deadline);
+            return;
+        case CommandKind::Stop:
+            drive_dps_ = {};
+            exchange(visca::pan_tilt_stop(a), false, deadline);
+            return;
+        case CommandKind::Absolute: {
+            // One message moves both axes: an axis not named stays where it is.
+            HeadPose here = last_pose_ ? *last_pose_ : query_state(deadline).pose;
+            const double pan = c.values.has(Axis::Pan) ? c.values.get(Axis::Pan) : here.pan_deg;
+            const double tilt = c.values.has(Axis::Tilt) ? c.values.get(Axis::Tilt) : here.tilt_deg;
+            drive_dps_ = {};
+            exchange(visca::pan_tilt_absolute(a, pan_max, tilt_max, to_units(pan, settings_.pan_units_per_deg, "pan"),
+                                              to_units(tilt, settings_.tilt_units_per_deg, "tilt")),
+                     false, deadline);
+            return;
+        }
+        case CommandKind::Relative: {
+            const double pan = c.values.has(Axis::Pan) ? c.values.get(Axis::Pan) : 0.0;
+            const double tilt = c.values.has(Axis::Tilt) ? c.values.get(Axis::Tilt) : 0.0;
+            drive_dps_ = {};
+            exchange(visca::pan_tilt_relative(a, pan_max, tilt_max, to_units(pan, settings_.pan_units_per_deg, "pan"),
+                                              to_units(tilt, settings_.tilt_units_per_deg, "tilt")),
+                     false, deadline);
+            return;
+        }
+        case CommandKind::Velocity: {
+            if (c.values.has(Axis::Pan)) drive_dps_[0] = c.values.get(Axis::Pan);
+            if (c.values.has(Axis::Tilt)) drive_dps_[1] = c.values.get(Axis::Tilt);
+            // Direction in camera terms: the sign of the unit scale says which way is positive.
+            auto direction = [](double dps, double scale) {
+                const double v = dps * scale;
+                if (std::abs(dps) < 1e-6) return visca::Direction::Stop;
+                return v > 0 ? visca::Direction::Positive : visca::Direction::Negative;
+            };
+            exchange(visca::pan_tilt_drive(
+                         a, speed_code(drive_dps_[0], settings_.pan_max_speed_dps, visca::kMaxPanSpeed),
+                         speed_code(drive_dps_[1], settings_.tilt_max_speed_dps, visca::kMaxTiltSpeed),
+                         direction(drive_dps_[0], settings_.pan_units_per_deg),
+                         direction(drive_dps_[1], settings_.tilt_units_per_deg)),
+                     false, deadline);
+            return;
+        }
+    }
+}
+
+}  // namespace gc::headctl

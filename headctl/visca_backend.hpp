@@ -1,0 +1,57 @@
+// A PTZ camera's pan-tilt head over VISCA: VISCA over IP (UDP, 8-byte header with sequence
+// numbers) or raw VISCA over a TCP stream. Pan and tilt only.
+#pragma once
+
+#include "headctl/head_backend.hpp"
+#include "headctl/visca.hpp"
+
+#include <chrono>
+
+namespace gc::headctl {
+
+// How degrees map onto a camera's units; from the URI's query (docs/head-protocol.md).
+struct ViscaSettings {
+    int address = 1;
+    double pan_units_per_deg = 16.0;  // a negative scale flips the axis
+    double tilt_units_per_deg = 16.0;
+    double pan_max_speed_dps = 100.0;  // the speed of drive code 0x18
+    double tilt_max_speed_dps = 90.0;  // the speed of drive code 0x14
+    std::chrono::milliseconds reply_timeout{500};
+
+    static ViscaSettings from_uri(const HeadUri& uri);  // throws std::invalid_argument
+};
+
+class ViscaBackend final : public HeadBackend {
+public:
+    enum class Transport { Udp, Tcp };
+    ViscaBackend(std::string host, std::uint16_t port, Transport transport, ViscaSettings settings);
+
+    void open(Deadline deadline) override;
+    void close() override;
+    HeadState query_state(Deadline deadline) override;
+    void send(const HeadCommand& command, Deadline deadline) override;
+    std::optional<HeadLimits> query_limits(Deadline) override { return std::nullopt; }
+    std::array<bool, kAxisCount> axes() const override { return {true, true, false, false}; }
+    std::string name() const override;
+
+    std::uint32_t next_sequence() const { return sequence_; }
+
+private:
+    // Sends one VISCA message and waits for its ACK, completion, error or position reply.
+    visca::Reply exchange(const visca::Bytes& message, bool inquiry, Deadline deadline);
+    std::optional<visca::Bytes> receive_message(Deadline deadline, std::uint32_t expected_sequence);
+    int to_units(double deg, double units_per_deg, const char* axis) const;
+    int speed_code(double dps, double max_dps, int max_code) const;
+
+    std::string host_;
+    std::uint16_t port_;
+    Transport transport_;
+    ViscaSettings settings_;
+    net::Fd fd_;
+    std::uint32_t sequence_ = 0;
+    visca::Bytes stream_;  // TCP: bytes of the unfinished message
+    std::array<double, 2> drive_dps_{};  // last velocity per axis, so one-axis drives keep the other
+    std::optional<HeadPose> last_pose_;
+};
+
+}  // namespace gc::headctl

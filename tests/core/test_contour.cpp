@@ -1,0 +1,151 @@
+#include "contour/closed_bspline.hpp"
+#include "contour/hand_template.hpp"
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <vector>
+
+namespace {
+
+// A pointing hand drawn as a palm disc, an index finger and a thumb stub.
+cv::Mat1b drawn_hand_mask(cv::Size size, cv::Point2d palm, double finger_deg, double s) {
+    cv::Mat1b m(size, uchar(0));
+    cv::circle(m, palm, cvRound(22 * s), 255, cv::FILLED, cv::LINE_8);
+    const double a = finger_deg * std::numbers::pi / 180.0;
+    const cv::Point2d dir(std::cos(a), -std::sin(a));
+    const cv::Point2d side(-dir.y, dir.x);
+    const cv::Point2d base = palm + dir * (15 * s);
+    const cv::Point2d tip = palm + dir * (62 * s);
+    std::vector<cv::Point> finger{base + side * (5 * s), tip + side * (5 * s), tip - side * (5 * s),
+                                  base - side * (5 * s)};
+    cv::fillConvexPoly(m, finger, 255);
+    cv::circle(m, tip, cvRound(5 * s), 255, cv::FILLED);
+    const cv::Point2d thumb = palm + side * (26 * s) + dir * (6 * s);
+    cv::circle(m, thumb, cvRound(7 * s), 255, cv::FILLED);
+    return m;
+}
+
+TEST(ClosedBSpline, InterpolatesItsPoints) {
+    std::vector<cv::Point2d> pts;
+    for (int i = 0; i < 12; ++i) {
+        const double a = 2.0 * std::numbers::pi * i / 12;
+        pts.emplace_back(50 + 30 * std::cos(a) + (i % 3) * 2.0, 40 + 20 * std::sin(a));
+    }
+    const auto s = gc::ClosedBSpline::interpolate(pts);
+    ASSERT_EQ(s.size(), 12);
+    for (int i = 0; i < 12; ++i) {
+        const cv::Point2d p = s.point(i);
+        EXPECT_NEAR(p.x, pts[i].x, 1e-9);
+        EXPECT_NEAR(p.y, pts[i].y, 1e-9);
+    }
+    // Closed: the parameter wraps.
+    EXPECT_NEAR(s.point(12.0).x, pts[0].x, 1e-9);
+    EXPECT_NEAR(s.point(-0.5).x, s.point(11.5).x, 1e-9);
+}
+
+TEST(ClosedBSpline, NormalsPointOutwardForBothOrientations) {
+    for (int dir : {1, -1}) {
+        std::vector<cv::Point2d> pts;
+        for (int i = 0; i < 16; ++i) {
+            const double a = dir * 2.0 * std::numbers::pi * i / 16;
+            pts.emplace_back(100 + 40 * std::cos(a), 80 + 25 * std::sin(a));
+        }
+        const auto s = gc::ClosedBSpline::interpolate(pts);
+        for (int k = 0; k < 64; ++k) {
+            const double u = k * 16.0 / 64;
+            const cv::Point2d p = s.point(u);
+            const cv::Point2d n = s.outward_normal(u);
+            EXPECT_NEAR(std::hypot(n.x, n.y), 1.0, 1e-9);
+            // Outward on an ellipse centred at (100, 80): away from the centre.
+            EXPECT_GT((p.x - 100) * n.x + (p.y - 80) * n.y, 0.0) << "u=" << u << " dir=" << dir;
+            // Perpendicular to the tangent.
+            const cv::Point2d d = s.derivative(u);
+            EXPECT_NEAR(d.x * n.x + d.y * n.y, 0.0, 1e-9);
+        }
+    }
+}
+
+TEST(ClosedBSpline, RejectsDegenerateInput) {
+    std::vector<cv::Point2d> three{{0, 0}, {1, 0}, {0, 1}};
+    EXPECT_THROW(gc::ClosedBSpline::interpolate(three), std::invalid_argument);
+    std::vector<cv::Point2d> dup{{0, 0}, {0, 0}, {1, 1}, {0, 1}};
+    EXPECT_THROW(gc::ClosedBSpline::interpolate(dup), std::invalid_argument);
+    std::vector<cv::Point2d> line{{0, 0}, {1, 0}, {2, 0}, {3, 0}};
+    EXPECT_THROW(gc::ClosedBSpline::interpolate(line), std::invalid_argument);
+    std::vector<cv::Point2d> nan{{0, 0}, {1, 0}, {NAN, 1}, {0, 1}};
+    EXPECT_THROW(gc::ClosedBSpline::interpolate(nan), std::invalid_argument);
+}
+
+TEST(HandTemplate, FindsPalmAndFingertipFromTheShape) {
+    for (double angle : {0.0, 70.0, 160.0, 250.0}) {
+        const cv::Point2d palm(160, 120);
+        const auto mask = drawn_hand_mask({320, 240}, palm, angle, 1.0);
+        const auto lm = gc::find_hand_landmarks(mask);
+        EXPECT_LT(std::hypot(lm.palm.x - palm.x, lm.palm.y - palm.y), 4.0) << angle;
+        const double a = angle * std::numbers::pi / 180.0;
+        const cv::Point2d tip = palm + cv::Point2d(std::cos(a), -std::sin(a)) * 67.0;
+        EXPECT_LT(std::hypot(lm.fingertip.x - tip.x, lm.fingertip.y - tip.y), 3.0) << angle;
+        EXPECT_NEAR(lm.palm_radius, 22.0, 2.0);
+    }
+}
+
+TEST(HandTemplate, OutlineIsFaithfulAndDenserOnTheFinger) {
+    const cv::Point2d palm(160, 120);
+    const auto mask = drawn_hand_mask({320, 240}, palm, 30.0, 1.2);
+    const auto t = gc::HandTemplate::from_mask(mask);
+    ASSERT_EQ(t.outline.size(), 128u);
+    ASSERT_EQ(t.points.size(), 48u);
+    // Filled, the outline reproduces the mask.
+    std::vector<cv::Point> poly;
+    for (const auto& p : t.outline) poly.emplace_back(cvRound(p.x + t.origin_px.x), cvRound(p.y + t.origin_px.y));
+    cv::Mat1b filled(mask.size(), uchar(0));
+    cv::fillPoly(filled, std::vector<std::vector<cv::Point>>{poly}, 255);
+    cv::Mat1b inter, uni;
+    cv::bitwise_and(filled, mask, inter);
+    cv::bitwise_or(filled, mask, uni);
+    EXPECT_GT(double(cv::countNonZero(inter)) / cv::countNonZero(uni), 0.93);
+    // Normals point away from the hand: a step outward leaves the mask, inward stays in.
+    int outside = 0, inside = 0;
+    for (std::size_t i = 0; i < t.points.size(); ++i) {
+        const cv::Point2d p = cv::Point2d(t.points[i]) + t.origin_px;
+        const cv::Point2d n(t.normals[i]);
+        const cv::Point out = p + 3.0 * n, in = p - 3.0 * n;
+        outside += mask(out) == 0;
+        inside += mask(in) != 0;
+    }
+    EXPECT_GE(outside, 45);
+    EXPECT_GE(inside, 42);  // the finger is 10-12 px wide: a few inner probes cross it
+    // Finger normals carry more weight, and there are more of them per unit length.
+    const cv::Point2f tip = t.fingertip;
+    float finger_w = 1.0f, palm_w = 1.0f;  // the lightest weight of each part
+    int finger_n = 0;
+    for (std::size_t i = 0; i < t.points.size(); ++i) {
+        const bool finger = std::hypot(t.points[i].x - tip.x, t.points[i].y - tip.y) < 20.0;
+        float& w = finger ? finger_w : palm_w;
+        w = std::min(w, t.weights[i]);
+        finger_n += finger;
+    }
+    EXPECT_GT(finger_w, palm_w);
+    EXPECT_GE(finger_n, 7);  // ~40 px of outline within 20 px of the tip: 48 normals would give ~4 if even
+}
+
+TEST(HandTemplate, BadMasksGiveClearErrors) {
+    EXPECT_THROW(gc::HandTemplate::from_mask(cv::Mat1b()), std::invalid_argument);
+    EXPECT_THROW(gc::HandTemplate::from_mask(cv::Mat3b(50, 50)), std::invalid_argument);
+    EXPECT_THROW(gc::HandTemplate::from_mask(cv::Mat1b(50, 50, uchar(0))), std::invalid_argument);
+    cv::Mat1b disc(200, 200, uchar(0));
+    cv::circle(disc, {100, 100}, 40, 255, cv::FILLED);
+    try {
+        gc::HandTemplate::from_mask(disc);
+        FAIL() << "a disc has no finger";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("finger"), std::string::npos);
+    }
+}
+
+}  // namespace

@@ -1,0 +1,132 @@
+#include "detect/motion_detector.hpp"
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+namespace {
+
+// A drawn pointing hand (palm disc, index finger, thumb) of skin colour over a cluttered
+// background, with sensor noise.
+struct DrawnScene {
+    cv::Mat3b background;
+    cv::Vec3b skin{105, 140, 205};  // BGR
+
+    explicit DrawnScene(std::uint32_t seed) : background(240, 320) {
+        std::mt19937 rng(seed);
+        std::uniform_int_distribution<int> c(30, 220), px(0, 319), py(0, 239), sz(8, 60);
+        background.setTo(cv::Vec3b(60, 70, 65));
+        for (int i = 0; i < 40; ++i)  // non-skin clutter: bluish and greenish blocks
+            cv::rectangle(background, cv::Rect(px(rng), py(rng), sz(rng), sz(rng)),
+                          cv::Scalar(c(rng), c(rng), c(rng) / 3), cv::FILLED);
+    }
+
+    // Sensor noise comes from OpenCV's RNG: seed it with cv::setRNGSeed for a test.
+    void render(cv::Point2d palm, double finger_deg, cv::Mat3b& out, cv::Mat1b& mask) const {
+        mask = cv::Mat1b(background.size(), uchar(0));
+        cv::circle(mask, palm, 22, 255, cv::FILLED);
+        const double a = finger_deg * std::numbers::pi / 180.0;
+        const cv::Point2d dir(std::cos(a), -std::sin(a)), side(-dir.y, dir.x);
+        const cv::Point2d base = palm + dir * 15.0, tip = palm + dir * 62.0;
+        std::vector<cv::Point> finger{base + side * 5.0, tip + side * 5.0, tip - side * 5.0,
+                                      base - side * 5.0};
+        cv::fillConvexPoly(mask, finger, 255);
+        cv::circle(mask, tip, 5, 255, cv::FILLED);
+        cv::circle(mask, palm + side * 26.0 + dir * 6.0, 7, 255, cv::FILLED);
+        background.copyTo(out);
+        out.setTo(skin, mask);
+        cv::Mat1s n(out.rows, out.cols * 3);
+        cv::randn(n, 0, 2.0);
+        cv::Mat3s o;
+        out.convertTo(o, CV_16SC3);
+        o += n.reshape(3);
+        o.convertTo(out, CV_8UC3);
+    }
+};
+
+double iou(const cv::Mat1b& a, const cv::Mat1b& b) {
+    cv::Mat1b i, u;
+    cv::bitwise_and(a, b, i);
+    cv::bitwise_or(a, b, u);
+    return double(cv::countNonZero(i)) / std::max(1, cv::countNonZero(u));
+}
+
+TEST(MotionDetector, FindsAWavingHand) {
+    cv::setRNGSeed(3);
+    DrawnScene scene(5);
+    gc::MotionDetector det;
+    cv::Mat3b frame;
+    cv::Mat1b truth;
+    std::optional<gc::Detection> found;
+    for (int i = 0; i < 6 && !found; ++i) {
+        scene.render({150.0 + 6.0 * (i % 2 ? 1 : -1), 130.0}, 35.0, frame, truth);
+        found = det.process(frame);
+        if (i == 0) {
+            EXPECT_FALSE(found) << "the first frame only primes the detector";
+        }
+    }
+    ASSERT_TRUE(found);
+    EXPECT_GT(iou(found->mask, truth), 0.9);
+    // The learnt skin colour is the hand's.
+    const double sum = 105 + 140 + 205;
+    EXPECT_NEAR(found->skin.mean()[0], 205 / sum, 0.01);
+    EXPECT_NEAR(found->skin.mean()[1], 140 / sum, 0.01);
+}
+
+TEST(MotionDetector, LeavesOutAStaticSkinObjectTheHandTouches) {
+    cv::setRNGSeed(5);
+    DrawnScene scene(7);
+    // A skin-coloured board, same tone and brightness, that the fingertip touches.
+    cv::rectangle(scene.background, cv::Rect(190, 40, 80, 50), cv::Scalar(scene.skin), cv::FILLED);
+    gc::MotionDetector det;
+    cv::Mat3b frame;
+    cv::Mat1b truth;
+    std::optional<gc::Detection> found;
+    for (int i = 0; i < 12 && !found; ++i) {
+        scene.render({150.0 + 3.0 * (i % 2 ? 1 : -1), 130.0}, 35.0 + 4.0 * (i % 3), frame, truth);
+        found = det.process(frame);
+    }
+    ASSERT_TRUE(found);
+    cv::Mat1b board(frame.size(), uchar(0));
+    cv::rectangle(board, cv::Rect(190, 40, 80, 50), 255, cv::FILLED);
+    cv::Mat1b on_board;
+    cv::bitwise_and(found->mask, board, on_board);
+    // At most a rim of the board within reach of the moving finger remains.
+    EXPECT_LT(cv::countNonZero(on_board), 0.25 * 80 * 50);
+    EXPECT_GT(iou(found->mask, truth), 0.7);
+}
+
+TEST(MotionDetector, StaticSceneOrNonSkinMotionGivesNothing) {
+    cv::setRNGSeed(4);
+    DrawnScene scene(6);
+    gc::MotionDetector det;
+    cv::Mat3b frame;
+    cv::Mat1b truth;
+    for (int i = 0; i < 5; ++i) {
+        scene.render({150.0, 130.0}, 35.0, frame, truth);
+        EXPECT_FALSE(det.process(frame));
+    }
+    // A moving blue object is motion but not skin.
+    det.reset();
+    for (int i = 0; i < 5; ++i) {
+        scene.background.copyTo(frame);
+        cv::circle(frame, {100 + 10 * i, 100}, 30, cv::Scalar(200, 60, 40), cv::FILLED);
+        EXPECT_FALSE(det.process(frame));
+    }
+}
+
+TEST(MotionDetector, BadInputsThrow) {
+    gc::MotionDetector det;
+    EXPECT_THROW(det.process(cv::Mat()), std::invalid_argument);
+    EXPECT_THROW(det.process(cv::Mat1b(40, 40)), std::invalid_argument);
+    gc::DetectionParams p;
+    p.close_size = 4;
+    EXPECT_THROW(gc::MotionDetector{p}, std::invalid_argument);
+}
+
+}  // namespace

@@ -1,0 +1,118 @@
+#include "contour/hand_template.hpp"
+#include "measure/contour_fit.hpp"
+#include "measure/contour_measurement.hpp"
+#include "measure/edge_search.hpp"
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <vector>
+
+namespace {
+
+// A horizontal membership profile: skin (255) for x < edge, background (0) beyond, with a
+// linear ramp over one pixel like an anti-aliased boundary.
+cv::Mat1b step_map(double edge) {
+    cv::Mat1b m(20, 60);
+    for (int y = 0; y < m.rows; ++y)
+        for (int x = 0; x < m.cols; ++x)
+            m(y, x) = cv::saturate_cast<uchar>(255.0 * std::clamp(edge - x + 0.5, 0.0, 1.0));
+    return m;
+}
+
+TEST(EdgeSearch, FindsAStepAtTheRightSubPixelOffset) {
+    for (double edge : {30.0, 30.25, 30.5, 30.8}) {
+        const auto m = step_map(edge);
+        float off = 0;
+        // From x = 28, pointing along +x: the 128 level is crossed near x = edge.
+        ASSERT_TRUE(gc::find_skin_edge_fast(m, 28.0f, 10.0f, 1.0f, 0.0f, 8, off));
+        EXPECT_NEAR(28.0 + off, edge, 0.1) << edge;
+        double offd = 0;
+        ASSERT_TRUE(gc::find_skin_edge_precise(m, {28.0, 10.0}, {1.0, 0.0}, 8.0, 0.25, offd));
+        EXPECT_NEAR(28.0 + offd, edge, 0.1) << edge;
+    }
+}
+
+TEST(EdgeSearch, IgnoresSkinClutterBeyondTheEdge) {
+    auto m = step_map(30.0);
+    // A skin-coloured object just outside the hand, nearer the hypothesis than the true
+    // edge is: the outward search stops at the hand's own edge.
+    cv::rectangle(m, cv::Rect(33, 0, 6, 20), 255, cv::FILLED);
+    float off = 0;
+    ASSERT_TRUE(gc::find_skin_edge_fast(m, 34.0f, 10.0f, 1.0f, 0.0f, 8, off));
+    EXPECT_NEAR(34.0 + off, 30.0, 0.2);
+    // The clutter's own far edge (x = 39) is nearer to a hypothesis at x = 37 than the hand
+    // edge is, yet the hand's edge is still the one found when it is in the window.
+    ASSERT_TRUE(gc::find_skin_edge_fast(m, 37.0f, 10.0f, 1.0f, 0.0f, 8, off));
+    EXPECT_NEAR(37.0 + off, 30.0, 0.2);
+}
+
+TEST(EdgeSearch, NoEdgeInsideOrOutsideOrOffTheImage) {
+    const auto m = step_map(30.0);
+    float off = 0;
+    EXPECT_FALSE(gc::find_skin_edge_fast(m, 10.0f, 10.0f, 1.0f, 0.0f, 5, off));  // all skin
+    EXPECT_FALSE(gc::find_skin_edge_fast(m, 50.0f, 10.0f, 1.0f, 0.0f, 5, off));  // no skin
+    // Skin running off the image: the border is background, so there is an edge there.
+    EXPECT_TRUE(gc::find_skin_edge_fast(m, 2.0f, 10.0f, -1.0f, 0.0f, 5, off));
+    EXPECT_NEAR(2.0 - off, -0.5, 0.6);
+    EXPECT_FALSE(gc::find_skin_edge_fast(m, -100.0f, -100.0f, 1.0f, 0.0f, 5, off));
+}
+
+cv::Mat1b drawn_hand(cv::Size size, cv::Point2d palm, double finger_deg, double s) {
+    cv::Mat1b m(size, uchar(0));
+    cv::circle(m, palm, cvRound(22 * s), 255, cv::FILLED, cv::LINE_8);
+    const double a = finger_deg * std::numbers::pi / 180.0;
+    const cv::Point2d dir(std::cos(a), -std::sin(a));
+    const cv::Point2d side(-dir.y, dir.x);
+    const cv::Point2d base = palm + dir * (15 * s), tip = palm + dir * (62 * s);
+    std::vector<cv::Point> finger{base + side * (5 * s), tip + side * (5 * s), tip - side * (5 * s),
+                                  base - side * (5 * s)};
+    cv::fillConvexPoly(m, finger, 255);
+    cv::circle(m, tip, cvRound(5 * s), 255, cv::FILLED);
+    cv::circle(m, palm + side * (26 * s) + dir * (6 * s), cvRound(7 * s), 255, cv::FILLED);
+    return m;
+}
+
+TEST(ContourMeasurement, MisfitIsLowestAtTheTrueState) {
+    const auto mask = drawn_hand({320, 240}, {150, 130}, 20.0, 1.0);
+    const auto t = gc::HandTemplate::from_mask(mask, mask);
+    const gc::ContourMeasurement meas;
+    const gc::HandState truth{t.origin_px.x, t.origin_px.y, 0.0, 1.0};
+    const double at_truth = meas.misfit(mask, t, truth);
+    EXPECT_LT(at_truth, 0.02);
+    for (const gc::HandState off : {gc::HandState{truth.x + 4, truth.y, 0, 1},
+                                    gc::HandState{truth.x, truth.y - 4, 0, 1},
+                                    gc::HandState{truth.x, truth.y, 0.15, 1},
+                                    gc::HandState{truth.x, truth.y, 0, 1.12}})
+        EXPECT_GT(meas.misfit(mask, t, off), at_truth + 0.03);
+    // Nothing there at all: the cap.
+    EXPECT_NEAR(meas.misfit(cv::Mat1b(mask.size(), uchar(0)), t, truth), 1.0, 1e-6);
+    EXPECT_GT(meas.log_likelihood(0.01), meas.log_likelihood(0.1));
+    EXPECT_NEAR(meas.normal_likelihood(0.0), 1.0, 1e-12);
+    EXPECT_THROW(gc::ContourMeasurement(gc::ObservationParams{0, 2.0, 10.0}), std::invalid_argument);
+}
+
+TEST(ContourFit, RecoversAPerturbedState) {
+    const auto mask = drawn_hand({320, 240}, {150, 130}, 20.0, 1.0);
+    const auto t = gc::HandTemplate::from_mask(mask, mask);
+    // The same hand moved, turned and grown.
+    const auto moved = drawn_hand({320, 240}, {158, 124}, 20.0 - 8.0, 1.08);
+    const auto lm = gc::find_hand_landmarks(moved);
+    const gc::HandState start{t.origin_px.x, t.origin_px.y, 0.0, 1.0};
+    const auto fit = gc::refine_fit(moved, t, start, gc::FitParams{8, 8.0, 0.5, 2.0, 0.5});
+    ASSERT_TRUE(fit.converged);
+    EXPECT_NEAR(fit.state.scale, 1.08, 0.03);
+    EXPECT_NEAR(fit.state.rotation, 8.0 * std::numbers::pi / 180.0, 0.03);  // clockwise on screen
+    EXPECT_NEAR(fit.state.x, lm.palm.x, 2.5);
+    EXPECT_NEAR(fit.state.y, lm.palm.y, 2.5);
+    EXPECT_LT(fit.rms_px, 1.0);
+    // Nothing to fit: the start comes back, flagged.
+    const auto none = gc::refine_fit(cv::Mat1b(mask.size(), uchar(0)), t, start);
+    EXPECT_FALSE(none.converged);
+    EXPECT_EQ(none.state.x, start.x);
+}
+
+}  // namespace

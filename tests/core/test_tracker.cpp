@@ -1,0 +1,260 @@
+#include "metrics/metrics.hpp"
+#include "sim/scene.hpp"
+#include "tracker/hand_tracker.hpp"
+#include "tracker/stereo_tracker.hpp"
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+namespace {
+
+// A drawn pointing hand (palm disc, index finger, thumb) over a background with non-skin
+// clutter and a few small skin-coloured patches, with sensor noise from OpenCV's RNG.
+struct DrawnScene {
+    cv::Mat3b background;
+    cv::Vec3b skin{105, 140, 205};  // BGR
+
+    explicit DrawnScene(std::uint32_t seed, cv::Size size = {320, 240}) : background(size) {
+        std::mt19937 rng(seed);
+        std::uniform_int_distribution<int> c(30, 220), px(0, size.width - 1),
+            py(0, size.height - 1), sz(8, 50);
+        background.setTo(cv::Vec3b(60, 70, 65));
+        for (int i = 0; i < 40; ++i)
+            cv::rectangle(background, cv::Rect(px(rng), py(rng), sz(rng), sz(rng)),
+                          cv::Scalar(c(rng), c(rng), c(rng) / 3), cv::FILLED);
+        for (int i = 0; i < 4; ++i)  // small skin-coloured clutter
+            cv::circle(background, {px(rng), py(rng)}, 4, cv::Scalar(skin), cv::FILLED);
+    }
+
+    void render(cv::Point2d palm, double finger_deg, double s, cv::Mat3b& out,
+                cv::Mat1b& mask) const {
+        mask = cv::Mat1b(background.size(), uchar(0));
+        cv::circle(mask, palm, cvRound(22 * s), 255, cv::FILLED);
+        const double a = finger_deg * std::numbers::pi / 180.0;
+        const cv::Point2d dir(std::cos(a), -std::sin(a)), side(-dir.y, dir.x);
+        const cv::Point2d base = palm + dir * (15.0 * s), tip = palm + dir * (62.0 * s);
+        std::vector<cv::Point> finger{base + side * (5.0 * s), tip + side * (5.0 * s),
+                                      tip - side * (5.0 * s), base - side * (5.0 * s)};
+        cv::fillConvexPoly(mask, finger, 255);
+        cv::circle(mask, tip, cvRound(5 * s), 255, cv::FILLED);
+        cv::circle(mask, palm + side * (26.0 * s) + dir * (6.0 * s), cvRound(7 * s), 255, cv::FILLED);
+        background.copyTo(out);
+        out.setTo(skin, mask);
+        cv::Mat3s o;
+        out.convertTo(o, CV_16SC3);
+        cv::Mat3s n(o.size());
+        cv::randn(n, cv::Scalar::all(0), cv::Scalar::all(2.0));
+        o += n;
+        o.convertTo(out, CV_8UC3);
+    }
+};
+
+struct Pose {
+    cv::Point2d palm;
+    double deg;
+    double scale;
+};
+
+// Waves for 8 frames, then moves, turns and scales smoothly.
+Pose scripted(int f) {
+    if (f < 8) return {{150.0 + (f % 2 ? 6.0 : -6.0), 130.0}, 30.0, 1.0};
+    const double t = (f - 8) / 30.0;
+    return {{150.0 + 40.0 * std::sin(1.3 * t), 130.0 + 25.0 * std::sin(0.9 * t)},
+            30.0 + 25.0 * std::sin(1.1 * t), 1.0 + 0.12 * std::sin(0.7 * t)};
+}
+
+double iou(const std::vector<cv::Point2f>& contour, const cv::Mat1b& truth) {
+    cv::Mat1b filled(truth.size(), uchar(0));
+    std::vector<cv::Point> poly;
+    for (const auto& p : contour) poly.emplace_back(cvRound(p.x), cvRound(p.y));
+    cv::fillPoly(filled, std::vector<std::vector<cv::Point>>{poly}, 255);
+    cv::Mat1b i, u;
+    cv::bitwise_and(filled, truth, i);
+    cv::bitwise_or(filled, truth, u);
+    return double(cv::countNonZero(i)) / std::max(1, cv::countNonZero(u));
+}
+
+TEST(HandTracker, AcquiresAndFollowsAMovingHand) {
+    cv::setRNGSeed(7);
+    DrawnScene scene(9);
+    gc::TrackerParams params;
+    params.particles = 500;
+    gc::HandTracker tracker(params);
+    cv::Mat3b frame;
+    cv::Mat1b truth;
+    int tracked = 0, frames = 0;
+    double worst = 1.0, sum = 0.0;
+    for (int f = 0; f < 100; ++f) {
+        const Pose p = scripted(f);
+        scene.render(p.palm, p.deg, p.scale, frame, truth);
+        const auto& e = tracker.process(frame);
+        if (f < 8) continue;
+        ++frames;
+        if (!e.valid()) continue;
+        ++tracked;
+        const double v = iou(e.contour, truth);
+        worst = std::min(worst, v);
+        sum += v;
+        EXPECT_NEAR(e.pointing_deg, p.deg, 8.0) << "frame " << f;
+        EXPECT_GT(e.confidence, 0.0);
+        EXPECT_EQ(e.bbox, cv::boundingRect(e.contour));
+    }
+    EXPECT_EQ(tracked, frames) << "acquired during the wave and never lost";
+    EXPECT_GT(sum / std::max(tracked, 1), 0.9);
+    EXPECT_GT(worst, 0.8);
+    EXPECT_EQ(tracker.particles().size(), 500u);
+}
+
+TEST(HandTracker, FollowsARenderedSceneAcrossSeeds) {
+    for (std::uint64_t seed : {1u, 2u}) {
+        gc::sim::SceneConfig cfg;
+        cfg.preset = gc::sim::Preset::Clean;
+        cfg.motion = gc::sim::Motion::Mixed;
+        cfg.seed = seed;
+        const gc::sim::Scene scene(cfg);
+        gc::TrackerParams params;
+        params.particles = 300;
+        params.seed = seed;
+        gc::HandTracker tracker(params);
+        cv::Mat bgr;
+        gc::sim::EyeTruth truth;
+        int first = -1;
+        double worst = 1.0;
+        gc::SnrAccumulator snr;
+        for (int f = 0; f < 120; ++f) {
+            scene.render(f, gc::Eye::Left, {}, bgr, &truth);
+            const auto& e = tracker.process(bgr);
+            const cv::Mat1b tracked = e.valid() ? gc::contour_mask(e.contour, bgr.size())
+                                                : cv::Mat1b(bgr.size(), uchar(0));
+            snr.add(truth.mask, tracked);
+            if (!e.valid()) continue;
+            if (first < 0) first = f;
+            worst = std::min(worst, gc::mask_iou(truth.mask, tracked));
+            EXPECT_NEAR(e.pointing_deg, truth.pointing_deg, 10.0) << "seed " << seed << " frame " << f;
+        }
+        EXPECT_GE(first, 0) << "seed " << seed;
+        EXPECT_LE(first, 10) << "acquired during the wave, seed " << seed;
+        EXPECT_GT(worst, 0.8) << "seed " << seed;
+        EXPECT_GT(snr.snr_db(), 13.0) << "seed " << seed;
+    }
+}
+
+TEST(HandTracker, RecoversAfterTheHandLeavesAndReturns) {
+    cv::setRNGSeed(8);
+    DrawnScene scene(10);
+    gc::TrackerParams params;
+    params.particles = 300;
+    gc::HandTracker tracker(params);
+    cv::Mat3b frame;
+    cv::Mat1b truth;
+    bool lost = false, back = false;
+    for (int f = 0; f < 90; ++f) {
+        Pose p = scripted(std::min(f, 20));
+        // Frames 25..45 slide out to the right and stay out; then slide back and hold.
+        if (f >= 25 && f < 35) p.palm.x += 30.0 * (f - 24);
+        else if (f >= 35 && f < 55) p.palm.x += 1000.0;
+        else if (f >= 55 && f < 65) p.palm.x += 30.0 * (65 - f);
+        scene.render(p.palm, p.deg, p.scale, frame, truth);
+        const auto& e = tracker.process(frame);
+        if (f >= 40 && f < 55) lost |= e.state == gc::TrackState::Lost;
+        if (f >= 75) {
+            back = e.valid();
+            if (back) {
+                EXPECT_GT(iou(e.contour, truth), 0.8) << "frame " << f;
+            }
+        }
+    }
+    EXPECT_TRUE(lost) << "the hand out of view must be reported lost";
+    EXPECT_TRUE(back) << "the returning hand must be tracked again";
+}
+
+TEST(HandTracker, IsDeterministicForASeed) {
+    DrawnScene scene(11);
+    gc::TrackerParams params;
+    params.particles = 200;
+    params.seed = 99;
+    gc::HandTracker a(params), b(params);
+    cv::Mat3b frame;
+    cv::Mat1b truth;
+    cv::setRNGSeed(1);
+    for (int f = 0; f < 30; ++f) {
+        const Pose p = scripted(f);
+        scene.render(p.palm, p.deg, p.scale, frame, truth);
+        const auto& ea = a.process(frame);
+        const auto& eb = b.process(frame);
+        ASSERT_EQ(ea.state, eb.state);
+        ASSERT_EQ(ea.mean.x, eb.mean.x);
+        ASSERT_EQ(ea.contour, eb.contour);
+    }
+}
+
+TEST(HandTracker, BadInputsGiveClearErrors) {
+    gc::HandTracker t;
+    EXPECT_THROW(t.process(cv::Mat()), std::invalid_argument);
+    EXPECT_THROW(t.process(cv::Mat1b(64, 64, uchar(0))), std::invalid_argument);
+    EXPECT_THROW(t.process(cv::Mat(64, 64, CV_8UC4, cv::Scalar::all(0))), std::invalid_argument);
+    EXPECT_THROW(t.process(cv::Mat(64, 64, CV_16UC3, cv::Scalar::all(0))), std::invalid_argument);
+    EXPECT_THROW(t.process(cv::Mat3b(16, 64)), std::invalid_argument);
+    t.process(cv::Mat3b(64, 64, cv::Vec3b(0, 0, 0)));
+    try {
+        t.process(cv::Mat3b(80, 64, cv::Vec3b(0, 0, 0)));
+        FAIL() << "a size change needs reset()";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("size"), std::string::npos);
+    }
+    t.reset();
+    EXPECT_NO_THROW(t.process(cv::Mat3b(80, 64, cv::Vec3b(0, 0, 0))));
+    EXPECT_THROW(t.process(cv::Mat3b(80, 64), gc::ImageMotion{NAN, 0, 0, 1}), std::invalid_argument);
+    EXPECT_THROW(t.process(cv::Mat3b(80, 64), gc::ImageMotion{0, 0, 0, 0}), std::invalid_argument);
+    gc::TrackerParams bad;
+    bad.particles = 0;
+    EXPECT_THROW(gc::HandTracker{bad}, std::invalid_argument);
+    bad = {};
+    bad.lost_ratio = 1.5;
+    EXPECT_THROW(gc::HandTracker{bad}, std::invalid_argument);
+}
+
+TEST(StereoHandTracker, TracksBothEyesLikeTwoMonoTrackers) {
+    DrawnScene left_scene(12), right_scene(13);
+    gc::TrackerParams params;
+    params.particles = 200;
+    gc::StereoHandTracker stereo(params);
+    gc::HandTracker mono_left(params);
+    cv::Mat3b l, r;
+    cv::Mat1b lt, rt;
+    for (int f = 0; f < 40; ++f) {
+        const Pose p = scripted(f);
+        cv::setRNGSeed(100 + f);
+        left_scene.render(p.palm, p.deg, p.scale, l, lt);
+        right_scene.render(p.palm - cv::Point2d(20, 0), p.deg, p.scale, r, rt);
+        const auto s = stereo.process(l, r);
+        const auto& m = mono_left.process(l);
+        // The left eye runs the same seed as a mono tracker: identical results.
+        ASSERT_EQ(s.left.contour, m.contour);
+        ASSERT_EQ(s.left.state, m.state);
+        if (f >= 20) {
+            EXPECT_TRUE(s.left.valid());
+            EXPECT_TRUE(s.right.valid());
+            if (s.right.valid()) {
+                EXPECT_GT(iou(s.right.contour, rt), 0.8);
+            }
+        }
+    }
+    // The right eye is seeded differently.
+    EXPECT_NE(stereo.eye(gc::Eye::Left).particles()[5].state.x,
+              stereo.eye(gc::Eye::Right).particles()[5].state.x + 20.0);
+    // Errors from either eye reach the caller; the worker survives them.
+    EXPECT_THROW(stereo.process(l, cv::Mat()), std::invalid_argument);
+    EXPECT_THROW(stereo.process(cv::Mat(), r), std::invalid_argument);
+    stereo.reset();
+    EXPECT_NO_THROW(stereo.process(l, r));
+}
+
+}  // namespace

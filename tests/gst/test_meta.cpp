@@ -1,0 +1,140 @@
+// GstHandPointingMeta on its own: registration, defaults, contour storage, and the copy and
+// scale transforms that keep it true when a buffer is copied or rescaled downstream.
+#include "gst_fixture.hpp"
+
+#include <gst/gesturecam/gsthandpointingmeta.h>
+#include <gst/video/video.h>
+
+#include <vector>
+
+namespace {
+
+GstHandPointingMeta* add_filled_meta(GstBuffer* buffer, guint flags)
+{
+    GstHandPointingMeta* meta = gst_buffer_add_hand_pointing_meta(buffer);
+    meta->frame = 7;
+    meta->state = GST_HAND_POINTING_STATE_TRACKING;
+    meta->flags = flags;
+    meta->left.state = GST_HAND_POINTING_STATE_TRACKING;
+    meta->left.x = 100.0;
+    meta->left.y = 50.0;
+    meta->left.bbox_x = 80;
+    meta->left.bbox_y = 30;
+    meta->left.bbox_width = 40;
+    meta->left.bbox_height = 60;
+    meta->left.fingertip_x = 130.0;
+    meta->left.fingertip_y = 20.0;
+    meta->left.pointing_deg = 45.0;
+    const gfloat contour[] = {80.0f, 30.0f, 120.0f, 30.0f, 120.0f, 90.0f};
+    gst_hand_pointing_eye_set_contour(&meta->left, contour, 3);
+    meta->azimuth_deg = -12.5;
+    meta->view_width = 320;
+    meta->view_height = 240;
+    return meta;
+}
+
+TEST(Meta, RegistersUnderItsApiName)
+{
+    gc::test::init_gstreamer();
+    EXPECT_STREQ(g_type_name(GST_HAND_POINTING_META_API_TYPE), "GstHandPointingMetaAPI");
+    EXPECT_TRUE(gst_meta_api_type_has_tag(GST_HAND_POINTING_META_API_TYPE, g_quark_from_static_string(GST_META_TAG_VIDEO_STR)));
+    EXPECT_STREQ(gst_hand_pointing_state_to_string(GST_HAND_POINTING_STATE_LOST), "lost");
+}
+
+TEST(Meta, StartsZeroedAcquiring)
+{
+    gc::test::init_gstreamer();
+    GstBuffer* buffer = gst_buffer_new_allocate(nullptr, 16, nullptr);
+    GstHandPointingMeta* meta = gst_buffer_add_hand_pointing_meta(buffer);
+    ASSERT_NE(meta, nullptr);
+    EXPECT_EQ(meta->state, GST_HAND_POINTING_STATE_ACQUIRING);
+    EXPECT_EQ(meta->flags, 0u);
+    EXPECT_EQ(meta->left.scale, 1.0);
+    EXPECT_EQ(meta->right.n_contour_points, 0u);
+    EXPECT_EQ(gst_buffer_get_hand_pointing_meta(buffer), meta);
+    gst_buffer_unref(buffer);
+}
+
+TEST(Meta, LongContoursAreSubsampledEvenly)
+{
+    GstHandPointingEye eye{};
+    std::vector<gfloat> xy;
+    const guint n = 3 * GST_HAND_POINTING_MAX_CONTOUR_POINTS;
+    for (guint i = 0; i < n; ++i) {
+        xy.push_back(gfloat(i));
+        xy.push_back(gfloat(-int(i)));
+    }
+    gst_hand_pointing_eye_set_contour(&eye, xy.data(), n);
+    ASSERT_EQ(eye.n_contour_points, guint(GST_HAND_POINTING_MAX_CONTOUR_POINTS));
+    EXPECT_EQ(eye.contour[0][0], 0.0f);
+    EXPECT_EQ(eye.contour[1][0], 3.0f);
+    EXPECT_EQ(eye.contour[GST_HAND_POINTING_MAX_CONTOUR_POINTS - 1][1], -gfloat(n - 3));
+}
+
+TEST(Meta, CopiesWithTheBuffer)
+{
+    gc::test::init_gstreamer();
+    GstBuffer* buffer = gst_buffer_new_allocate(nullptr, 16, nullptr);
+    add_filled_meta(buffer, GST_HAND_POINTING_FLAG_STEREO);
+    GstBuffer* copy = gst_buffer_copy(buffer);
+    const GstHandPointingMeta* meta = gst_buffer_get_hand_pointing_meta(copy);
+    ASSERT_NE(meta, nullptr);
+    EXPECT_EQ(meta->frame, 7u);
+    EXPECT_EQ(meta->flags, guint(GST_HAND_POINTING_FLAG_STEREO));
+    EXPECT_EQ(meta->left.x, 100.0);
+    EXPECT_EQ(meta->left.n_contour_points, 3u);
+    EXPECT_EQ(meta->left.contour[2][1], 90.0f);
+    EXPECT_EQ(meta->azimuth_deg, -12.5);
+    gst_buffer_unref(copy);
+    gst_buffer_unref(buffer);
+}
+
+// Runs the scale transform as videoscale would, from 320x240 to 640x120.
+GstHandPointingMeta* scaled_copy(GstBuffer* src, GstBuffer* dst)
+{
+    GstVideoInfo in, out;
+    gst_video_info_set_format(&in, GST_VIDEO_FORMAT_BGR, 320, 240);
+    gst_video_info_set_format(&out, GST_VIDEO_FORMAT_BGR, 640, 120);
+    GstVideoMetaTransform trans = {&in, &out};
+    GstMeta* meta = GST_META_CAST(gst_buffer_get_hand_pointing_meta(src));
+    EXPECT_TRUE(meta->info->transform_func(dst, meta, src, gst_video_meta_transform_scale_get_quark(), &trans));
+    return gst_buffer_get_hand_pointing_meta(dst);
+}
+
+TEST(Meta, ScaleTransformRescalesAFullView)
+{
+    gc::test::init_gstreamer();
+    GstBuffer* buffer = gst_buffer_new_allocate(nullptr, 16, nullptr);
+    add_filled_meta(buffer, GST_HAND_POINTING_FLAG_FULL_VIEW);
+    GstBuffer* scaled = gst_buffer_new_allocate(nullptr, 16, nullptr);
+    const GstHandPointingMeta* meta = scaled_copy(buffer, scaled);
+    ASSERT_NE(meta, nullptr);
+    EXPECT_DOUBLE_EQ(meta->left.x, 200.0);
+    EXPECT_DOUBLE_EQ(meta->left.y, 25.0);
+    EXPECT_EQ(meta->left.bbox_width, 80);
+    EXPECT_EQ(meta->left.bbox_height, 30);
+    EXPECT_FLOAT_EQ(meta->left.contour[1][0], 240.0f);
+    EXPECT_EQ(meta->view_width, 640);
+    EXPECT_EQ(meta->view_height, 120);
+    // 45 degrees becomes atan2(0.5, 2): the direction seen in the stretched image.
+    EXPECT_NEAR(meta->left.pointing_deg, 14.036, 1e-3);
+    EXPECT_EQ(meta->azimuth_deg, -12.5);  // 3D is unaffected by image scaling
+    gst_buffer_unref(scaled);
+    gst_buffer_unref(buffer);
+}
+
+TEST(Meta, ScaleTransformKeepsAnAttendedCrop)
+{
+    gc::test::init_gstreamer();
+    GstBuffer* buffer = gst_buffer_new_allocate(nullptr, 16, nullptr);
+    add_filled_meta(buffer, GST_HAND_POINTING_FLAG_NONE);
+    GstBuffer* scaled = gst_buffer_new_allocate(nullptr, 16, nullptr);
+    const GstHandPointingMeta* meta = scaled_copy(buffer, scaled);
+    ASSERT_NE(meta, nullptr);
+    EXPECT_EQ(meta->left.x, 100.0);  // input pixels: the crop still shows the same region
+    EXPECT_EQ(meta->view_width, 320);
+    gst_buffer_unref(scaled);
+    gst_buffer_unref(buffer);
+}
+
+}  // namespace

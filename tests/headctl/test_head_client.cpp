@@ -1,0 +1,226 @@
+// The asynchronous client against a loopback simulated head: connection, sampling, the
+// single command slot, the rate limit, reconnection with backoff, and a caller that never waits.
+#include "test_support.hpp"
+
+#include "headctl/head_client.hpp"
+
+#include <netinet/in.h>
+#include <sys/socket.h>
+
+#include <atomic>
+#include <cmath>
+#include <mutex>
+#include <vector>
+
+namespace gc::headctl::testing {
+namespace {
+
+// Polls cond every 5 ms for at most `limit`.
+template <typename Cond>
+bool eventually(Cond cond, std::chrono::milliseconds limit = 5000ms) {
+    const auto end = std::chrono::steady_clock::now() + limit;
+    while (std::chrono::steady_clock::now() < end) {
+        if (cond()) return true;
+        std::this_thread::sleep_for(5ms);
+    }
+    return cond();
+}
+
+HeadCommand absolute_pan(double deg) {
+    HeadCommand c{CommandKind::Absolute, {}};
+    c.values.set(Axis::Pan, deg);
+    return c;
+}
+
+HeadClientConfig config_for(const RunningServer& server) {
+    HeadClientConfig c;
+    c.uri = server.uri();
+    c.status_interval = 10ms;
+    c.backoff_initial = 20ms;
+    c.backoff_max = 160ms;
+    return c;
+}
+
+TEST(HeadClient, ConnectsSamplesAndInterpolates) {
+    RunningServer server;
+    HeadClient client(config_for(server));
+    ASSERT_TRUE(eventually([&] { return client.stats().state_samples >= 5; }));
+    EXPECT_EQ(client.state(), ConnectionState::Connected);
+    ASSERT_TRUE(client.limits());
+    EXPECT_EQ(*client.limits(), default_simulated_limits());
+    client.submit(absolute_pan(20.0));
+    ASSERT_TRUE(eventually([&] {
+        const auto s = client.latest();
+        return s && std::abs(s->state.pose.pan_deg - 20.0) < 1e-9 && !s->state.moving[0];
+    }));
+    const auto pose = client.pose_at(client.now());
+    ASSERT_TRUE(pose);
+    EXPECT_NEAR(pose->pan_deg, 20.0, 1e-9);
+}
+
+TEST(HeadClient, StampsSamplesWithTheCallersClock) {
+    RunningServer server;
+    HeadClientConfig config = config_for(server);
+    const auto offset = std::chrono::hours(1000);
+    config.clock = [offset] { return std::chrono::steady_clock::now().time_since_epoch() + offset; };
+    HeadClient client(config);
+    ASSERT_TRUE(eventually([&] { return client.latest().has_value(); }));
+    const auto age = client.now() - client.latest()->time;
+    EXPECT_GE(age, 0ms);
+    EXPECT_LT(age, 2000ms);
+}
+
+TEST(HeadClient, LatestCommandWins) {
+    RunningServer server;
+    HeadClientConfig config = config_for(server);
+    config.min_command_interval = 300ms;
+    HeadClient client(config);
+    ASSERT_TRUE(eventually([&] { return client.state() == ConnectionState::Connected; }));
+    for (int i = 1; i <= 50; ++i) client.submit(absolute_pan(i));
+    ASSERT_TRUE(eventually([&] {
+        const auto s = client.latest();
+        return s && std::abs(s->state.pose.pan_deg - 50.0) < 1e-9 && !s->state.moving[0];
+    }));
+    const HeadClientStats stats = client.stats();
+    EXPECT_EQ(stats.commands_submitted, 50u);
+    EXPECT_LE(stats.commands_sent, 2u);  // the first, perhaps, then the last
+    EXPECT_EQ(stats.commands_sent + stats.commands_superseded, 50u);
+}
+
+TEST(HeadClient, RateLimitsCommands) {
+    RunningServer server;
+    HeadClientConfig config = config_for(server);
+    config.min_command_interval = 50ms;
+    HeadClient client(config);
+    ASSERT_TRUE(eventually([&] { return client.state() == ConnectionState::Connected; }));
+    const auto start = std::chrono::steady_clock::now();
+    int submitted = 0;
+    while (std::chrono::steady_clock::now() - start < 500ms) {
+        HeadCommand c{CommandKind::Velocity, {}};
+        c.values.set(Axis::Pan, 1.0 + submitted % 10);
+        client.submit(c);
+        ++submitted;
+        std::this_thread::sleep_for(2ms);
+    }
+    const double elapsed_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    std::this_thread::sleep_for(100ms);
+    const HeadClientStats stats = client.stats();
+    EXPECT_GT(submitted, 50);
+    EXPECT_LE(stats.commands_sent, static_cast<std::uint64_t>(elapsed_ms / 50.0) + 3);
+    EXPECT_GE(stats.commands_sent, 5u);
+}
+
+TEST(HeadClient, ReportsRefusedCommandsAndStaysConnected) {
+    RunningServer server;
+    HeadClient client(config_for(server));
+    ASSERT_TRUE(eventually([&] { return client.state() == ConnectionState::Connected; }));
+    client.submit(absolute_pan(400.0));
+    ASSERT_TRUE(eventually([&] { return client.stats().commands_rejected == 1; }));
+    EXPECT_NE(client.last_error().find("out-of-range"), std::string::npos) << client.last_error();
+    EXPECT_EQ(client.state(), ConnectionState::Connected);
+}
+
+TEST(HeadClient, ReconnectsWithExponentialBackoff) {
+    std::uint16_t port = 0;
+    {
+        RunningServer probe;  // a port that was free a moment ago
+        port = probe.port();
+    }
+    std::mutex mutex;
+    std::vector<ConnectionState> seen;
+    HeadClientConfig config;
+    config.uri = "tcp://127.0.0.1:" + std::to_string(port);
+    config.backoff_initial = 20ms;
+    config.backoff_max = 160ms;
+    config.status_interval = 10ms;
+    config.on_state_change = [&](ConnectionState s, const std::string&) {
+        std::lock_guard lock(mutex);
+        seen.push_back(s);
+    };
+    HeadClient client(config);
+    std::this_thread::sleep_for(1000ms);
+    // Waits of 20, 40, 80, then 160 ms: about 8 attempts in the first second, not 50.
+    const auto attempts = client.stats().connect_attempts;
+    EXPECT_GE(attempts, 4u);
+    EXPECT_LE(attempts, 12u);
+    EXPECT_EQ(client.state(), ConnectionState::Disconnected);
+    EXPECT_NE(client.last_error().find("cannot connect"), std::string::npos) << client.last_error();
+
+    HeadServerConfig server_config;
+    server_config.port = port;
+    auto server = std::make_unique<RunningServer>(server_config);
+    ASSERT_TRUE(eventually([&] { return client.state() == ConnectionState::Connected; }, 3000ms));
+    ASSERT_TRUE(eventually([&] { return client.stats().state_samples > 0; }));
+    server.reset();  // the head goes away: the client notices and retries
+    ASSERT_TRUE(eventually([&] { return client.state() != ConnectionState::Connected; }, 3000ms));
+    server = std::make_unique<RunningServer>(server_config);
+    ASSERT_TRUE(eventually([&] { return client.state() == ConnectionState::Connected; }, 3000ms));
+    EXPECT_EQ(client.stats().connections, 2u);
+    std::lock_guard lock(mutex);
+    EXPECT_NE(std::find(seen.begin(), seen.end(), ConnectionState::Disconnected), seen.end());
+    EXPECT_EQ(seen.back(), ConnectionState::Connected);
+}
+
+TEST(HeadClient, AuthenticatesWithItsToken) {
+    HeadServerConfig server_config;
+    server_config.token = "opensesame";
+    RunningServer server(server_config);
+    HeadClientConfig config = config_for(server);
+    config.token = "wrong";
+    {
+        HeadClient client(config);
+        ASSERT_TRUE(eventually([&] { return client.state() == ConnectionState::Disconnected; }));
+        EXPECT_NE(client.last_error().find("refused the token"), std::string::npos) << client.last_error();
+    }
+    config.token = "opensesame";
+    HeadClient client(config);
+    EXPECT_TRUE(eventually([&] { return client.stats().state_samples > 0; }));
+}
+
+TEST(HeadClient, CallerNeverWaitsOnAStuckHead) {
+    // Listens but never accepts: connecting succeeds, the greeting never comes.
+    net::Fd stuck(::socket(AF_INET, SOCK_STREAM, 0));
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    ASSERT_EQ(::bind(stuck.get(), reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
+    ::listen(stuck.get(), 4);
+    socklen_t len = sizeof a;
+    ::getsockname(stuck.get(), reinterpret_cast<sockaddr*>(&a), &len);
+    HeadClientConfig config;
+    config.uri = "tcp://127.0.0.1:" + std::to_string(ntohs(a.sin_port));
+    config.connect_timeout = 2000ms;
+    HeadClient client(config);
+    std::this_thread::sleep_for(50ms);
+    double worst_us = 0.0;
+    for (int i = 0; i < 200; ++i) {
+        const auto start = std::chrono::steady_clock::now();
+        client.submit(absolute_pan(i % 10));
+        client.pose_at(client.now());
+        client.state();
+        worst_us = std::max(worst_us, std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count());
+    }
+    EXPECT_LT(worst_us, 20000.0);
+    EXPECT_EQ(client.state(), ConnectionState::Connecting);
+    EXPECT_FALSE(client.pose_at(client.now()));
+}
+
+TEST(HeadClient, RejectsBadConfigurationAndCommands) {
+    HeadClientConfig config;
+    config.uri = "ftp://head";
+    EXPECT_THROW(HeadClient{config}, std::invalid_argument);
+    config.uri = "tcp://127.0.0.1:9";
+    config.backoff_max = 1ms;
+    EXPECT_THROW(HeadClient{config}, std::invalid_argument);
+    config = {};
+    config.uri = "visca-udp://127.0.0.1:9";
+    HeadClient visca_client(config);
+    HeadCommand verge{CommandKind::Absolute, {}};
+    verge.values.set(Axis::VergeLeft, 1.0);
+    EXPECT_THROW(visca_client.submit(verge), std::invalid_argument);
+    EXPECT_THROW(visca_client.submit(absolute_pan(std::nan(""))), std::invalid_argument);
+    EXPECT_THROW(visca_client.submit(HeadCommand{CommandKind::Velocity, {}}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace gc::headctl::testing

@@ -1,0 +1,225 @@
+// GCHP/1 parsing and formatting: round trips and every error path.
+#include "headctl/protocol.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace gc::headctl {
+namespace {
+
+ErrorCode request_error(std::string_view line) {
+    try {
+        parse_request(line);
+    } catch (const ProtocolError& e) {
+        EXPECT_NE(std::string(e.what()), "");
+        return e.code();
+    }
+    ADD_FAILURE() << "accepted: " << line;
+    return ErrorCode::Internal;
+}
+
+ErrorCode reply_error(std::string_view line) {
+    try {
+        parse_reply(line);
+    } catch (const ProtocolError& e) {
+        return e.code();
+    }
+    ADD_FAILURE() << "accepted: " << line;
+    return ErrorCode::Internal;
+}
+
+TEST(Protocol, ParsesMoveWithIdAndAxes) {
+    const Request r = parse_request("#12 MOVE ABS pan=10.5 tilt=-3");
+    ASSERT_TRUE(r.id);
+    EXPECT_EQ(*r.id, 12u);
+    EXPECT_EQ(r.command, Command::MoveAbsolute);
+    EXPECT_DOUBLE_EQ(r.values.get(Axis::Pan), 10.5);
+    EXPECT_DOUBLE_EQ(r.values.get(Axis::Tilt), -3.0);
+    EXPECT_FALSE(r.values.has(Axis::VergeLeft));
+}
+
+TEST(Protocol, VerbsAreCaseInsensitiveAndCarriageReturnIsIgnored) {
+    EXPECT_EQ(parse_request("status\r").command, Command::Status);
+    EXPECT_EQ(parse_request("  move  vel\tverge_l=2e1 ").command, Command::MoveVelocity);
+    EXPECT_DOUBLE_EQ(parse_request("move rel verge_r=-0.25").values.get(Axis::VergeRight), -0.25);
+}
+
+TEST(Protocol, RequestRoundTrips) {
+    std::vector<Request> requests;
+    Request move;
+    move.id = 4294967295u;
+    move.command = Command::MoveVelocity;
+    move.values.set(Axis::Pan, -12.3456);
+    move.values.set(Axis::VergeRight, 99999.0);
+    requests.push_back(move);
+    for (Command c : {Command::Status, Command::Stop, Command::Home, Command::Limits, Command::Quit}) {
+        Request r;
+        r.command = c;
+        requests.push_back(r);
+    }
+    Request auth;
+    auth.id = 0;
+    auth.command = Command::Auth;
+    auth.token = "s3cr3t-token";
+    requests.push_back(auth);
+    for (const Request& r : requests) EXPECT_EQ(parse_request(format_request(r)), r) << format_request(r);
+}
+
+TEST(Protocol, RejectsUnknownCommand) {
+    EXPECT_EQ(request_error("JUMP pan=1"), ErrorCode::UnknownCommand);
+    EXPECT_EQ(request_error("#3 FLY"), ErrorCode::UnknownCommand);
+}
+
+TEST(Protocol, RejectsBadNumbers) {
+    EXPECT_EQ(request_error("MOVE ABS pan=abc"), ErrorCode::BadArgument);
+    EXPECT_EQ(request_error("MOVE ABS pan=1.5x"), ErrorCode::BadArgument);
+    EXPECT_EQ(request_error("MOVE ABS pan="), ErrorCode::BadArgument);
+    EXPECT_EQ(request_error("MOVE ABS pan=+1"), ErrorCode::BadArgument);
+    EXPECT_EQ(request_error("MOVE ABS pan=1e6"), ErrorCode::BadArgument);
+    EXPECT_EQ(request_error("MOVE ABS pan=1e400"), ErrorCode::BadArgument);
+}
+
+TEST(Protocol, RejectsNanAndInfinity) {
+    for (const char* v : {"nan", "NaN", "-nan", "inf", "-inf", "infinity"})
+        EXPECT_EQ(request_error(std::string("MOVE VEL pan=") + v), ErrorCode::BadArgument) << v;
+}
+
+TEST(Protocol, RejectsOverLongLine) {
+    std::string line = "MOVE ABS pan=1";
+    line.append(kMaxLineLength, ' ');
+    EXPECT_EQ(request_error(line), ErrorCode::LineTooLong);
+    EXPECT_EQ(reply_error("OK " + std::string(kMaxLineLength, 'x')), ErrorCode::LineTooLong);
+}
+
+TEST(Protocol, RejectsMissingOrMalformedFields) {
+    EXPECT_EQ(request_error(""), ErrorCode::Syntax);
+    EXPECT_EQ(request_error("#7"), ErrorCode::Syntax);
+    EXPECT_EQ(request_error("MOVE"), ErrorCode::Syntax);
+    EXPECT_EQ(request_error("MOVE ABS"), ErrorCode::Syntax);
+    EXPECT_EQ(request_error("MOVE SIDEWAYS pan=1"), ErrorCode::Syntax);
+    EXPECT_EQ(request_error("MOVE ABS pan"), ErrorCode::Syntax);
+    EXPECT_EQ(request_error("MOVE ABS =3"), ErrorCode::Syntax);
+    EXPECT_EQ(request_error("MOVE ABS roll=3"), ErrorCode::BadArgument);
+    EXPECT_EQ(request_error("MOVE ABS pan=1 pan=2"), ErrorCode::BadArgument);
+    EXPECT_EQ(request_error("STATUS now"), ErrorCode::Syntax);
+    EXPECT_EQ(request_error("AUTH"), ErrorCode::Syntax);
+    EXPECT_EQ(request_error("AUTH a b"), ErrorCode::Syntax);
+    EXPECT_EQ(request_error("AUTH " + std::string(kMaxTokenLength + 1, 'k')), ErrorCode::BadArgument);
+    EXPECT_EQ(request_error("#x STATUS"), ErrorCode::Syntax);
+    EXPECT_EQ(request_error("#99999999999 STATUS"), ErrorCode::Syntax);
+    EXPECT_EQ(request_error("#4294967296 STATUS"), ErrorCode::Syntax);
+    EXPECT_EQ(request_error(std::string("STATUS\0", 7)), ErrorCode::Syntax);
+    EXPECT_EQ(request_error("STATUS \x7f"), ErrorCode::Syntax);
+}
+
+TEST(Protocol, PeeksTheIdOfAMalformedRequest) {
+    EXPECT_EQ(peek_request_id("#42 MOVE ABS pan=nan"), 42u);
+    EXPECT_EQ(peek_request_id("  #7"), 7u);
+    EXPECT_FALSE(peek_request_id("MOVE #42"));
+    EXPECT_FALSE(peek_request_id("#4x STATUS"));
+    EXPECT_FALSE(peek_request_id("#99999999999 STATUS"));
+}
+
+TEST(Protocol, StateReplyRoundTrips) {
+    Reply r;
+    r.id = 9;
+    r.body = ReplyBody::State;
+    r.state.server_time_us = 123456789012;
+    r.state.pose = HeadPose{12.5, -3.25, 4.0, -4.0};
+    r.state.moving = {false, true, false, false};
+    const std::string line = format_reply(r);
+    EXPECT_EQ(line, "OK #9 STATE t=123456789012 pan=12.5 tilt=-3.25 verge_l=4 verge_r=-4 moving=0,1,0,0");
+    const Reply back = parse_reply(line);
+    EXPECT_TRUE(back.ok);
+    EXPECT_EQ(back.id, 9u);
+    ASSERT_EQ(back.body, ReplyBody::State);
+    EXPECT_EQ(back.state.server_time_us, 123456789012);
+    EXPECT_DOUBLE_EQ(back.state.pose.tilt_deg, -3.25);
+    EXPECT_DOUBLE_EQ(back.state.pose.verge_right_deg, -4.0);
+    EXPECT_EQ(back.state.moving, r.state.moving);
+}
+
+TEST(Protocol, NumbersKeepFourDecimals) {
+    Request r;
+    r.command = Command::MoveAbsolute;
+    r.values.set(Axis::Pan, 1.0 / 3.0);
+    r.values.set(Axis::Tilt, -0.00001);
+    EXPECT_EQ(format_request(r), "MOVE ABS pan=0.3333 tilt=0");
+    r.values.set(Axis::Pan, std::nan(""));
+    EXPECT_THROW(format_request(r), std::invalid_argument);
+}
+
+TEST(Protocol, LimitsReplyRoundTripsWithinTheLineBound) {
+    Reply r;
+    r.body = ReplyBody::Limits;
+    for (Axis a : kAllAxes) r.limits[a] = AxisLimits{-99999.1234, 99999.1234, 99999.1234, 99999.1234};
+    const std::string line = format_reply(r);
+    EXPECT_LE(line.size(), kMaxLineLength);
+    const Reply back = parse_reply(line);
+    ASSERT_EQ(back.body, ReplyBody::Limits);
+    EXPECT_EQ(back.limits, r.limits);
+}
+
+TEST(Protocol, ErrorReplyRoundTrips) {
+    const Reply r = make_error_reply(5, ErrorCode::OutOfRange, "pan target 300 deg is outside [-170, 170]");
+    const std::string line = format_reply(r);
+    EXPECT_EQ(line, "ERR #5 416 pan target 300 deg is outside [-170, 170]");
+    const Reply back = parse_reply(line);
+    EXPECT_FALSE(back.ok);
+    EXPECT_EQ(back.id, 5u);
+    EXPECT_EQ(back.error, ErrorCode::OutOfRange);
+    EXPECT_EQ(back.message, r.message);
+    // Without an id, and an unknown code of a later version keeps its class.
+    EXPECT_EQ(parse_reply("ERR 401 authenticate first").error, ErrorCode::AuthRequired);
+    EXPECT_EQ(parse_reply("ERR 499 new thing").error, ErrorCode::BadArgument);
+    EXPECT_EQ(parse_reply("ERR 599 new thing").error, ErrorCode::Internal);
+}
+
+TEST(Protocol, ErrorMessagesAreSanitisedAndBounded) {
+    const Reply r = make_error_reply(1, ErrorCode::Syntax, std::string("bad\nline\x01") + std::string(2000, 'z'));
+    const std::string line = format_reply(r);
+    EXPECT_LE(line.size(), kMaxLineLength);
+    EXPECT_EQ(line.find('\n'), std::string::npos);
+    EXPECT_NO_THROW(parse_reply(line));
+}
+
+TEST(Protocol, RejectsMalformedReplies) {
+    EXPECT_EQ(reply_error(""), ErrorCode::Syntax);
+    EXPECT_EQ(reply_error("MAYBE"), ErrorCode::Syntax);
+    EXPECT_EQ(reply_error("ERR #1"), ErrorCode::Syntax);
+    EXPECT_EQ(reply_error("ERR #1 abc text"), ErrorCode::BadArgument);
+    EXPECT_EQ(reply_error("OK #1 STATE t=1 pan=0 tilt=0 verge_l=0 moving=0,0,0,0"), ErrorCode::Syntax);
+    EXPECT_EQ(reply_error("OK #1 STATE t=1 pan=0 tilt=0 verge_l=0 verge_r=0 moving=0,0,2,0"), ErrorCode::Syntax);
+    EXPECT_EQ(reply_error("OK #1 STATE t=1 pan=0 tilt=0 verge_l=0 verge_r=0 moving=0,0,0"), ErrorCode::Syntax);
+    EXPECT_EQ(reply_error("OK #1 STATE t=x pan=0 tilt=0 verge_l=0 verge_r=0 moving=0,0,0,0"), ErrorCode::BadArgument);
+    EXPECT_EQ(reply_error("OK #1 STATE t=1 pan=inf tilt=0 verge_l=0 verge_r=0 moving=0,0,0,0"), ErrorCode::BadArgument);
+    EXPECT_EQ(reply_error("OK LIMITS pan=1:2:3:4"), ErrorCode::Syntax);
+    EXPECT_EQ(reply_error("OK LIMITS pan=-1:1:3 tilt=-1:1:1:1 verge_l=-1:1:1:1 verge_r=-1:1:1:1"), ErrorCode::Syntax);
+    EXPECT_EQ(reply_error("OK LIMITS pan=1:-1:3:4 tilt=-1:1:1:1 verge_l=-1:1:1:1 verge_r=-1:1:1:1"),
+              ErrorCode::BadArgument);
+    EXPECT_EQ(reply_error("OK #1 WEATHER sunny"), ErrorCode::Syntax);
+}
+
+TEST(Protocol, RepliesIgnoreUnknownFieldsOfLaterVersions) {
+    const Reply r = parse_reply("OK #1 STATE t=5 pan=1 tilt=2 verge_l=3 verge_r=4 moving=1,0,0,1 temp=41.5");
+    EXPECT_EQ(r.state.server_time_us, 5);
+    EXPECT_DOUBLE_EQ(r.state.pose.verge_right_deg, 4.0);
+}
+
+TEST(Protocol, GreetingRoundTripsAndChecksItsShape) {
+    Greeting g;
+    EXPECT_EQ(format_greeting(g), "HELLO GCHP/1 axes=pan,tilt,verge_l,verge_r caps=abs,rel,vel");
+    g.caps.auth_required = true;
+    g.axes = {true, true, false, false};
+    EXPECT_EQ(parse_greeting(format_greeting(g)), g);
+    EXPECT_EQ(parse_greeting("HELLO GCHP/2 axes=pan caps=abs,teleport").version, 2);
+    EXPECT_THROW(parse_greeting("HELLO HTTP/1.1"), ProtocolError);
+    EXPECT_THROW(parse_greeting("HELLO GCHP/x axes=pan caps=abs"), ProtocolError);
+    EXPECT_THROW(parse_greeting("HELLO GCHP/1 axes=pan"), ProtocolError);
+    EXPECT_THROW(parse_greeting("HELLO GCHP/1 axes=roll caps=abs"), ProtocolError);
+    EXPECT_THROW(parse_greeting("GOODBYE"), ProtocolError);
+}
+
+}  // namespace
+}  // namespace gc::headctl

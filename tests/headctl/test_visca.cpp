@@ -1,0 +1,305 @@
+// VISCA: exact bytes of every command, VISCA-over-IP framing and sequence numbers, reply
+// parsing, and the backend against a loopback responder (UDP and TCP).
+#include "headctl/visca.hpp"
+#include "headctl/visca_backend.hpp"
+
+#include <gtest/gtest.h>
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <mutex>
+#include <thread>
+
+namespace gc::headctl {
+namespace {
+
+using namespace std::chrono_literals;
+using visca::Bytes;
+
+TEST(ViscaBytes, CommandsHaveTheExactLayout) {
+    EXPECT_EQ(visca::pan_tilt_drive(1, 0x10, 0x08, visca::Direction::Negative, visca::Direction::Positive),
+              (Bytes{0x81, 0x01, 0x06, 0x01, 0x10, 0x08, 0x01, 0x01, 0xFF}));
+    EXPECT_EQ(visca::pan_tilt_drive(1, 0x10, 0x08, visca::Direction::Positive, visca::Direction::Negative),
+              (Bytes{0x81, 0x01, 0x06, 0x01, 0x10, 0x08, 0x02, 0x02, 0xFF}));
+    EXPECT_EQ(visca::pan_tilt_stop(2), (Bytes{0x82, 0x01, 0x06, 0x01, 0x18, 0x14, 0x03, 0x03, 0xFF}));
+    EXPECT_EQ(visca::pan_tilt_absolute(1, 0x18, 0x14, 0x1234, -2),
+              (Bytes{0x81, 0x01, 0x06, 0x02, 0x18, 0x14, 0x01, 0x02, 0x03, 0x04, 0x0F, 0x0F, 0x0F, 0x0E, 0xFF}));
+    EXPECT_EQ(visca::pan_tilt_relative(7, 0x30, 0x00, -0x8000, 0x7FFF),
+              (Bytes{0x87, 0x01, 0x06, 0x03, 0x18, 0x01, 0x08, 0x00, 0x00, 0x00, 0x07, 0x0F, 0x0F, 0x0F, 0xFF}));
+    EXPECT_EQ(visca::pan_tilt_home(1), (Bytes{0x81, 0x01, 0x06, 0x04, 0xFF}));
+    EXPECT_EQ(visca::pan_tilt_position_inquiry(1), (Bytes{0x81, 0x09, 0x06, 0x12, 0xFF}));
+    EXPECT_THROW(visca::pan_tilt_home(0), visca::ViscaError);
+    EXPECT_THROW(visca::pan_tilt_home(8), visca::ViscaError);
+    EXPECT_THROW(visca::pan_tilt_absolute(1, 1, 1, 0x8000, 0), visca::ViscaError);
+}
+
+TEST(ViscaBytes, IpHeaderCarriesTypeLengthAndSequence) {
+    const Bytes payload = visca::pan_tilt_home(1);
+    EXPECT_EQ(visca::wrap_ip(visca::kIpCommand, 0x01020304, payload),
+              (Bytes{0x01, 0x00, 0x00, 0x05, 0x01, 0x02, 0x03, 0x04, 0x81, 0x01, 0x06, 0x04, 0xFF}));
+    EXPECT_EQ(visca::ip_reset_sequence(7), (Bytes{0x02, 0x00, 0x00, 0x01, 0x00, 0x00, 0x00, 0x07, 0x01}));
+    const auto m = visca::unwrap_ip(visca::wrap_ip(visca::kIpInquiry, 0xFFFFFFFF, payload));
+    EXPECT_EQ(m.payload_type, visca::kIpInquiry);
+    EXPECT_EQ(m.sequence, 0xFFFFFFFFu);
+    EXPECT_EQ(m.payload, payload);
+    EXPECT_THROW(visca::unwrap_ip(Bytes{0x01, 0x11, 0x00}), visca::ViscaError);
+    EXPECT_THROW(visca::unwrap_ip(Bytes{0x01, 0x11, 0x00, 0x04, 0, 0, 0, 1, 0x90, 0x41, 0xFF}), visca::ViscaError);
+    EXPECT_THROW(visca::unwrap_ip(Bytes{0x01, 0x11, 0x00, 0x00, 0, 0, 0, 1}), visca::ViscaError);
+}
+
+TEST(ViscaBytes, ParsesAckCompletionErrorAndPosition) {
+    auto ack = visca::parse_reply(Bytes{0x90, 0x41, 0xFF});
+    EXPECT_EQ(ack.kind, visca::ReplyKind::Ack);
+    EXPECT_EQ(ack.socket, 1);
+    EXPECT_EQ(ack.address, 1);
+    EXPECT_EQ(visca::parse_reply(Bytes{0xA0, 0x52, 0xFF}).kind, visca::ReplyKind::Completion);
+    EXPECT_EQ(visca::parse_reply(Bytes{0xA0, 0x52, 0xFF}).address, 2);
+    auto err = visca::parse_reply(Bytes{0x90, 0x61, 0x41, 0xFF});
+    EXPECT_EQ(err.kind, visca::ReplyKind::Error);
+    EXPECT_EQ(err.error, 0x41);
+    EXPECT_EQ(visca::describe_error(0x41), "command not executable");
+    EXPECT_EQ(visca::describe_error(0x77), "error 0x77");
+    auto pos = visca::parse_reply(Bytes{0x90, 0x50, 0x0F, 0x0F, 0x0F, 0x0E, 0x00, 0x01, 0x00, 0x00, 0xFF});
+    EXPECT_EQ(pos.kind, visca::ReplyKind::Position);
+    EXPECT_EQ(pos.pan_units, -2);
+    EXPECT_EQ(pos.tilt_units, 0x0100);
+}
+
+TEST(ViscaBytes, RejectsMalformedReplies) {
+    for (const Bytes& bad : {
+             Bytes{}, Bytes{0x90, 0xFF}, Bytes{0x90, 0x41, 0x00}, Bytes{0x91, 0x41, 0xFF}, Bytes{0x80, 0x41, 0xFF},
+             Bytes{0x10, 0x41, 0xFF}, Bytes{0x90, 0x41, 0x00, 0xFF}, Bytes{0x90, 0x61, 0xFF},
+             Bytes{0x90, 0x71, 0xFF}, Bytes{0x90, 0xFF, 0x41, 0xFF}, Bytes{0x90, 0x50, 0x00, 0xFF},
+             Bytes{0x90, 0x50, 0x1F, 0x0F, 0x0F, 0x0E, 0x00, 0x01, 0x00, 0x00, 0xFF}, Bytes(17, 0x00),
+         }) {
+        EXPECT_THROW(visca::parse_reply(bad), visca::ViscaError) << bad.size();
+    }
+}
+
+// A camera on loopback: answers VISCA over IP (UDP) or raw VISCA (TCP), keeps a position.
+class ViscaResponder {
+public:
+    explicit ViscaResponder(bool tcp) : tcp_(tcp) {
+        fd_ = ::socket(AF_INET, (tcp ? SOCK_STREAM : SOCK_DGRAM) | SOCK_CLOEXEC, 0);
+        sockaddr_in a{};
+        a.sin_family = AF_INET;
+        a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+        EXPECT_EQ(::bind(fd_, reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
+        if (tcp) ::listen(fd_, 1);
+        socklen_t len = sizeof a;
+        ::getsockname(fd_, reinterpret_cast<sockaddr*>(&a), &len);
+        port_ = ntohs(a.sin_port);
+        thread_ = std::thread([this] { tcp_ ? serve_tcp() : serve_udp(); });
+    }
+    ~ViscaResponder() {
+        stop_ = true;
+        thread_.join();
+        ::close(fd_);
+    }
+    std::uint16_t port() const { return port_; }
+    std::vector<Bytes> received() {
+        std::lock_guard lock(mutex_);
+        return received_;
+    }
+    void refuse_next() { refuse_next_ = true; }
+    void set_position(int pan, int tilt) {
+        std::lock_guard lock(mutex_);
+        pan_ = pan;
+        tilt_ = tilt;
+    }
+
+private:
+    // The replies to one VISCA message.
+    std::vector<Bytes> answer(const Bytes& m) {
+        std::lock_guard lock(mutex_);
+        received_.push_back(m);
+        if (m == visca::pan_tilt_position_inquiry(1)) {
+            Bytes r{0x90, 0x50};
+            for (int v : {pan_, tilt_})
+                for (int shift = 12; shift >= 0; shift -= 4)
+                    r.push_back(static_cast<std::uint8_t>((static_cast<std::uint16_t>(v) >> shift) & 0x0F));
+            r.push_back(0xFF);
+            return {r};
+        }
+        if (refuse_next_.exchange(false)) return {Bytes{0x90, 0x61, 0x41, 0xFF}};
+        auto nibbles = [&](std::size_t at) {
+            return static_cast<std::int16_t>((m[at] << 12) | (m[at + 1] << 8) | (m[at + 2] << 4) | m[at + 3]);
+        };
+        if (m.size() == 15 && m[3] == 0x02) {
+            pan_ = nibbles(6);
+            tilt_ = nibbles(10);
+        } else if (m.size() == 15 && m[3] == 0x03) {
+            pan_ += nibbles(6);
+            tilt_ += nibbles(10);
+        } else if (m == visca::pan_tilt_home(1)) {
+            pan_ = tilt_ = 0;
+        }
+        return {Bytes{0x90, 0x41, 0xFF}, Bytes{0x90, 0x51, 0xFF}};
+    }
+
+    bool wait_readable(int fd) {
+        pollfd p{fd, POLLIN, 0};
+        return ::poll(&p, 1, 20) > 0;
+    }
+
+    void serve_udp() {
+        while (!stop_) {
+            if (!wait_readable(fd_)) continue;
+            std::uint8_t buf[256];
+            sockaddr_storage from{};
+            socklen_t len = sizeof from;
+            const ssize_t n = ::recvfrom(fd_, buf, sizeof buf, 0, reinterpret_cast<sockaddr*>(&from), &len);
+            if (n <= 0) continue;
+            const auto msg = visca::unwrap_ip(std::span<const std::uint8_t>(buf, static_cast<std::size_t>(n)));
+            {
+                std::lock_guard lock(mutex_);
+                sequences_.push_back(msg.sequence);
+            }
+            std::vector<Bytes> out;
+            std::uint16_t type = visca::kIpReply;
+            if (msg.payload_type == visca::kIpControl) {
+                type = visca::kIpControlReply;
+                out.push_back(Bytes{0x01});
+            } else {
+                // A stale reply with another sequence number first: the client must skip it.
+                const Bytes stale = visca::wrap_ip(visca::kIpReply, msg.sequence + 1000, Bytes{0x90, 0x51, 0xFF});
+                ::sendto(fd_, stale.data(), stale.size(), 0, reinterpret_cast<sockaddr*>(&from), len);
+                out = answer(msg.payload);
+            }
+            for (const Bytes& r : out) {
+                const Bytes d = visca::wrap_ip(type, msg.sequence, r);
+                ::sendto(fd_, d.data(), d.size(), 0, reinterpret_cast<sockaddr*>(&from), len);
+            }
+        }
+    }
+
+    void serve_tcp() {
+        int conn = -1;
+        Bytes stream;
+        while (!stop_) {
+            if (conn < 0) {
+                if (wait_readable(fd_)) conn = ::accept(fd_, nullptr, nullptr);
+                continue;
+            }
+            if (!wait_readable(conn)) continue;
+            std::uint8_t buf[256];
+            const ssize_t n = ::read(conn, buf, sizeof buf);
+            if (n <= 0) {
+                ::close(conn);
+                conn = -1;
+                continue;
+            }
+            stream.insert(stream.end(), buf, buf + n);
+            for (auto end = std::find(stream.begin(), stream.end(), 0xFF); end != stream.end();
+                 end = std::find(stream.begin(), stream.end(), 0xFF)) {
+                const Bytes m(stream.begin(), end + 1);
+                stream.erase(stream.begin(), end + 1);
+                for (const Bytes& r : answer(m)) [[maybe_unused]] auto w = ::write(conn, r.data(), r.size());
+            }
+        }
+        if (conn >= 0) ::close(conn);
+    }
+
+public:
+    std::vector<std::uint32_t> sequences() {
+        std::lock_guard lock(mutex_);
+        return sequences_;
+    }
+
+private:
+    bool tcp_;
+    int fd_ = -1;
+    std::uint16_t port_ = 0;
+    std::atomic<bool> stop_{false};
+    std::atomic<bool> refuse_next_{false};
+    std::mutex mutex_;
+    std::vector<Bytes> received_;
+    std::vector<std::uint32_t> sequences_;
+    int pan_ = 0;
+    int tilt_ = 0;
+    std::thread thread_;
+};
+
+HeadCommand command(CommandKind kind, std::optional<double> pan, std::optional<double> tilt) {
+    HeadCommand c{kind, {}};
+    if (pan) c.values.set(Axis::Pan, *pan);
+    if (tilt) c.values.set(Axis::Tilt, *tilt);
+    return c;
+}
+
+void exercise(ViscaResponder& camera, ViscaBackend& head) {
+    const auto deadline = [] { return net::Clock::now() + 2s; };
+    head.open(deadline());
+    camera.set_position(160, -32);  // 10 deg, -2 deg at 16 units per degree
+    const HeadState s = head.query_state(deadline());
+    EXPECT_DOUBLE_EQ(s.pose.pan_deg, 10.0);
+    EXPECT_DOUBLE_EQ(s.pose.tilt_deg, -2.0);
+
+    head.send(command(CommandKind::Absolute, 20.0, std::nullopt), deadline());  // tilt stays
+    head.send(command(CommandKind::Relative, -1.5, 0.5), deadline());
+    head.send(command(CommandKind::Velocity, -50.0, 0.0), deadline());
+    head.send(command(CommandKind::Velocity, std::nullopt, 45.0), deadline());  // pan keeps driving
+    head.send(HeadCommand{CommandKind::Stop, {}}, deadline());
+    const auto after = head.query_state(deadline());
+    EXPECT_DOUBLE_EQ(after.pose.pan_deg, 18.5);
+    EXPECT_DOUBLE_EQ(after.pose.tilt_deg, -1.5);
+    head.send(HeadCommand{CommandKind::Home, {}}, deadline());
+    EXPECT_DOUBLE_EQ(head.query_state(deadline()).pose.pan_deg, 0.0);
+
+    camera.refuse_next();
+    EXPECT_THROW(head.send(command(CommandKind::Relative, 1.0, std::nullopt), deadline()), HeadRejected);
+    HeadCommand verge{CommandKind::Absolute, {}};
+    verge.values.set(Axis::VergeLeft, 1.0);
+    EXPECT_THROW(head.send(verge, deadline()), HeadRejected);
+    EXPECT_THROW(head.send(command(CommandKind::Absolute, 5000.0, 0.0), deadline()), HeadRejected);
+
+    const auto got = camera.received();
+    ASSERT_GE(got.size(), 9u);
+    EXPECT_EQ(got[0], visca::pan_tilt_position_inquiry(1));
+    EXPECT_EQ(got[1], visca::pan_tilt_absolute(1, 0x18, 0x14, 320, -32));
+    EXPECT_EQ(got[2], visca::pan_tilt_relative(1, 0x18, 0x14, -24, 8));
+    EXPECT_EQ(got[3], visca::pan_tilt_drive(1, 0x0C, 0x01, visca::Direction::Negative, visca::Direction::Stop));
+    EXPECT_EQ(got[4], visca::pan_tilt_drive(1, 0x0C, 0x0A, visca::Direction::Negative, visca::Direction::Positive));
+    EXPECT_EQ(got[5], visca::pan_tilt_stop(1));
+    EXPECT_EQ(got[7], visca::pan_tilt_home(1));
+}
+
+TEST(ViscaBackend, DrivesACameraOverUdpWithSequenceNumbers) {
+    ViscaResponder camera(false);
+    ViscaBackend head("127.0.0.1", camera.port(), ViscaBackend::Transport::Udp, ViscaSettings{});
+    exercise(camera, head);
+    const auto seq = camera.sequences();
+    ASSERT_GE(seq.size(), 3u);
+    // The reset first, then commands numbered from 0 upwards without gaps.
+    for (std::size_t i = 1; i < seq.size(); ++i) EXPECT_EQ(seq[i], i - 1);
+}
+
+TEST(ViscaBackend, DrivesACameraOverTcp) {
+    ViscaResponder camera(true);
+    ViscaBackend head("127.0.0.1", camera.port(), ViscaBackend::Transport::Tcp, ViscaSettings{});
+    exercise(camera, head);
+}
+
+TEST(ViscaBackend, ASilentCameraTimesOut) {
+    // A bound UDP socket that never answers.
+    const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    ::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a);
+    socklen_t len = sizeof a;
+    ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len);
+    ViscaBackend head("127.0.0.1", ntohs(a.sin_port), ViscaBackend::Transport::Udp, ViscaSettings{});
+    const auto start = net::Clock::now();
+    EXPECT_THROW(head.open(net::Clock::now() + 200ms), net::NetError);
+    EXPECT_LT(net::Clock::now() - start, 2s);
+    ::close(fd);
+}
+
+}  // namespace
+}  // namespace gc::headctl

@@ -1,0 +1,219 @@
+// The 3D experiments of the thesis (4.4) repeated on the synthetic scene; prints the
+// Markdown tables of docs/stereo.md.
+//   stereo_study truth    placed hands, ground-truth per-eye estimates, exact calibration
+//   stereo_study motor    the same with 0.5 degree of motor-angle error on every axis
+//   stereo_study tracker  scripted scenes tracked end to end by the CONDENSATION trackers
+#include "sim_pairs.hpp"
+
+#include "sim/scene.hpp"
+#include "stereo/pointing.hpp"
+#include "tracker/stereo_tracker.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace {
+
+using gc::test::percentile;
+
+struct Sample {
+    double true_depth, est_depth;   // fingertip, head frame z
+    double true_az, est_az, true_el, est_el;
+    double angle_error;
+};
+
+double mean(const std::vector<double>& v)
+{
+    double s = 0.0;
+    for (double x : v) s += x;
+    return v.empty() ? NAN : s / v.size();
+}
+
+double stddev(const std::vector<double>& v)
+{
+    const double m = mean(v);
+    double s = 0.0;
+    for (double x : v) s += (x - m) * (x - m);
+    return v.size() < 2 ? 0.0 : std::sqrt(s / (v.size() - 1));
+}
+
+double slope(const std::vector<Sample>& s)
+{
+    double mx = 0, my = 0;
+    for (const auto& x : s) mx += x.true_depth, my += x.est_depth;
+    mx /= s.size(), my /= s.size();
+    double sxy = 0, sxx = 0;
+    for (const auto& x : s) sxy += (x.true_depth - mx) * (x.est_depth - my), sxx += (x.true_depth - mx) * (x.true_depth - mx);
+    return sxy / sxx;
+}
+
+void summary(const std::vector<Sample>& s, int invalid, int total)
+{
+    std::vector<double> angle, depth;
+    for (const auto& x : s) angle.push_back(x.angle_error), depth.push_back(std::abs(x.est_depth - x.true_depth));
+    std::printf("\n| pairs | valid | angle error median | p90 | max | fingertip depth error median | p90 | slope |\n"
+                "|---|---|---|---|---|---|---|---|\n| %d | %d | %.2f deg | %.2f deg | %.2f deg | %.1f mm | %.1f mm | %.4f |\n",
+                total, total - invalid, percentile(angle, 0.5), percentile(angle, 0.9), percentile(angle, 1.0),
+                percentile(depth, 0.5), percentile(depth, 0.9), slope(s));
+}
+
+void placed_hands(double motor_error_deg)
+{
+    const std::vector<double> depths{860, 1060, 1250}, yaws{-45, -22.5, 0, 22.5, 45};
+    const std::vector<double> rolls{-60, -30, 0, 30, 60, 120, 150, 180};
+    const gc::HeadPose nominal = motor_error_deg > 0 ? gc::HeadPose{4.0, -3.0, 3.0, -3.0} : gc::HeadPose{};
+    std::vector<Sample> samples;
+    std::map<double, std::vector<Sample>> by_depth, by_yaw, by_roll;
+    int invalid = 0, total = 0, k = 0;
+    std::vector<double> ms;
+    for (std::uint64_t seed : {1u, 2u, 3u}) {
+        gc::sim::SceneConfig config;
+        config.preset = gc::sim::Preset::Light;
+        config.motion = gc::sim::Motion::Static;
+        config.seed = seed;
+        const gc::sim::Scene scene(config);
+        gc::PointingEstimator estimator(scene.calibration());
+        cv::Mat left, right;
+        for (double z : depths)
+            for (double yaw : yaws)
+                for (double roll : rolls) {
+                    gc::sim::HandPose hand;
+                    hand.palm_mm = {-60.0, 40.0, z};
+                    hand.yaw_deg = yaw;
+                    hand.roll_deg = roll;
+                    gc::HeadPose render = nominal;
+                    ++k;
+                    render.pan_deg += (k & 1 ? 1 : -1) * motor_error_deg;
+                    render.tilt_deg += (k & 2 ? 1 : -1) * motor_error_deg;
+                    render.verge_left_deg += (k & 4 ? 1 : -1) * motor_error_deg;
+                    render.verge_right_deg += (k % 3 ? 1 : -1) * motor_error_deg;
+                    const auto t0 = std::chrono::steady_clock::now();
+                    const auto r = gc::test::run_pose(scene, estimator, hand, render, nominal, k, left, right);
+                    if (!r.visible) continue;
+                    ++total;
+                    if (!r.estimate.valid) {
+                        ++invalid;
+                        continue;
+                    }
+                    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+                    Sample s;
+                    s.true_depth = r.truth.fingertip_mm[2];
+                    s.est_depth = r.estimate.fingertip_head_mm[2];
+                    gc::direction_angles(r.truth.direction, s.true_az, s.true_el);
+                    s.est_az = r.estimate.azimuth_head_deg;
+                    s.est_el = r.estimate.elevation_head_deg;
+                    s.angle_error = r.angle_error_deg;
+                    samples.push_back(s);
+                    by_depth[z].push_back(s);
+                    by_yaw[yaw].push_back(s);
+                    by_roll[roll].push_back(s);
+                }
+    }
+    summary(samples, invalid, total);
+
+    std::printf("\nDepth (palm placed at the given distance; fingertip depth, mean +/- sd over poses and hands)\n\n"
+                "| palm depth | true fingertip depth | estimated | error mean | error sd |\n|---|---|---|---|---|\n");
+    for (const auto& [z, s] : by_depth) {
+        std::vector<double> t, e, d;
+        for (const auto& x : s) t.push_back(x.true_depth), e.push_back(x.est_depth), d.push_back(x.est_depth - x.true_depth);
+        std::printf("| %.0f mm | %.1f mm | %.1f mm | %+.1f mm | %.1f mm |\n", z, mean(t), mean(e), mean(d), stddev(d));
+    }
+    std::printf("\nHorizontal angle (azimuth of the pointing direction) by yaw of the hand plane, finger "
+                "horizontal (roll 0 and 180)\n\n| yaw | roll | true azimuth | estimated (mean) | sd | max error |\n"
+                "|---|---|---|---|---|---|\n");
+    for (const auto& [yaw, s] : by_yaw)
+        for (double roll : {0.0, 180.0}) {
+            std::vector<double> e, err;
+            double truth = 0.0;
+            for (const auto& x : s) {
+                // Horizontal pointing (roll 0 or 180): zero elevation; the sign of the
+                // azimuth tells the two apart.
+                if (std::abs(x.true_el) > 1e-6) continue;
+                const bool rightwards = x.true_az > 0.0;
+                if (rightwards != (roll == 0.0)) continue;
+                truth = x.true_az;
+                e.push_back(x.est_az);
+                err.push_back(std::abs(x.est_az - x.true_az));
+            }
+            if (e.empty()) continue;
+            std::printf("| %+.1f | %.0f | %.1f deg | %.1f deg | %.2f deg | %.2f deg |\n", yaw, roll, truth, mean(e),
+                        stddev(e), percentile(err, 1.0));
+        }
+    std::printf("\nVertical angle (elevation) by roll of the finger in the hand plane\n\n"
+                "| roll | true elevation (range over yaws) | error mean | error sd | max error |\n|---|---|---|---|---|\n");
+    for (const auto& [roll, s] : by_roll) {
+        std::vector<double> err, t;
+        for (const auto& x : s) err.push_back(x.est_el - x.true_el), t.push_back(x.true_el);
+        std::printf("| %+.0f | %.1f .. %.1f deg | %+.2f deg | %.2f deg | %.2f deg |\n", roll, percentile(t, 0.0),
+                    percentile(t, 1.0), mean(err), stddev(err), std::max(std::abs(percentile(err, 0.0)), percentile(err, 1.0)));
+    }
+    std::printf("\nRender + estimate per pose: median %.2f ms\n", percentile(ms, 0.5));
+}
+
+void tracked_scenes()
+{
+    std::printf("\n| scene | motion | frames with both eyes tracking | valid rays | angle error median | p90 | "
+                "fingertip depth error median |\n|---|---|---|---|---|---|---|\n");
+    std::vector<double> all_angle;
+    for (const auto& [preset, motion] : std::vector<std::pair<gc::sim::Preset, gc::sim::Motion>>{
+             {gc::sim::Preset::Clean, gc::sim::Motion::Static},
+             {gc::sim::Preset::Clean, gc::sim::Motion::Yaw},
+             {gc::sim::Preset::Light, gc::sim::Motion::Mixed},
+         }) {
+        gc::sim::SceneConfig config;
+        config.preset = preset;
+        config.motion = motion;
+        config.seed = 5;
+        const gc::sim::Scene scene(config);
+        gc::TrackerParams params;
+        params.particles = 500;
+        gc::StereoHandTracker trackers(params);
+        gc::PointingEstimator estimator(scene.calibration());
+        cv::Mat left, right;
+        std::vector<double> angle, depth;
+        int tracking = 0, frames = 240;
+        for (int f = 0; f < frames; ++f) {
+            scene.render(f, gc::Eye::Left, {}, left);
+            scene.render(f, gc::Eye::Right, {}, right);
+            const gc::StereoEstimate est = trackers.process(left, right);
+            if (!est.left.valid() || !est.right.valid()) continue;
+            ++tracking;
+            const gc::Pointing3D p = estimator.estimate(left, right, est.left, est.right);
+            if (!p.valid) continue;
+            const gc::sim::HandTruth truth = scene.hand_truth(scene.hand_pose(f));
+            angle.push_back(gc::test::angle_between_deg(p.direction_head, truth.direction));
+            depth.push_back(std::abs(p.fingertip_head_mm[2] - truth.fingertip_mm[2]));
+        }
+        all_angle.insert(all_angle.end(), angle.begin(), angle.end());
+        std::printf("| %s | %s | %d / %d | %zu | %.1f deg | %.1f deg | %.0f mm |\n",
+                    std::string(gc::sim::to_string(preset)).c_str(), std::string(gc::sim::to_string(motion)).c_str(),
+                    tracking, frames, angle.size(), percentile(angle, 0.5), percentile(angle, 0.9),
+                    percentile(depth, 0.5));
+        std::fflush(stdout);
+    }
+    std::printf("\nAll tracked frames: angle error median %.1f deg, p90 %.1f deg (n=%zu)\n", percentile(all_angle, 0.5),
+                percentile(all_angle, 0.9), all_angle.size());
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    const std::string mode = argc > 1 ? argv[1] : "truth";
+    try {
+        if (mode == "truth") placed_hands(0.0);
+        else if (mode == "motor") placed_hands(0.5);
+        else if (mode == "tracker") tracked_scenes();
+        else {
+            std::fprintf(stderr, "usage: stereo_study truth|motor|tracker\n");
+            return 2;
+        }
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "stereo_study: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}
