@@ -138,8 +138,12 @@ struct PointingEstimator::Impl {
 
     explicit Impl(const StereoCalibration& c) : calibration(c)
     {
-        left.init(c.M1, c.D1, c.image_size);
-        right.init(c.M2, c.D2, c.image_size);
+        // cv::Mat copies share data: own the distortion so later edits by the caller
+        // cannot change this estimator.
+        calibration.D1 = c.D1.clone();
+        calibration.D2 = c.D2.clone();
+        left.init(calibration.M1, calibration.D1, c.image_size);
+        right.init(calibration.M2, calibration.D2, c.image_size);
         samples.reserve(4 * kMaxPoints);
         points.reserve(kMaxPoints);
         depths.reserve(kMaxPoints);

@@ -81,7 +81,8 @@ void placed_hands(double motor_error_deg)
             for (double yaw : yaws)
                 for (double roll : rolls) {
                     gc::sim::HandPose hand;
-                    hand.palm_mm = {-60.0, 40.0, z};
+                    // Positions spread over the view: the rendering's sub-pixel phase varies too.
+                    hand.palm_mm = {-60.0 + 23.0 * ((k + 1) % 5 - 2), 40.0 + 17.0 * ((k + 1) % 3 - 1), z};
                     hand.yaw_deg = yaw;
                     hand.roll_deg = roll;
                     gc::HeadPose render = nominal;

@@ -35,7 +35,8 @@ Study run_grid(const gc::sim::Scene& scene, const std::vector<double>& depths, c
         for (double yaw : yaws)
             for (double roll : rolls) {
                 gc::sim::HandPose hand;
-                hand.palm_mm = {-60.0, 40.0, z};
+                // Positions spread over the view: the rendering's sub-pixel phase varies too.
+                hand.palm_mm = {-60.0 + 23.0 * (frame % 5 - 2), 40.0 + 17.0 * (frame % 3 - 1), z};
                 hand.yaw_deg = yaw;
                 hand.roll_deg = roll;
                 // Motor error: each axis off by the full amount, the signs varying per pose.
