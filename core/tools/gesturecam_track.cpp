@@ -14,6 +14,7 @@
 #include <iostream>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 namespace {
@@ -137,6 +138,11 @@ void run(const Options& o)
     cv::Mat right_frame;
     read_pair(left, right, 0, left_frame, right_frame);
 
+    // Checked before the output is opened, so a rejected input leaves no output file.
+    if (right && left_frame.size() != right_frame.size())
+        throw std::invalid_argument("the left input is " + std::to_string(left_frame.cols) + "x" +
+                                    std::to_string(left_frame.rows) + " but the right input is " +
+                                    std::to_string(right_frame.cols) + "x" + std::to_string(right_frame.rows));
     std::optional<gc::StereoCalibration> calibration;
     if (o.calibration) {
         if (right) {

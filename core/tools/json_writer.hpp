@@ -2,11 +2,9 @@
 // written with std::to_chars (independent of the locale), non-finite numbers as null.
 #pragma once
 
-#include <array>
-#include <charconv>
-#include <cmath>
+#include "common/json_text.hpp"
+
 #include <cstdint>
-#include <cstdio>
 #include <string>
 #include <string_view>
 
@@ -25,9 +23,7 @@ public:
     JsonObject& add(std::string_view key, std::int64_t v)
     {
         open(key);
-        std::array<char, 24> buf{};
-        const auto res = std::to_chars(buf.data(), buf.data() + buf.size(), v);
-        out_.append(buf.data(), res.ptr);
+        json::append_integer(out_, v);
         return *this;
     }
     JsonObject& add(std::string_view key, int v) { return add(key, static_cast<std::int64_t>(v)); }
@@ -43,24 +39,7 @@ public:
     JsonObject& add(std::string_view key, double v, int decimals)
     {
         open(key);
-        if (!std::isfinite(v)) {
-            out_ += "null";
-            return *this;
-        }
-        // Fixed notation of the largest double needs 309 digits before the point.
-        std::array<char, 352> buf{};
-        const auto res = std::to_chars(buf.data(), buf.data() + buf.size(), v,
-                                       std::chars_format::fixed, decimals);
-        std::string_view text(buf.data(), static_cast<std::size_t>(res.ptr - buf.data()));
-        if (text.find('.') != std::string_view::npos) {
-            while (text.back() == '0')
-                text.remove_suffix(1);
-            if (text.back() == '.')
-                text.remove_suffix(1);
-        }
-        if (text == "-0")
-            text = "0";
-        out_.append(text);
+        json::append_number(out_, v, decimals);
         return *this;
     }
 
@@ -74,27 +53,7 @@ private:
         out_ += ':';
     }
 
-    void quote(std::string_view s)
-    {
-        out_ += '"';
-        for (const char c : s) {
-            switch (c) {
-            case '"': out_ += "\\\""; break;
-            case '\\': out_ += "\\\\"; break;
-            case '\n': out_ += "\\n"; break;
-            case '\t': out_ += "\\t"; break;
-            default:
-                if (static_cast<unsigned char>(c) < 0x20) {
-                    char esc[8];
-                    std::snprintf(esc, sizeof esc, "\\u%04x", static_cast<unsigned>(c));
-                    out_ += esc;
-                } else {
-                    out_ += c;
-                }
-            }
-        }
-        out_ += '"';
-    }
+    void quote(std::string_view s) { json::append_string(out_, s); }
 
     std::string out_ = "{";
 };

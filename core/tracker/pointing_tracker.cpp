@@ -2,6 +2,8 @@
 // trackers, the 3D step, the overall state, and the JSON line of one frame.
 #include "tracker/pointing_tracker.hpp"
 
+#include "common/json_text.hpp"
+
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -212,44 +214,19 @@ public:
     void number(double v, int decimals)
     {
         separator();
-        if (!std::isfinite(v)) {
-            out_ += "null";
-            return;
-        }
-        const double scale = std::pow(10.0, decimals);
-        double rounded = std::round(v * scale) / scale;
-        if (!std::isfinite(rounded))
-            rounded = v;  // so large that v * scale overflowed: nothing to round
-        if (rounded == 0.0)
-            rounded = 0.0;  // no "-0"
-        // Fixed notation of the largest double needs 309 digits before the point.
-        std::array<char, 352> buf{};
-        const auto res = std::to_chars(buf.data(), buf.data() + buf.size(), rounded,
-                                       std::chars_format::fixed, decimals);
-        std::string_view text(buf.data(), static_cast<std::size_t>(res.ptr - buf.data()));
-        if (text.find('.') != std::string_view::npos) {
-            while (text.back() == '0')
-                text.remove_suffix(1);
-            if (text.back() == '.')
-                text.remove_suffix(1);
-        }
-        out_.append(text);
+        json::append_number(out_, v, decimals);
     }
 
     void integer(std::int64_t v)
     {
         separator();
-        std::array<char, 24> buf{};
-        const auto res = std::to_chars(buf.data(), buf.data() + buf.size(), v);
-        out_.append(buf.data(), res.ptr);
+        json::append_integer(out_, v);
     }
 
     void string(std::string_view s)
     {
         separator();
-        out_ += '"';
-        out_.append(s);  // only fixed identifiers are written: nothing to escape
-        out_ += '"';
+        json::append_string(out_, s);
     }
 
     void null()
