@@ -130,11 +130,11 @@ void send_all(int fd, std::span<const std::uint8_t> data, Clock::time_point dead
 
 std::optional<std::size_t> receive_some(int fd, std::span<std::uint8_t> buffer, Clock::time_point deadline) {
     for (;;) {
-        const ssize_t n = ::recv(fd, buffer.data(), buffer.size(), 0);
+        const ssize_t n = ::read(fd, buffer.data(), buffer.size());
         if (n > 0) return static_cast<std::size_t>(n);
         if (n == 0) throw NetError("connection closed by the head");
         if (errno == EINTR) continue;
-        if (errno != EAGAIN && errno != EWOULDBLOCK) throw NetError(errno_text("recv"));
+        if (errno != EAGAIN && errno != EWOULDBLOCK) throw NetError(errno_text("read"));
         if (!wait_for(fd, POLLIN, deadline)) return std::nullopt;
     }
 }

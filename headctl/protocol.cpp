@@ -423,7 +423,11 @@ std::string format_reply(const Reply& r) {
         for (char& c : text)
             if (c < 0x20 || c >= 0x7f) c = '?';
         const std::size_t room = kMaxLineLength - std::min(kMaxLineLength, out.size() + 1);
-        return out + ' ' + text.substr(0, room);
+        text.resize(std::min(text.size(), room));
+        while (!text.empty() && (text.back() == ' ' || text.back() == '\t')) text.pop_back();  // cut at a blank
+        out += ' ';
+        out += text.empty() ? std::string(error_code_name(r.error)) : text;
+        return out;
     }
     if (r.body == ReplyBody::State) {
         const HeadState& s = r.state;

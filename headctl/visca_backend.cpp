@@ -149,8 +149,9 @@ HeadState ViscaBackend::query_state(Deadline deadline) {
 void ViscaBackend::send(const HeadCommand& c, Deadline deadline) {
     if (c.values.has(Axis::VergeLeft) || c.values.has(Axis::VergeRight))
         throw HeadRejected(name() + " has no vergence axes");
-    const int pan_max = speed_code(settings_.pan_max_speed_dps, settings_.pan_max_speed_dps, visca::kMaxPanSpeed);
-    const int tilt_max = speed_code(settings_.tilt_max_speed_dps, settings_.tilt_max_speed_dps, visca::kMaxTiltSpeed);
+    // Position moves run at the fastest speed codes; the camera's own profile shapes them.
+    const int pan_max = visca::kMaxPanSpeed;
+    const int tilt_max = visca::kMaxTiltSpeed;
     const int a = settings_.address;
     switch (c.kind) {
         case CommandKind::Home:

@@ -34,8 +34,6 @@ public:
     std::array<bool, kAxisCount> axes() const override { return {true, true, false, false}; }
     std::string name() const override;
 
-    std::uint32_t next_sequence() const { return sequence_; }
-
 private:
     // Sends one VISCA message and waits for its ACK, completion, error or position reply.
     visca::Reply exchange(const visca::Bytes& message, bool inquiry, Deadline deadline);

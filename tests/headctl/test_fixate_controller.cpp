@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <deque>
 
 namespace gc::headctl {
@@ -64,6 +65,9 @@ TEST(FixateController, StepResponseSettlesWithoutOvershootOrOscillation) {
             overshoot_pan = std::max(overshoot_pan, (p.pan_deg - step) * (step > 0 ? 1 : -1));
             overshoot_tilt = std::max(overshoot_tilt, (p.tilt_deg - step / 4.0) * (step > 0 ? 1 : -1));
         }
+        std::printf("step %+.0f deg: overshoot pan %.3f tilt %.3f deg, error after 2 s %.3f deg, final %.3f deg\n",
+                    step, overshoot_pan, overshoot_tilt, std::abs(poses[60].pan_deg - step),
+                    std::abs(poses.back().pan_deg - step));
         EXPECT_LE(overshoot_pan, 2.0) << step;
         EXPECT_LE(overshoot_tilt, 2.0) << step;
         EXPECT_NEAR(poses.back().pan_deg, step, 2.0) << step;  // within the release band

@@ -27,7 +27,9 @@ TEST(HeadModel, TrapezoidalMoveRespectsVelocityAndAccelerationLimits) {
         const HeadState s = head.state(t);
         const double vel = (s.pose.pan_deg - previous_pos) / 0.001;
         EXPECT_LE(std::abs(vel), 120.0 + 1e-6) << t;
-        if (i > 1) EXPECT_LE(std::abs(vel - previous_vel), 400.0 * 0.001 * 2 + 1e-6) << t;
+        if (i > 1) {
+            EXPECT_LE(std::abs(vel - previous_vel), 400.0 * 0.001 * 2 + 1e-6) << t;
+        }
         EXPECT_LE(s.pose.pan_deg, 90.0 + 1e-9) << "overshoot at " << t;
         peak = std::max(peak, std::abs(vel));
         if (t_arrive < 0 && !s.moving[0]) t_arrive = t;

@@ -182,6 +182,13 @@ TEST(Protocol, ErrorMessagesAreSanitisedAndBounded) {
     EXPECT_LE(line.size(), kMaxLineLength);
     EXPECT_EQ(line.find('\n'), std::string::npos);
     EXPECT_NO_THROW(parse_reply(line));
+    // Cut at any position, even next to a blank, the line formats back to itself.
+    for (std::size_t k = 495; k < 510; ++k) {
+        const Reply cut = make_error_reply(std::nullopt, ErrorCode::Internal, std::string(k, 'a') + " b c d e f g h");
+        const std::string once = format_reply(cut);
+        EXPECT_EQ(format_reply(parse_reply(once)), once) << k;
+        EXPECT_NE(once.back(), ' ');
+    }
 }
 
 TEST(Protocol, RejectsMalformedReplies) {
