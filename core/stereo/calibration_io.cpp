@@ -215,7 +215,10 @@ StereoCalibration parse_calibration(const std::string& content, const std::strin
     if (const auto hazard = file_storage_hazard(content)) fail(source, "", "syntax error: " + *hazard);
     cv::FileStorage fs;
     try {
-        if (!fs.open(content, cv::FileStorage::READ | cv::FileStorage::MEMORY))
+        // OpenCV 4.6's YAML reader can spin forever on a value cut at the very end of the
+        // buffer; a final line break ends every token.
+        const std::string text = content.back() == '\n' ? content : content + '\n';
+        if (!fs.open(text, cv::FileStorage::READ | cv::FileStorage::MEMORY))
             fail(source, "", "not a YAML, XML or JSON file that OpenCV can read");
         return read_fields(fs.root(), source);
     } catch (const CalibrationError&) {

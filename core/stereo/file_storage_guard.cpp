@@ -51,12 +51,16 @@ std::optional<std::string> xml_hazard(std::string_view text)
 }
 
 // No mapping key may be empty: a ':' value indicator directly after the start of a line,
-// '{', ',' or '-' (ignoring blanks), outside quotes and comments.
+// '{', ',' or '-' (ignoring blanks), outside quotes and comments. Flow collections ('[ ]',
+// '{ }') must nest properly and close before the end of the text: the parser never returns
+// from one cut at the end of the file.
 std::optional<std::string> yaml_hazard(std::string_view text)
 {
     char prev = '\n';  // last significant character
     char quote = 0;
     bool comment = false;
+    std::string open_flows;  // the flow brackets not yet closed, innermost last
+    std::size_t first_open = 0;
     for (std::size_t i = 0; i < text.size(); ++i) {
         const char c = text[i];
         if (c == '\n') {
@@ -76,14 +80,27 @@ std::optional<std::string> yaml_hazard(std::string_view text)
             comment = true;
             continue;
         }
+        // Not YAML at all; the reader loops forever on such a line among indented keys.
+        if (c == '<' && prev == '\n') return "a line starting with '<'" + at_line(text, i);
         if (c == '"' || c == '\'') {
             quote = c;
             continue;
         }
         if (c == ':' && (prev == '\n' || prev == '{' || prev == ',' || prev == '-')) return "empty key" + at_line(text, i);
         if (c == '\0') return "NUL byte" + at_line(text, i);
+        if (c == '[' || c == '{') {
+            if (open_flows.empty()) first_open = i;
+            open_flows += c;
+        } else if (c == ']' || c == '}') {
+            const char opener = c == ']' ? '[' : '{';
+            if (open_flows.empty() || open_flows.back() != opener)
+                return std::string("unbalanced '") + c + "'" + at_line(text, i);
+            open_flows.pop_back();
+        }
         prev = c;
     }
+    if (quote) return std::string("unterminated quoted string");
+    if (!open_flows.empty()) return "unterminated '" + std::string(1, open_flows.back()) + "'" + at_line(text, first_open);
     return std::nullopt;
 }
 
