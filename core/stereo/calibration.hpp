@@ -31,7 +31,7 @@ public:
     using std::runtime_error::runtime_error;
 };
 
-// Reads a calibration file (YAML or XML, chosen by OpenCV from the content) and validates
+// Reads a calibration file (YAML or XML, told apart by the first line) and validates
 // it fully: every required key present, matrices of the right shape and finite, R a proper
 // rotation, a positive image size, distortion of a length OpenCV accepts. The optional head
 // geometry keys are head_left_eye, head_right_eye, head_tilt_centre, head_nodal_offset

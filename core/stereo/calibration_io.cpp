@@ -2,16 +2,18 @@
 // docs/calibration.md).
 #include "stereo/calibration_io.hpp"
 
-#include "stereo/file_storage_guard.hpp"
+#include "stereo/calibration_text.hpp"
 
 #include <opencv2/core/persistence.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <fstream>
 #include <iterator>
 #include <sstream>
 #include <string_view>
+#include <variant>
 
 namespace gc {
 
@@ -43,45 +45,29 @@ bool all_finite(const cv::Mat& m)
     return cv::checkRange(m, true, nullptr, -1e12, 1e12);
 }
 
-// Reads `key` as a CV_64F matrix after checking that the node really is one of a sane size.
-cv::Mat read_matrix(const cv::FileNode& root, const char* key, const std::string& source,
+const CalibrationEntry* find_entry(const CalibrationEntries& entries, std::string_view key)
+{
+    const auto it = entries.find(key);
+    return it == entries.end() ? nullptr : &it->second;
+}
+
+// Reads `key` as a CV_64F matrix after checking that the entry really is one of a sane size.
+cv::Mat read_matrix(const CalibrationEntries& entries, const char* key, const std::string& source,
                     bool allow_empty = false)
 {
-    const cv::FileNode node = root[key];
-    if (node.empty() || node.isNone()) fail(source, key, "missing");
-    if (!node.isMap()) fail(source, key, "not a matrix (expected an opencv-matrix node)");
-    const cv::FileNode rows_node = node["rows"], cols_node = node["cols"];
-    const cv::FileNode dt_node = node["dt"], data_node = node["data"];
-    if (!rows_node.isInt() || !cols_node.isInt() || !dt_node.isString())
-        fail(source, key, "not a matrix (rows, cols or dt missing or of the wrong type)");
-    const int rows = static_cast<int>(rows_node), cols = static_cast<int>(cols_node);
-    if (rows < 0 || cols < 0 || rows > kMaxMatrixSide || cols > kMaxMatrixSide)
+    const CalibrationEntry* entry = find_entry(entries, key);
+    if (!entry) fail(source, key, "missing");
+    const auto* matrix = std::get_if<CalibrationMatrix>(&entry->value);
+    if (!matrix) fail(source, key, "not a matrix (expected an opencv-matrix node)");
+    const int rows = matrix->rows, cols = matrix->cols;
+    if (rows > kMaxMatrixSide || cols > kMaxMatrixSide)
         fail(source, key, "implausible matrix size " + shape_string(rows, cols));
     if (rows * cols == 0) {
         if (allow_empty) return {};
         fail(source, key, "empty matrix");
     }
-    const std::string dt = static_cast<std::string>(dt_node);
-    if (dt.size() != 1 || std::string_view("ucwsifd").find(dt[0]) == std::string_view::npos)
-        fail(source, key, "unsupported element type '" + dt + "' (expected a single-channel type such as d)");
-    if (!data_node.isSeq() && !(rows * cols == 1 && (data_node.isInt() || data_node.isReal())))
-        fail(source, key, "matrix data missing or not a sequence");
-    if (data_node.isSeq() && data_node.size() != static_cast<size_t>(rows) * static_cast<size_t>(cols))
-        fail(source, key, "matrix data has " + std::to_string(data_node.size()) + " values, expected " +
-                              std::to_string(rows * cols) + " for " + shape_string(rows, cols));
-    for (auto it = data_node.begin(); data_node.isSeq() && it != data_node.end(); ++it)
-        if (!(*it).isInt() && !(*it).isReal()) fail(source, key, "matrix data holds a non-number");
-
-    cv::Mat m;
-    try {
-        node >> m;
-    } catch (const cv::Exception& e) {
-        fail(source, key, std::string("unreadable matrix: ") + e.what());
-    }
-    if (m.rows != rows || m.cols != cols || m.channels() != 1)
-        fail(source, key, "unreadable matrix");
-    cv::Mat d;
-    m.convertTo(d, CV_64F);
+    cv::Mat d(rows, cols, CV_64F);
+    std::copy(matrix->data.begin(), matrix->data.end(), d.begin<double>());
     if (!all_finite(d)) fail(source, key, "non-finite or absurdly large value");
     return d;
 }
@@ -94,15 +80,19 @@ cv::Mat expect_shape(cv::Mat m, const char* key, const std::string& source, int 
     fail(source, key, "wrong shape " + shape_string(m.rows, m.cols) + ", expected " + shape_string(rows, cols));
 }
 
-int read_positive_int(const cv::FileNode& root, const char* key, const std::string& source)
+int read_positive_int(const CalibrationEntries& entries, const char* key, const std::string& source)
 {
-    const cv::FileNode node = root[key];
-    if (node.empty() || node.isNone()) fail(source, key, "missing");
-    if (!node.isInt()) fail(source, key, "not an integer");
-    const int v = static_cast<int>(node);
-    if (v <= 0 || v > kMaxImageSide)
-        fail(source, key, "out of range: " + std::to_string(v) + " (expected 1.." + std::to_string(kMaxImageSide) + ")");
-    return v;
+    const CalibrationEntry* entry = find_entry(entries, key);
+    if (!entry) fail(source, key, "missing");
+    const auto* scalar = std::get_if<CalibrationScalar>(&entry->value);
+    if (!scalar || !scalar->integral) fail(source, key, "not an integer");
+    const double v = scalar->value;
+    if (!(v >= 1.0 && v <= kMaxImageSide)) {
+        std::ostringstream what;
+        what << "out of range: " << v << " (expected 1.." << kMaxImageSide << ")";
+        fail(source, key, what.str());
+    }
+    return static_cast<int>(v);
 }
 
 void check_intrinsics(const cv::Matx33d& M, const char* key, const std::string& source)
@@ -127,9 +117,9 @@ void check_distortion(const cv::Mat& D, const char* key, const std::string& sour
 }
 
 // Distortion as stored (a row or a column), checked, then as the 1xN row OpenCV expects.
-cv::Mat read_distortion(const cv::FileNode& root, const char* key, const std::string& source)
+cv::Mat read_distortion(const CalibrationEntries& entries, const char* key, const std::string& source)
 {
-    const cv::Mat D = read_matrix(root, key, source, true);
+    const cv::Mat D = read_matrix(entries, key, source, true);
     check_distortion(D, key, source);
     return D.empty() ? D : D.reshape(1, 1);
 }
@@ -166,9 +156,8 @@ HeadGeometry geometry_from_baseline(const cv::Vec3d& T)
     return g;
 }
 
-StereoCalibration read_fields(const cv::FileNode& root, const std::string& source)
+StereoCalibration read_fields(const CalibrationEntries& root, const std::string& source)
 {
-    if (!root.isMap()) fail(source, "", "the top level is not a map of keys");
     StereoCalibration c;
     c.source = source;
     c.image_size.width = read_positive_int(root, "image_width", source);
@@ -185,7 +174,7 @@ StereoCalibration read_fields(const cv::FileNode& root, const std::string& sourc
     check_translation(c.T, source);
 
     int present = 0;
-    for (const char* key : kHeadKeys) present += !root[key].empty() && !root[key].isNone();
+    for (const char* key : kHeadKeys) present += root.contains(key);
     if (present == 0) {
         c.has_head_geometry = false;
         c.head = geometry_from_baseline(c.T);
@@ -193,8 +182,7 @@ StereoCalibration read_fields(const cv::FileNode& root, const std::string& sourc
     }
     std::array<cv::Vec3d, 4> v;
     for (size_t i = 0; i < kHeadKeys.size(); ++i) {
-        const cv::FileNode node = root[kHeadKeys[i]];
-        if (node.empty() || node.isNone())
+        if (!root.contains(kHeadKeys[i]))
             fail(source, kHeadKeys[i], "missing (the head geometry keys come all together or not at all)");
         v[i] = cv::Vec3d(expect_shape(read_matrix(root, kHeadKeys[i], source), kHeadKeys[i], source, 3, 1));
     }
@@ -212,22 +200,9 @@ StereoCalibration read_fields(const cv::FileNode& root, const std::string& sourc
 StereoCalibration parse_calibration(const std::string& content, const std::string& source)
 {
     if (content.empty()) fail(source, "", "empty file");
-    if (const auto hazard = file_storage_hazard(content)) fail(source, "", "syntax error: " + *hazard);
-    cv::FileStorage fs;
-    try {
-        // OpenCV 4.6's YAML reader can spin forever on a value cut at the very end of the
-        // buffer; a final line break ends every token.
-        const std::string text = content.back() == '\n' ? content : content + '\n';
-        if (!fs.open(text, cv::FileStorage::READ | cv::FileStorage::MEMORY))
-            fail(source, "", "not a YAML, XML or JSON file that OpenCV can read");
-        return read_fields(fs.root(), source);
-    } catch (const CalibrationError&) {
-        throw;
-    } catch (const cv::Exception& e) {
-        fail(source, "", std::string("syntax error or truncated file: ") + e.what());
-    } catch (const std::exception& e) {
-        fail(source, "", std::string("unreadable: ") + e.what());
-    }
+    // The product's reader, not cv::FileStorage: OpenCV 4.6's parsers hang or crash on some
+    // malformed files, and a calibration file is untrusted input.
+    return read_fields(read_calibration_text(content, source), source);
 }
 
 StereoCalibration load_calibration(const std::string& path)

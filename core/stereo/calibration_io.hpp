@@ -8,7 +8,8 @@
 
 namespace gc {
 
-// `content` is the text of a calibration file (YAML, XML or JSON, as cv::FileStorage reads);
+// `content` is the text of a calibration file (YAML or XML as cv::FileStorage writes it, read by
+// the strict reader of stereo/calibration_text.hpp);
 // `source` names it in messages and becomes StereoCalibration::source. Same validation and
 // errors as load_calibration.
 StereoCalibration parse_calibration(const std::string& content, const std::string& source);

@@ -1,6 +1,6 @@
 // libFuzzer entry point for the calibration loader: arbitrary bytes as a calibration file
-// (YAML, XML or JSON as cv::FileStorage reads them). The loader may only ever answer with
-// a calibration or a gc::CalibrationError.
+// (the YAML and XML subset of core/stereo/calibration_text.hpp). The loader may only ever
+// answer with a calibration or a gc::CalibrationError, and in time linear in the input.
 #include "stereo/calibration.hpp"
 #include "stereo/calibration_io.hpp"
 

@@ -1,0 +1,329 @@
+#include "headctl/head_link.hpp"
+
+#include "stereo/camera_motion.hpp"
+#include "stereo/extrinsics.hpp"
+#include "stereo/head_geometry.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <utility>
+
+namespace gc {
+
+namespace {
+
+using headctl::Axis;
+using headctl::CommandKind;
+using headctl::HeadCommand;
+
+constexpr double kRadToDeg = 180.0 / std::numbers::pi;
+// Smoothing of the hand's angular velocity (feed-forward); per frame, 1 = no smoothing.
+constexpr double kRateSmoothing = 0.3;
+
+double seconds(headctl::Timestamp t) { return std::chrono::duration<double>(t).count(); }
+
+double clamp_to(const headctl::AxisLimits& l, double deg, double margin)
+{
+    return std::clamp(deg, l.min_deg + margin, l.max_deg - margin);
+}
+
+// Pan and tilt that turn the head's forward axis (through the neck origin) towards a head
+// frame point; the eyes' small offsets from that axis are left to the vergence.
+std::pair<double, double> aim_at(const cv::Vec3d& target, const HeadGeometry& g)
+{
+    const double pan = std::atan2(target[0], target[2]) * kRadToDeg;
+    const cv::Vec3d q = rotation_about_y(pan).t() * target - g.tilt_centre_mm;
+    const double tilt = std::atan2(-q[1], q[2]) * kRadToDeg;
+    return {pan, tilt};
+}
+
+// A head-frame point in eye E's camera frame at pan/tilt with that eye not verged.
+cv::Vec3d in_unverged_eye(const HeadGeometry& g, const HeadPose& pose, Eye eye, const cv::Vec3d& point)
+{
+    HeadPose p = pose;
+    p.verge_left_deg = 0.0;
+    p.verge_right_deg = 0.0;
+    return camera_to_head(g, p, eye).inverse().apply(point);
+}
+
+}  // namespace
+
+std::string_view to_string(SteerMode mode)
+{
+    switch (mode) {
+    case SteerMode::Off: return "off";
+    case SteerMode::Fixate: return "fixate";
+    case SteerMode::Point: return "point";
+    }
+    return "unknown";
+}
+
+std::optional<SteerMode> steer_mode_from_string(std::string_view name)
+{
+    for (SteerMode m : {SteerMode::Off, SteerMode::Fixate, SteerMode::Point})
+        if (to_string(m) == name) return m;
+    return std::nullopt;
+}
+
+void HeadLinkConfig::validate() const
+{
+    auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
+    if (uri.empty()) throw std::invalid_argument("head link: the head URI is empty");
+    if (!positive(target_distance_mm))
+        throw std::invalid_argument("head link: target distance must be finite and > 0 mm");
+    if (!positive(nominal_depth_mm)) throw std::invalid_argument("head link: nominal depth must be finite and > 0 mm");
+    if (!positive(vergence_gain_per_s)) throw std::invalid_argument("head link: vergence gain must be finite and > 0");
+    if (!std::isfinite(vergence_dead_band_deg) || vergence_dead_band_deg < 0.0)
+        throw std::invalid_argument("head link: vergence dead band must be finite and >= 0");
+    if (!std::isfinite(point_release_deg) || point_release_deg < 0.0)
+        throw std::invalid_argument("head link: point release angle must be finite and >= 0");
+    if (point_settle_frames < 1) throw std::invalid_argument("head link: point settle frames must be >= 1");
+    if (reconnect_max.count() <= 0) throw std::invalid_argument("head link: reconnect interval must be > 0");
+    fixate.validate();
+}
+
+struct HeadLink::Impl {
+    HeadLinkConfig config;
+    StereoCalibration calibration;
+    headctl::FixateController fixate;
+    std::optional<headctl::HeadLimits> limits;  // the head's, once it reports them
+    std::unique_ptr<headctl::HeadClient> client;
+
+    // The current frame and the one before it.
+    std::optional<headctl::Timestamp> capture_time;
+    std::optional<HeadPose> capture_pose;
+    // Steering's previous step.
+    std::optional<headctl::Timestamp> steer_time;
+
+    // Where the hand was last seen, per eye, and its depth along each optical axis.
+    std::optional<cv::Point2d> hand_px[2];
+    double hand_depth_mm[2];
+
+    // Fixate: the hand's direction (pan, tilt of the left eye's line of sight) and its rate.
+    std::optional<std::pair<double, double>> hand_direction;
+    double rate_pan_dps = 0.0;
+    double rate_tilt_dps = 0.0;
+    bool head_has_vergence = true;
+
+    // Point: how long the pointing has been valid, and the last aim sent.
+    int pointing_run = 0;
+    std::optional<std::pair<double, double>> last_aim;
+
+    Impl(HeadLinkConfig c, StereoCalibration cal)
+        : config(std::move(c)), calibration(std::move(cal)), fixate(config.fixate),
+          hand_depth_mm{config.nominal_depth_mm, config.nominal_depth_mm}
+    {
+        headctl::HeadClientConfig cc;
+        cc.uri = config.uri;
+        cc.token = config.token;
+        cc.backoff_max = config.reconnect_max;
+        cc.backoff_initial = std::min(cc.backoff_initial, config.reconnect_max);
+        cc.clock = config.clock;
+        cc.on_state_change = config.on_state_change;
+        client = std::make_unique<headctl::HeadClient>(std::move(cc));
+    }
+
+    ImageMotion motion_of(Eye eye, const HeadPose& before, const HeadPose& after) const
+    {
+        const int i = static_cast<int>(eye);
+        const cv::Matx33d& K = eye == Eye::Left ? calibration.M1 : calibration.M2;
+        const cv::Point2d at = hand_px[i].value_or(cv::Point2d(K(0, 2), K(1, 2)));
+        try {
+            return camera_motion(calibration, eye, before, after, at, hand_depth_mm[i]);
+        } catch (const std::domain_error&) {
+            return {};  // the point left through the back of the camera: nothing to predict
+        }
+    }
+
+    void remember_hand(const FrameResult& r)
+    {
+        const EyeEstimate* eyes[2] = {&r.left, &r.right};
+        for (int i = 0; i < (r.stereo ? 2 : 1); ++i)
+            if (eyes[i]->valid()) hand_px[i] = cv::Point2d(eyes[i]->mean.x, eyes[i]->mean.y);
+        if (r.pointing.valid) {
+            const HeadPose pose = capture_pose.value_or(HeadPose{});
+            hand_depth_mm[0] = r.pointing.palm_mm[2];
+            hand_depth_mm[1] = left_to_right_at(calibration, pose).apply(r.pointing.palm_mm)[2];
+            for (double& d : hand_depth_mm)
+                if (!(d > 0.0)) d = config.nominal_depth_mm;
+        }
+    }
+
+    void refresh_limits()
+    {
+        std::optional<headctl::HeadLimits> now = client->limits();
+        if (!now || now == limits) return;
+        limits = now;
+        headctl::FixateConfig fc = config.fixate;
+        fc.limits = *now;
+        fixate = headctl::FixateController(fc);
+    }
+
+    const headctl::AxisLimits& axis_limits(Axis a) const
+    {
+        return limits ? (*limits)[a] : config.fixate.limits[a];
+    }
+
+    // Submits; a head without vergence axes gets the command without them from then on.
+    void submit(HeadCommand command)
+    {
+        if (!head_has_vergence) {
+            command.values.clear(Axis::VergeLeft);
+            command.values.clear(Axis::VergeRight);
+            if (command.values.empty() && command.kind != CommandKind::Home && command.kind != CommandKind::Stop)
+                return;
+        }
+        try {
+            client->submit(command);
+        } catch (const std::invalid_argument&) {
+            if (!head_has_vergence) throw;
+            head_has_vergence = false;
+            submit(command);
+        }
+    }
+
+    // Vergence that makes both lines of sight meet at `depth_mm` straight ahead of the head.
+    std::pair<double, double> verge_for_depth(double depth_mm) const
+    {
+        const double half = 0.5 * calibration.head.baseline_mm();
+        const double v = std::atan2(half, depth_mm) * kRadToDeg;
+        return {clamp_to(axis_limits(Axis::VergeLeft), v, 0.0), clamp_to(axis_limits(Axis::VergeRight), -v, 0.0)};
+    }
+
+    double verge_velocity(Axis axis, double target, double current) const
+    {
+        const double error = target - current;
+        if (std::abs(error) <= config.vergence_dead_band_deg) return 0.0;
+        const double vmax = axis_limits(axis).max_velocity_dps;
+        return std::clamp(config.vergence_gain_per_s * error, -vmax, vmax);
+    }
+
+    void steer_fixate(const FrameResult& r, const HeadPose& capture, const HeadPose& head, double dt)
+    {
+        headctl::FixateObservation seen;
+        if (r.left.valid()) {
+            const cv::Matx33d& K = calibration.M1;
+            seen = headctl::offset_from_image(r.left.mean.x - K(0, 2), r.left.mean.y - K(1, 2), K(0, 0), K(1, 1));
+            // The hand's own angular velocity: its line of sight in the head's base frame.
+            const std::pair<double, double> direction{capture.pan_deg + capture.verge_left_deg + seen.offset_pan_deg,
+                                                      capture.tilt_deg + seen.offset_tilt_deg};
+            if (hand_direction) {
+                rate_pan_dps += kRateSmoothing * ((direction.first - hand_direction->first) / dt - rate_pan_dps);
+                rate_tilt_dps += kRateSmoothing * ((direction.second - hand_direction->second) / dt - rate_tilt_dps);
+            }
+            hand_direction = direction;
+            seen.rate_pan_dps = rate_pan_dps;
+            seen.rate_tilt_dps = rate_tilt_dps;
+        } else {
+            hand_direction.reset();
+            rate_pan_dps = rate_tilt_dps = 0.0;
+        }
+        std::optional<HeadCommand> command = fixate.update(seen, head, dt);
+        if (!command) return;
+        if (command->kind == CommandKind::Velocity) {
+            double vl = 0.0, vr = 0.0;  // hold the vergence while the depth is unknown
+            if (r.pointing.valid) {
+                const cv::Vec3d& palm = r.pointing.palm_head_mm;
+                const double depth = 0.5 * (in_unverged_eye(calibration.head, head, Eye::Left, palm)[2] +
+                                            in_unverged_eye(calibration.head, head, Eye::Right, palm)[2]);
+                if (depth > 0.0) {
+                    const auto [tl, tr] = verge_for_depth(depth);
+                    vl = verge_velocity(Axis::VergeLeft, tl, head.verge_left_deg);
+                    vr = verge_velocity(Axis::VergeRight, tr, head.verge_right_deg);
+                }
+            }
+            command->values.set(Axis::VergeLeft, vl);
+            command->values.set(Axis::VergeRight, vr);
+        }
+        submit(*command);
+    }
+
+    void steer_point(const FrameResult& r)
+    {
+        pointing_run = r.pointing.valid ? pointing_run + 1 : 0;
+        if (pointing_run < config.point_settle_frames) return;
+        const cv::Vec3d target =
+            r.pointing.fingertip_head_mm + config.target_distance_mm * r.pointing.direction_head;
+        const double margin = config.fixate.limit_margin_deg;
+        auto [pan, tilt] = aim_at(target, calibration.head);
+        pan = clamp_to(axis_limits(Axis::Pan), pan, margin);
+        tilt = clamp_to(axis_limits(Axis::Tilt), tilt, margin);
+        if (last_aim && std::hypot(pan - last_aim->first, tilt - last_aim->second) <= config.point_release_deg)
+            return;  // settled: small changes of the ray do not move the head
+        last_aim = std::pair{pan, tilt};
+
+        HeadPose aimed;
+        aimed.pan_deg = pan;
+        aimed.tilt_deg = tilt;
+        HeadCommand command{CommandKind::Absolute, {}};
+        command.values.set(Axis::Pan, pan);
+        command.values.set(Axis::Tilt, tilt);
+        // Each eye looks at the target itself (both lines of sight meet there).
+        const Eye eyes[2] = {Eye::Left, Eye::Right};
+        const Axis axes[2] = {Axis::VergeLeft, Axis::VergeRight};
+        for (int i = 0; i < 2; ++i) {
+            const cv::Vec3d q = in_unverged_eye(calibration.head, aimed, eyes[i], target);
+            if (q[2] > 0.0)
+                command.values.set(axes[i], clamp_to(axis_limits(axes[i]), std::atan2(q[0], q[2]) * kRadToDeg, 0.0));
+        }
+        submit(command);
+    }
+
+    void end_frame(const FrameResult& r)
+    {
+        remember_hand(r);
+        if (config.steer == SteerMode::Off || !capture_time) return;
+        const std::optional<headctl::Timestamp> previous = steer_time;
+        steer_time = capture_time;
+        if (client->state() != headctl::ConnectionState::Connected || !capture_pose) {
+            hand_direction.reset();
+            return;  // a command would only wait in the slot and be stale when it is sent
+        }
+        refresh_limits();
+        if (config.steer == SteerMode::Point) {
+            steer_point(r);
+            return;
+        }
+        if (!previous) return;
+        const double dt = seconds(*capture_time - *previous);
+        if (!(dt > 0.0) || dt > 10.0) {
+            hand_direction.reset();
+            return;
+        }
+        const std::optional<headctl::StateSample> latest = client->latest();
+        steer_fixate(r, *capture_pose, latest ? latest->state.pose : *capture_pose, dt);
+    }
+};
+
+HeadLink::HeadLink(HeadLinkConfig config, StereoCalibration calibration)
+{
+    config.validate();
+    impl_ = std::make_unique<Impl>(std::move(config), std::move(calibration));
+}
+
+HeadLink::~HeadLink() = default;
+
+HeadAtCapture HeadLink::begin_frame(headctl::Timestamp capture_time)
+{
+    Impl& s = *impl_;
+    HeadAtCapture out;
+    out.pose = s.client->pose_at(capture_time);
+    if (out.pose && s.capture_pose && s.capture_time && capture_time > *s.capture_time) {
+        out.left_motion = s.motion_of(Eye::Left, *s.capture_pose, *out.pose);
+        out.right_motion = s.motion_of(Eye::Right, *s.capture_pose, *out.pose);
+    }
+    s.capture_time = capture_time;
+    s.capture_pose = out.pose;
+    return out;
+}
+
+void HeadLink::end_frame(const FrameResult& result) { impl_->end_frame(result); }
+
+headctl::ConnectionState HeadLink::state() const { return impl_->client->state(); }
+const headctl::HeadClient& HeadLink::client() const { return *impl_->client; }
+headctl::Timestamp HeadLink::now() const { return impl_->client->now(); }
+const HeadLinkConfig& HeadLink::config() const { return impl_->config; }
+
+}  // namespace gc

@@ -1,0 +1,81 @@
+// The tracker's link to a motorised head: reads the head's pose at each frame's capture time,
+// turns the pose change into the camera-motion offset C_t of each eye, and steers the head
+// from what the tracker saw. Plain C++ (no GLib), owned by the handtracker element; all
+// network traffic happens on the head client's own thread, so no call here waits on it.
+#pragma once
+
+#include "headctl/fixate_controller.hpp"
+#include "headctl/head_client.hpp"
+#include "stereo/calibration.hpp"
+#include "tracker/pointing_tracker.hpp"
+
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace gc {
+
+// off: only read the pose; fixate: keep the hand in the middle of the left view and verge on
+// its depth; point: look at where the hand points, target_distance_mm along its ray.
+enum class SteerMode { Off, Fixate, Point };
+
+std::string_view to_string(SteerMode mode);
+std::optional<SteerMode> steer_mode_from_string(std::string_view name);
+
+struct HeadLinkConfig {
+    std::string uri;                      // e.g. tcp://127.0.0.1:5050 (headctl/uri.hpp)
+    std::string token;
+    SteerMode steer = SteerMode::Fixate;
+    double target_distance_mm = 2000.0;   // point mode: how far along the ray to look
+    double nominal_depth_mm = 1000.0;     // C_t's depth while the 3D position is unknown
+    // Fixate-mode pan/tilt law; its limits are replaced by the head's once it reports them.
+    headctl::FixateConfig fixate;
+    double vergence_gain_per_s = 6.0;     // vergence velocity per degree of error
+    double vergence_dead_band_deg = 0.3;
+    double point_release_deg = 2.0;       // point mode: re-aim when the target moved this far
+    int point_settle_frames = 5;          // ...and the pointing held valid this many frames
+    std::chrono::milliseconds reconnect_max{500};  // longest wait between connection attempts
+    // The clock capture times are on; steady_clock when empty.
+    std::function<headctl::Timestamp()> clock;
+    // Called on the head client's thread at each connection change; must not block.
+    std::function<void(headctl::ConnectionState, const std::string& error)> on_state_change;
+
+    void validate() const;  // throws std::invalid_argument naming the field
+};
+
+// What the tracker needs before it processes a frame.
+struct HeadAtCapture {
+    std::optional<HeadPose> pose;  // at the capture time, interpolated; nullopt until known
+    ImageMotion left_motion;       // C_t of each eye since the previous frame
+    ImageMotion right_motion;
+};
+
+class HeadLink {
+public:
+    // Validates the configuration and the URI (std::invalid_argument) and starts connecting.
+    HeadLink(HeadLinkConfig config, StereoCalibration calibration);
+    ~HeadLink();
+    HeadLink(const HeadLink&) = delete;
+    HeadLink& operator=(const HeadLink&) = delete;
+
+    // Before tracking the frame captured at `capture_time` (on the configured clock): the
+    // head's pose then and the image motion of each eye since the previous frame, for the
+    // hand where the tracker last saw it.
+    HeadAtCapture begin_frame(headctl::Timestamp capture_time);
+    // After tracking that frame: remembers where the hand is and submits the steering command.
+    void end_frame(const FrameResult& result);
+
+    headctl::ConnectionState state() const;
+    const headctl::HeadClient& client() const;
+    headctl::Timestamp now() const;
+    const HeadLinkConfig& config() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace gc

@@ -1,0 +1,251 @@
+// The head link against the simulated head served in-process on loopback: commands reach the
+// head in each steering mode, the link survives the head going away, and no call waits on it.
+#include "headctl/head_link.hpp"
+#include "running_head.hpp"
+
+#include "stereo/calibration.hpp"
+#include "stereo/head_geometry.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <mutex>
+#include <numbers>
+#include <thread>
+#include <vector>
+
+namespace gc {
+namespace {
+
+using namespace std::chrono_literals;
+using closedloop_test::eventually;
+using closedloop_test::loopback_head;
+using closedloop_test::RunningHead;
+using headctl::ConnectionState;
+
+const StereoCalibration& calibration()
+{
+    static const StereoCalibration c = default_calibration({640, 480});
+    return c;
+}
+
+HeadLinkConfig link_config(const std::string& uri, SteerMode mode)
+{
+    HeadLinkConfig c;
+    c.uri = uri;
+    c.steer = mode;
+    return c;
+}
+
+// A frame in which the left eye tracks the hand at pixel (x, y).
+FrameResult left_hand_at(double x, double y)
+{
+    FrameResult r;
+    r.stereo = true;
+    r.state = TrackState::Tracking;
+    r.left.state = TrackState::Tracking;
+    r.left.mean.x = x;
+    r.left.mean.y = y;
+    r.right = r.left;
+    return r;
+}
+
+HeadPose latest_pose(const HeadLink& link)
+{
+    const auto s = link.client().latest();
+    return s ? s->state.pose : HeadPose{};
+}
+
+// Runs the link at 30 frames per second for `duration`, feeding it `frame(pose at capture)`.
+template <class Frame>
+void run_frames(HeadLink& link, std::chrono::milliseconds duration, Frame frame)
+{
+    const auto end = std::chrono::steady_clock::now() + duration;
+    while (std::chrono::steady_clock::now() < end) {
+        const HeadAtCapture at = link.begin_frame(link.now());
+        link.end_frame(frame(at));
+        std::this_thread::sleep_for(33ms);
+    }
+}
+
+TEST(HeadLink, FixateTurnsTheHeadTowardsAHandRightOfCentre)
+{
+    RunningHead head(loopback_head());
+    HeadLink link(link_config(head.uri(), SteerMode::Fixate), calibration());
+    ASSERT_TRUE(eventually([&] { return link.state() == ConnectionState::Connected; }, 2000ms));
+    ASSERT_TRUE(eventually([&] { return link.client().latest().has_value(); }, 2000ms));
+
+    // The hand stays 10 degrees right of the optical axis and up: the head must pan right
+    // and tilt up, and keep going while the hand stays off-centre.
+    const double f = calibration().M1(0, 0);
+    const double cx = calibration().M1(0, 2), cy = calibration().M1(1, 2);
+    const double dx = f * std::tan(10.0 * std::numbers::pi / 180.0);
+    run_frames(link, 600ms, [&](const HeadAtCapture&) { return left_hand_at(cx + dx, cy - 0.5 * dx); });
+    const HeadPose p = latest_pose(link);
+    EXPECT_GT(p.pan_deg, 2.0);
+    EXPECT_GT(p.tilt_deg, 1.0);
+    EXPECT_GT(link.client().stats().commands_sent, 5u);
+}
+
+TEST(HeadLink, FixateVergesOnTheHandsDepth)
+{
+    RunningHead head(loopback_head());
+    HeadLink link(link_config(head.uri(), SteerMode::Fixate), calibration());
+    ASSERT_TRUE(eventually([&] { return link.client().latest().has_value(); }, 2000ms));
+    // A static hand 600 mm straight ahead of the head, seen where the left eye's pose at
+    // capture puts it, with its 3D position known.
+    const cv::Vec3d palm_head(0.0, 0.0, 600.0);
+    const cv::Matx33d& K = calibration().M1;
+    run_frames(link, 2500ms, [&](const HeadAtCapture& at) {
+        const HeadPose pose = at.pose.value_or(HeadPose{});
+        const cv::Vec3d c = camera_to_head(calibration().head, pose, Eye::Left).inverse().apply(palm_head);
+        FrameResult r = left_hand_at(K(0, 0) * c[0] / c[2] + K(0, 2), K(1, 1) * c[1] / c[2] + K(1, 2));
+        r.pointing.valid = true;
+        r.pointing.palm_head_mm = palm_head;
+        r.pointing.palm_mm = c;
+        r.pointing.fingertip_head_mm = palm_head + cv::Vec3d(0.0, -80.0, 0.0);
+        r.pointing.direction_head = {0.0, -1.0, 0.0};
+        return r;
+    });
+    const HeadPose p = latest_pose(link);
+    const double expected = std::atan2(60.0, 600.0) * 180.0 / std::numbers::pi;  // 5.7 degrees
+    EXPECT_NEAR(p.verge_left_deg, expected, 0.6);
+    EXPECT_NEAR(p.verge_right_deg, -expected, 0.6);
+    // The hand is straight ahead: the neck ends within the controller's release band (2 deg;
+    // it stops anywhere inside the 1 deg dead band of the left eye's offset).
+    EXPECT_NEAR(p.pan_deg, 0.0, 2.0);
+    EXPECT_NEAR(p.tilt_deg, 0.0, 2.0);
+}
+
+TEST(HeadLink, PointAimsAlongTheRayAndSettles)
+{
+    RunningHead head(loopback_head());
+    HeadLinkConfig config = link_config(head.uri(), SteerMode::Point);
+    config.target_distance_mm = 1000.0;
+    HeadLink link(config, calibration());
+    ASSERT_TRUE(eventually([&] { return link.client().latest().has_value(); }, 2000ms));
+
+    // The hand at 800 mm ahead points to the right and a little up.
+    FrameResult r = left_hand_at(320, 240);
+    r.pointing.valid = true;
+    r.pointing.fingertip_head_mm = {0.0, 0.0, 800.0};
+    r.pointing.palm_head_mm = {-80.0, 0.0, 800.0};
+    r.pointing.direction_head = cv::normalize(cv::Vec3d(1.0, -0.2, 0.0));
+    run_frames(link, 2000ms, [&](const HeadAtCapture&) { return r; });
+
+    const cv::Vec3d target = r.pointing.fingertip_head_mm + 1000.0 * r.pointing.direction_head;
+    const double pan = std::atan2(target[0], target[2]) * 180.0 / std::numbers::pi;
+    const HeadPose p = latest_pose(link);
+    EXPECT_NEAR(p.pan_deg, pan, 0.5);
+    EXPECT_GT(p.tilt_deg, 3.0);   // up
+    EXPECT_GT(p.verge_left_deg, p.verge_right_deg);  // converging on the target
+    // Settled: one aim for an unchanging ray, not one per frame.
+    EXPECT_EQ(link.client().stats().commands_submitted, 1u);
+}
+
+TEST(HeadLink, OffOnlyReadsThePose)
+{
+    RunningHead head(loopback_head());
+    HeadLink link(link_config(head.uri(), SteerMode::Off), calibration());
+    ASSERT_TRUE(eventually([&] { return link.client().latest().has_value(); }, 2000ms));
+    std::optional<HeadPose> seen;
+    run_frames(link, 300ms, [&](const HeadAtCapture& at) {
+        seen = at.pose;
+        return left_hand_at(600, 100);
+    });
+    EXPECT_TRUE(seen.has_value());
+    EXPECT_EQ(link.client().stats().commands_submitted, 0u);
+}
+
+TEST(HeadLink, ReportsTheCameraMotionOfAMovingHead)
+{
+    RunningHead head(loopback_head());
+    HeadLink link(link_config(head.uri(), SteerMode::Fixate), calibration());
+    ASSERT_TRUE(eventually([&] { return link.client().latest().has_value(); }, 2000ms));
+    // A hand far right: the head pans right, so the static scene moves left in both views.
+    double sum_dx_left = 0.0, sum_dx_right = 0.0;
+    std::optional<HeadPose> first, last;
+    run_frames(link, 800ms, [&](const HeadAtCapture& at) {
+        if (at.pose && !first) first = at.pose;
+        if (at.pose) last = at.pose;
+        sum_dx_left += at.left_motion.dx;
+        sum_dx_right += at.right_motion.dx;
+        return left_hand_at(600, 240);
+    });
+    ASSERT_TRUE(first && last);
+    const double panned = last->pan_deg - first->pan_deg;
+    ASSERT_GT(panned, 2.0);
+    // About f * tan(panned) pixels to the left (the hand stays where it was last seen).
+    const double expected = -calibration().M1(0, 0) * std::tan(panned * std::numbers::pi / 180.0);
+    EXPECT_NEAR(sum_dx_left, expected, 0.25 * std::abs(expected));
+    EXPECT_NEAR(sum_dx_right, expected, 0.25 * std::abs(expected));
+}
+
+TEST(HeadLink, ReconnectsAndNeverBlocksWhileTheHeadIsGone)
+{
+    std::mutex mutex;
+    std::vector<ConnectionState> changes;
+    auto head = std::make_unique<RunningHead>(loopback_head());
+    const std::uint16_t port = head->port();
+    HeadLinkConfig config = link_config(head->uri(), SteerMode::Fixate);
+    config.on_state_change = [&](ConnectionState s, const std::string&) {
+        std::lock_guard lock(mutex);
+        changes.push_back(s);
+    };
+    HeadLink link(config, calibration());
+    ASSERT_TRUE(eventually([&] { return link.state() == ConnectionState::Connected; }, 2000ms));
+
+    // Frames keep coming while the head goes away and comes back; time every call.
+    std::chrono::steady_clock::duration worst{0};
+    auto frame = [&] {
+        const auto start = std::chrono::steady_clock::now();
+        link.begin_frame(link.now());
+        link.end_frame(left_hand_at(500, 200));
+        worst = std::max(worst, std::chrono::steady_clock::now() - start);
+        std::this_thread::sleep_for(10ms);
+    };
+    for (int i = 0; i < 10; ++i) frame();
+    head.reset();
+    ASSERT_TRUE(eventually([&] { frame(); return link.state() != ConnectionState::Connected; }, 2000ms));
+    const auto gone_until = std::chrono::steady_clock::now() + 700ms;
+    while (std::chrono::steady_clock::now() < gone_until) frame();
+
+    head = std::make_unique<RunningHead>(loopback_head(port));
+    const auto restarted = std::chrono::steady_clock::now();
+    ASSERT_TRUE(eventually([&] { frame(); return link.state() == ConnectionState::Connected; }, 2000ms));
+    const auto reconnect = std::chrono::steady_clock::now() - restarted;
+    for (int i = 0; i < 10; ++i) frame();
+
+    const double worst_ms = std::chrono::duration<double, std::milli>(worst).count();
+    std::printf("reconnected after %.0f ms; slowest begin_frame + end_frame: %.3f ms\n",
+                std::chrono::duration<double, std::milli>(reconnect).count(), worst_ms);
+    EXPECT_LT(worst_ms, 20.0);
+    EXPECT_GT(link.client().stats().commands_sent, 0u);
+    std::lock_guard lock(mutex);
+    EXPECT_NE(std::find(changes.begin(), changes.end(), ConnectionState::Disconnected), changes.end());
+    EXPECT_EQ(changes.back(), ConnectionState::Connected);
+}
+
+TEST(HeadLink, RejectsBadConfiguration)
+{
+    EXPECT_THROW(HeadLink(link_config("", SteerMode::Fixate), calibration()), std::invalid_argument);
+    EXPECT_THROW(HeadLink(link_config("carrier-pigeon://x", SteerMode::Fixate), calibration()), std::invalid_argument);
+    HeadLinkConfig c = link_config("tcp://127.0.0.1:1", SteerMode::Point);
+    c.target_distance_mm = 0.0;
+    try {
+        HeadLink link(c, calibration());
+        ADD_FAILURE() << "a zero target distance was accepted";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("target distance"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(steer_mode_from_string("fixate"), SteerMode::Fixate);
+    EXPECT_EQ(steer_mode_from_string("point"), SteerMode::Point);
+    EXPECT_EQ(steer_mode_from_string("off"), SteerMode::Off);
+    EXPECT_FALSE(steer_mode_from_string("Fixate").has_value());
+}
+
+}  // namespace
+}  // namespace gc
