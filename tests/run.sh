@@ -47,6 +47,12 @@ if [ "${GESTURECAM_SKIP_ASAN:-0}" != 1 ]; then
       --timeout-multiplier 4 --logbase unit || true
   count_meson_log build-asan/meson-logs/unit.json asan-unit
   if [ -d build-asan/gst-plugin ]; then
+    # Programs the tests start (gst-plugin-scanner, gst-inspect-1.0) load the instrumented
+    # plugin too: they need the sanitizer runtimes preloaded. A registry cached by an earlier
+    # run may list the plugin as broken, so each run scans afresh.
+    rm -f build-asan/tests/gst/registry-*.bin
+    asan_runtime="$(gcc -print-file-name=libasan.so):$(gcc -print-file-name=libubsan.so)"
+    LD_PRELOAD="$asan_runtime" GST_REGISTRY_FORK=no \
     ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
       GST_TRACERS=leaks GST_LEAKS_TRACER_STACK_TRACE=0 \
       meson test -C build-asan --suite gst --print-errorlogs --num-processes "$jobs" \

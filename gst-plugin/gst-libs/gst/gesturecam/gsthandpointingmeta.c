@@ -162,7 +162,9 @@ gst_hand_pointing_eye_set_contour (GstHandPointingEye * eye, const gfloat * xy,
   g_return_if_fail (xy != NULL || n == 0);
 
   if (n <= GST_HAND_POINTING_MAX_CONTOUR_POINTS) {
-    memcpy (eye->contour, xy, (gsize) n * 2 * sizeof (gfloat));
+    /* memcpy must not be given NULL, even for 0 bytes */
+    if (n > 0)
+      memcpy (eye->contour, xy, (gsize) n * 2 * sizeof (gfloat));
     eye->n_contour_points = n;
     return;
   }
