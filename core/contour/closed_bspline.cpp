@@ -72,31 +72,24 @@ ClosedBSpline ClosedBSpline::interpolate(std::span<const cv::Point2d> through) {
     return s;
 }
 
-cv::Point2d ClosedBSpline::point(double u) const {
+// Sums the four control points of the span holding u (taken modulo the closed curve's
+// length) with the weights `weights` gives for the position within the span.
+cv::Point2d ClosedBSpline::blend(double u, void (*weights)(double, double*)) const {
     const int n = size();
     double f = std::fmod(u, double(n));
     if (f < 0) f += n;
     int i = static_cast<int>(f);
     if (i >= n) i = n - 1;
     double w[4];
-    basis(f - i, w);
+    weights(f - i, w);
     cv::Point2d p(0, 0);
     for (int k = 0; k < 4; ++k) p += w[k] * control_[(i - 1 + k + n) % n];
     return p;
 }
 
-cv::Point2d ClosedBSpline::derivative(double u) const {
-    const int n = size();
-    double f = std::fmod(u, double(n));
-    if (f < 0) f += n;
-    int i = static_cast<int>(f);
-    if (i >= n) i = n - 1;
-    double w[4];
-    basis_derivative(f - i, w);
-    cv::Point2d d(0, 0);
-    for (int k = 0; k < 4; ++k) d += w[k] * control_[(i - 1 + k + n) % n];
-    return d;
-}
+cv::Point2d ClosedBSpline::point(double u) const { return blend(u, basis); }
+
+cv::Point2d ClosedBSpline::derivative(double u) const { return blend(u, basis_derivative); }
 
 cv::Point2d ClosedBSpline::outward_normal(double u) const {
     const cv::Point2d d = derivative(u);

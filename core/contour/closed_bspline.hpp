@@ -31,6 +31,7 @@ public:
     bool clockwise_on_screen() const { return orientation_ > 0; }
 
 private:
+    cv::Point2d blend(double u, void (*weights)(double, double*)) const;
     std::vector<cv::Point2d> control_;
     double orientation_ = 1.0;  // +1 or -1: the sign that turns a tangent's normal outward
 };

@@ -198,13 +198,12 @@ void SkinModel::rebuild() {
     table_mean_ = mean_;
 }
 
-void SkinModel::apply(const cv::Mat& bgr, const cv::Rect& roi, const Table& table,
-                      cv::Mat1b& out) const {
-    const cv::Rect r = roi & cv::Rect(0, 0, bgr.cols, bgr.rows);
-    if (out.size() != bgr.size()) out.create(bgr.size());
+namespace {
+
+template <bool WithBand>
+void lookup_rows(const cv::Mat& bgr, const cv::Rect& r, const std::uint8_t* lut, const std::uint8_t* band,
+                 int dark, cv::Mat1b& out) {
     const auto& rec = rg_reciprocals();
-    const std::uint8_t* lut = table.data();
-    const int dark = std::max(dark_, 1);
     for (int y = r.y; y < r.y + r.height; ++y) {
         const auto* p = bgr.ptr<std::uint8_t>(y) + 3 * r.x;
         auto* o = out.ptr<std::uint8_t>(y) + r.x;
@@ -217,9 +216,26 @@ void SkinModel::apply(const cv::Mat& bgr, const cv::Rect& roi, const Table& tabl
             const std::uint32_t inv = rec[sum];
             const std::uint32_t ir = (p[2] * inv + (1u << 15)) >> 16;
             const std::uint32_t ig = (p[1] * inv + (1u << 15)) >> 16;
-            o[x] = lut[ir * kBins + ig];
+            const std::uint8_t v = lut[ir * SkinModel::kBins + ig];
+            if constexpr (WithBand)
+                o[x] = std::min(v, band[sum]);
+            else
+                o[x] = v;
         }
     }
+}
+
+}  // namespace
+
+void SkinModel::apply(const cv::Mat& bgr, const cv::Rect& roi, const Table& table, cv::Mat1b& out,
+                      const std::uint8_t* band) const {
+    const cv::Rect r = roi & cv::Rect(0, 0, bgr.cols, bgr.rows);
+    if (out.size() != bgr.size()) out.create(bgr.size());
+    const int dark = std::max(dark_, 1);
+    if (band)
+        lookup_rows<true>(bgr, r, table.data(), band, dark, out);
+    else
+        lookup_rows<false>(bgr, r, table.data(), nullptr, dark, out);
 }
 
 void SkinModel::probability(const cv::Mat& bgr, cv::Mat1b& out) const {
@@ -234,31 +250,8 @@ void SkinModel::probability(const cv::Mat& bgr, const cv::Rect& roi, cv::Mat1b& 
 
 void SkinModel::membership(const cv::Mat& bgr, const cv::Rect& roi, cv::Mat1b& out) const {
     check_bgr(bgr, "SkinModel::membership");
-    if (!has_brightness_band()) {
-        apply(bgr, roi, tables_->membership, out);
-        return;
-    }
-    const cv::Rect r = roi & cv::Rect(0, 0, bgr.cols, bgr.rows);
-    if (out.size() != bgr.size()) out.create(bgr.size());
-    const auto& rec = rg_reciprocals();
-    const std::uint8_t* lut = tables_->membership.data();
-    const std::uint8_t* band = tables_->brightness.data();
-    const int dark = std::max(dark_, 1);
-    for (int y = r.y; y < r.y + r.height; ++y) {
-        const auto* p = bgr.ptr<std::uint8_t>(y) + 3 * r.x;
-        auto* o = out.ptr<std::uint8_t>(y) + r.x;
-        for (int x = 0; x < r.width; ++x, p += 3) {
-            const int sum = p[0] + p[1] + p[2];
-            if (sum < dark) {
-                o[x] = 0;
-                continue;
-            }
-            const std::uint32_t inv = rec[sum];
-            const std::uint32_t ir = (p[2] * inv + (1u << 15)) >> 16;
-            const std::uint32_t ig = (p[1] * inv + (1u << 15)) >> 16;
-            o[x] = std::min(lut[ir * kBins + ig], band[sum]);
-        }
-    }
+    apply(bgr, roi, tables_->membership, out,
+          has_brightness_band() ? tables_->brightness.data() : nullptr);
 }
 
 cv::Mat1b SkinModel::segment(const cv::Mat& bgr) const {

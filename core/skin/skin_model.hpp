@@ -90,8 +90,10 @@ private:
     };
     void rebuild_brightness();
     void rebuild();
-    void apply(const cv::Mat& bgr, const cv::Rect& roi, const Table& table,
-               cv::Mat1b& out) const;
+    // Looks every pixel of roi up in table; with a brightness band, the result is capped by
+    // band[R + G + B] (the band separates same-chromaticity surfaces of other brightness).
+    void apply(const cv::Mat& bgr, const cv::Rect& roi, const Table& table, cv::Mat1b& out,
+               const std::uint8_t* band = nullptr) const;
 
     cv::Vec2d mean_;
     cv::Matx22d cov_;
