@@ -3,6 +3,7 @@
 // form a consistent stereo pair whatever order they run in.
 #include "gsthandscenesrc.hpp"
 
+#include "pointing_report.hpp"
 #include "video_bgr.hpp"
 
 #include "sim/scene.hpp"
@@ -265,17 +266,6 @@ static void post_truth(GstHandSceneSrc* self, guint64 frame, GstClockTime pts, c
     const gc::sim::Scene& scene = *self->state->scene;
     const gc::sim::EyeTruth& t = self->state->truth;
     const gc::sim::HandTruth hand = scene.hand_truth(scene.hand_pose(int(frame)));
-    auto vec3 = [](GstStructure* s, const char* name, const cv::Vec3d& v) {
-        GValue array = G_VALUE_INIT;
-        gst_value_array_init(&array, 3);
-        for (int i = 0; i < 3; ++i) {
-            GValue item = G_VALUE_INIT;
-            g_value_init(&item, G_TYPE_DOUBLE);
-            g_value_set_double(&item, v[i]);
-            gst_value_array_append_and_take_value(&array, &item);
-        }
-        gst_structure_take_value(s, name, &array);
-    };
     GstStructure* s = gst_structure_new(
         "hand-truth", "frame", G_TYPE_UINT64, frame, "timestamp", G_TYPE_UINT64, pts, "eye", G_TYPE_STRING,
         settings.eye == gc::Eye::Left ? "left" : "right", "visible", G_TYPE_BOOLEAN, gboolean(t.visible), "palm-x",
@@ -283,9 +273,9 @@ static void post_truth(GstHandSceneSrc* self, guint64 frame, GstClockTime pts, c
         t.fingertip_px.x, "fingertip-y", G_TYPE_DOUBLE, t.fingertip_px.y, "pointing-deg", G_TYPE_DOUBLE,
         t.pointing_deg, "bbox-x", G_TYPE_INT, t.bbox.x, "bbox-y", G_TYPE_INT, t.bbox.y, "bbox-width", G_TYPE_INT,
         t.bbox.width, "bbox-height", G_TYPE_INT, t.bbox.height, nullptr);
-    vec3(s, "fingertip-head-mm", hand.fingertip_mm);
-    vec3(s, "palm-head-mm", hand.palm_mm);
-    vec3(s, "direction-head", hand.direction);
+    gc::gst::set_vec3(s, "fingertip-head-mm", hand.fingertip_mm);
+    gc::gst::set_vec3(s, "palm-head-mm", hand.palm_mm);
+    gc::gst::set_vec3(s, "direction-head", hand.direction);
     gst_element_post_message(GST_ELEMENT(self), gst_message_new_element(GST_OBJECT(self), s));
 }
 

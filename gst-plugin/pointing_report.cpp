@@ -32,19 +32,6 @@ void fill_eye(GstHandPointingEye& out, const EyeEstimate& eye, std::vector<float
     gst_hand_pointing_eye_set_contour(&out, scratch.data(), guint(eye.contour.size()));
 }
 
-void set_vec3(GstStructure* s, const char* name, const cv::Vec3d& v)
-{
-    GValue array = G_VALUE_INIT;
-    gst_value_array_init(&array, 3);
-    for (int i = 0; i < 3; ++i) {
-        GValue item = G_VALUE_INIT;
-        g_value_init(&item, G_TYPE_DOUBLE);
-        g_value_set_double(&item, v[i]);
-        gst_value_array_append_and_take_value(&array, &item);
-    }
-    gst_structure_take_value(s, name, &array);
-}
-
 void set_structure(GstStructure* parent, const char* name, GstStructure* child)
 {
     GValue value = G_VALUE_INIT;
@@ -84,6 +71,19 @@ GstStructure* eye_structure(const EyeEstimate& eye, bool with_contour)
 }
 
 }  // namespace
+
+void set_vec3(GstStructure* s, const char* name, const cv::Vec3d& v)
+{
+    GValue array = G_VALUE_INIT;
+    gst_value_array_init(&array, 3);
+    for (int i = 0; i < 3; ++i) {
+        GValue item = G_VALUE_INIT;
+        g_value_init(&item, G_TYPE_DOUBLE);
+        g_value_set_double(&item, v[i]);
+        gst_value_array_append_and_take_value(&array, &item);
+    }
+    gst_structure_take_value(s, name, &array);
+}
 
 GstHandPointingState meta_state(TrackState s)
 {

@@ -21,6 +21,9 @@ struct ReportContext {
 
 GstHandPointingState meta_state(TrackState s);
 
+// Sets `name` in s to a GstValueArray of the three doubles of v.
+void set_vec3(GstStructure* s, const char* name, const cv::Vec3d& v);
+
 // Fills every field of `meta` from `result`. `scratch` holds the contour as floats.
 void fill_meta(GstHandPointingMeta& meta, const FrameResult& result, const ReportContext& context,
                std::vector<float>& scratch);

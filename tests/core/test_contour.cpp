@@ -12,7 +12,7 @@
 
 namespace {
 
-// A pointing hand drawn as a palm disc, an index finger and a thumb stub.
+// A pointing hand drawn as a palm disc, an index finger and a short thumb.
 cv::Mat1b drawn_hand_mask(cv::Size size, cv::Point2d palm, double finger_deg, double s) {
     cv::Mat1b m(size, uchar(0));
     cv::circle(m, palm, cvRound(22 * s), 255, cv::FILLED, cv::LINE_8);
