@@ -1,19 +1,25 @@
 // handscenesrc: GObject glue over gc::sim::Scene. Frame n of the scene is rendered for
 // buffer offset n, so two instances with the same scene, motion and seed (one per eye)
-// form a consistent stereo pair whatever order they run in.
+// form a consistent stereo pair whatever order they run in. With a head URI the cameras
+// sit on that head: each frame is rendered from the head's pose at its capture time.
 #include "gsthandscenesrc.hpp"
 
+#include "head_connection.hpp"
 #include "pointing_report.hpp"
 #include "video_bgr.hpp"
 
+#include "headctl/head_client.hpp"
+#include "headctl/uri.hpp"
 #include "sim/scene.hpp"
 
 #include <gst/video/video.h>
 #include <opencv2/core.hpp>
 
+#include <chrono>
 #include <exception>
 #include <memory>
 #include <optional>
+#include <string>
 
 GST_DEBUG_CATEGORY_STATIC(gst_hand_scene_src_debug);
 #define GST_CAT_DEFAULT gst_hand_scene_src_debug
@@ -30,6 +36,7 @@ enum {
     PROP_LIGHTING_CHANGE,
     PROP_IS_LIVE,
     PROP_TRUTH_MESSAGES,
+    PROP_HEAD,
 };
 
 constexpr guint64 kDefaultSeed = 1;
@@ -43,6 +50,7 @@ struct SceneSettings {
     double noise = kDefaultNoise;
     bool lighting_change = false;
     bool truth_messages = true;
+    std::string head;  // URI of the head the cameras sit on; empty: a fixed rig at home pose
 };
 
 struct SceneState {
@@ -52,6 +60,8 @@ struct SceneState {
     cv::Mat bgr;
     cv::Mat yuv_scratch;
     gc::sim::EyeTruth truth;
+    gc::HeadPose pose;  // the pose the last frame was rendered from
+    std::unique_ptr<gc::headctl::HeadClient> head;
 };
 
 }  // namespace
@@ -276,6 +286,10 @@ static void post_truth(GstHandSceneSrc* self, guint64 frame, GstClockTime pts, c
     gc::gst::set_vec3(s, "fingertip-head-mm", hand.fingertip_mm);
     gc::gst::set_vec3(s, "palm-head-mm", hand.palm_mm);
     gc::gst::set_vec3(s, "direction-head", hand.direction);
+    const gc::HeadPose& pose = self->state->pose;
+    gst_structure_set(s, "head-pan-deg", G_TYPE_DOUBLE, pose.pan_deg, "head-tilt-deg", G_TYPE_DOUBLE, pose.tilt_deg,
+                      "head-verge-left-deg", G_TYPE_DOUBLE, pose.verge_left_deg, "head-verge-right-deg", G_TYPE_DOUBLE,
+                      pose.verge_right_deg, nullptr);
     gst_element_post_message(GST_ELEMENT(self), gst_message_new_element(GST_OBJECT(self), s));
 }
 
@@ -296,13 +310,23 @@ static GstFlowReturn gst_hand_scene_src_fill(GstPushSrc* src, GstBuffer* buffer)
         GST_ELEMENT_ERROR(self, STREAM, FAILED, ("The scene has no frame %" G_GUINT64_FORMAT ".", frame), (nullptr));
         return GST_FLOW_ERROR;
     }
+    const GstClockTime pts = frame_time(st.info, frame);
+    // The head's pose when this frame is exposed (its running time is its timestamp): a
+    // live frame is rendered up to one frame ahead, so the pose is extrapolated along the
+    // head's last velocity. Home until the head is first heard from; its last pose while
+    // it is away.
+    if (st.head) {
+        const GstClockTime running = gst_segment_to_running_time(&GST_BASE_SRC(self)->segment, GST_FORMAT_TIME, pts);
+        if (std::optional<gc::HeadPose> pose = st.head->pose_at(gc::gst::capture_time(GST_ELEMENT(self), running)))
+            st.pose = *pose;
+    }
     GstVideoFrame out;
     if (!gst_video_frame_map(&out, &st.info, buffer, GST_MAP_WRITE)) {
         GST_ELEMENT_ERROR(self, STREAM, FAILED, ("Cannot map the output buffer."), (nullptr));
         return GST_FLOW_ERROR;
     }
     try {
-        st.scene->render(int(frame), settings.eye, gc::HeadPose{}, st.bgr,
+        st.scene->render(int(frame), settings.eye, st.pose, st.bgr,
                          settings.truth_messages ? &st.truth : nullptr);
         gc::gst::write_bgr(st.bgr, out, st.yuv_scratch);
     } catch (const std::exception& err) {
@@ -313,7 +337,6 @@ static GstFlowReturn gst_hand_scene_src_fill(GstPushSrc* src, GstBuffer* buffer)
     }
     gst_video_frame_unmap(&out);
 
-    const GstClockTime pts = frame_time(st.info, frame);
     GST_BUFFER_PTS(buffer) = pts;
     GST_BUFFER_DTS(buffer) = GST_CLOCK_TIME_NONE;
     GST_BUFFER_DURATION(buffer) = frame_time(st.info, frame + 1) - pts;
@@ -331,14 +354,35 @@ static GstFlowReturn gst_hand_scene_src_fill(GstPushSrc* src, GstBuffer* buffer)
 static gboolean gst_hand_scene_src_start(GstBaseSrc* src)
 {
     GstHandSceneSrc* self = GST_HAND_SCENE_SRC(src);
-    self->state->next_frame = 0;
-    gst_video_info_init(&self->state->info);
+    SceneState& st = *self->state;
+    st.next_frame = 0;
+    st.pose = {};
+    gst_video_info_init(&st.info);
+    GST_OBJECT_LOCK(self);
+    const std::string uri = self->settings->head;
+    GST_OBJECT_UNLOCK(self);
+    if (uri.empty())
+        return TRUE;
+    // Only the pose is read: this client never sends a command.
+    gc::headctl::HeadClientConfig config;
+    config.uri = uri;
+    config.backoff_max = std::chrono::milliseconds(500);
+    config.clock = gc::gst::element_clock(GST_ELEMENT(self));
+    config.on_state_change = gc::gst::connection_reporter(GST_ELEMENT(self), uri);
+    try {
+        gc::headctl::parse_head_uri(uri);
+        st.head = std::make_unique<gc::headctl::HeadClient>(std::move(config));
+    } catch (const std::exception& err) {
+        GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("Invalid head URI \"%s\".", uri.c_str()), ("%s", err.what()));
+        return FALSE;
+    }
     return TRUE;
 }
 
 static gboolean gst_hand_scene_src_stop(GstBaseSrc* src)
 {
     GstHandSceneSrc* self = GST_HAND_SCENE_SRC(src);
+    self->state->head.reset();  // joins the head client's thread
     self->state->scene.reset();
     self->state->bgr.release();
     self->state->truth = {};
@@ -379,6 +423,11 @@ static void gst_hand_scene_src_set_property(GObject* object, guint prop_id, cons
     case PROP_TRUTH_MESSAGES:
         s.truth_messages = g_value_get_boolean(value);
         break;
+    case PROP_HEAD: {
+        const gchar* uri = g_value_get_string(value);
+        s.head = uri ? uri : "";
+        break;
+    }
     default:
         G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
         break;
@@ -416,6 +465,9 @@ static void gst_hand_scene_src_get_property(GObject* object, guint prop_id, GVal
         break;
     case PROP_TRUTH_MESSAGES:
         g_value_set_boolean(value, s.truth_messages);
+        break;
+    case PROP_HEAD:
+        g_value_set_string(value, s.head.empty() ? nullptr : s.head.c_str());
         break;
     default:
         G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
@@ -479,6 +531,14 @@ static void gst_hand_scene_src_class_init(GstHandSceneSrcClass* klass)
         g_param_spec_boolean("truth-messages", "Truth messages",
                              "Post a hand-truth element message with the ground truth of every frame", TRUE,
                              GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_PLAYING)));
+
+    g_object_class_install_property(
+        gobject_class, PROP_HEAD,
+        g_param_spec_string("head", "Head URI",
+                            "The head the simulated cameras sit on (tcp://host:port, e.g. headsim): every frame is "
+                            "rendered from its pose at the frame's capture time, so handtracker steering that head "
+                            "closes the loop; use with is-live=true. Unset: the head at its home pose",
+                            nullptr, flags));
 
     gst_element_class_add_static_pad_template(element_class, &src_template);
     gst_element_class_set_static_metadata(

@@ -5,10 +5,13 @@
 #include "gsthandtracker.hpp"
 
 #include "attention_window.hpp"
+#include "head_connection.hpp"
 #include "pointing_report.hpp"
 #include "tracking_overlay.hpp"
 #include "video_bgr.hpp"
 
+#include "headctl/head_link.hpp"
+#include "headctl/uri.hpp"
 #include "stereo/calibration.hpp"
 #include "tracker/pointing_tracker.hpp"
 
@@ -17,6 +20,7 @@
 #include <gst/video/video.h>
 #include <opencv2/imgproc.hpp>
 
+#include <array>
 #include <atomic>
 #include <cstdio>
 #include <exception>
@@ -38,6 +42,8 @@ constexpr double kDefaultLostThreshold = 0.6;
 constexpr int kDefaultLostFrames = 3;
 constexpr GstHandTrackerOutput kDefaultOutput = GST_HAND_TRACKER_OUTPUT_LEFT;
 constexpr GstHandTrackerMessageUpdates kDefaultMessageUpdates = GST_HAND_TRACKER_MESSAGES_EVERY_FRAME;
+constexpr gc::SteerMode kDefaultSteer = gc::SteerMode::Fixate;
+constexpr double kDefaultTargetDistanceMm = 2000.0;
 
 enum {
     PROP_0,
@@ -50,6 +56,9 @@ enum {
     PROP_LOST_FRAMES,
     PROP_MESSAGE_UPDATES,
     PROP_JSON_LOCATION,
+    PROP_HEAD,
+    PROP_STEER,
+    PROP_TARGET_DISTANCE,
 };
 
 // Property values, read and written under the object lock.
@@ -63,6 +72,9 @@ struct Settings {
     int lost_frames = kDefaultLostFrames;
     GstHandTrackerMessageUpdates message_updates = kDefaultMessageUpdates;
     std::string json_location;
+    std::string head;  // the head's URI; empty: no head
+    gc::SteerMode steer = kDefaultSteer;
+    double target_distance_mm = kDefaultTargetDistanceMm;
 };
 
 // Everything the streaming thread owns.
@@ -83,6 +95,10 @@ struct Engine {
     std::FILE* json = nullptr;
     std::string json_line;
     std::optional<gc::TrackState> last_posted_state;
+    std::unique_ptr<gc::HeadLink> head;
+    cv::Size head_view_size;
+    // The input timestamps of the views tracked last (packed or left, right).
+    std::array<GstClockTime, 2> tracked_inputs = {GST_CLOCK_TIME_NONE, GST_CLOCK_TIME_NONE};       // the view size of the head link's calibration
 
     ~Engine() { close_json(); }
     void close_json()
@@ -98,6 +114,7 @@ struct Engine {
         attention.reset();
         view_size = {};
         last_posted_state.reset();
+        tracked_inputs = {GST_CLOCK_TIME_NONE, GST_CLOCK_TIME_NONE};
     }
 };
 
@@ -145,6 +162,21 @@ static GType gst_hand_tracker_message_updates_get_type()
     };
     if (g_once_init_enter(&type))
         g_once_init_leave(&type, g_enum_register_static("GstHandTrackerMessageUpdates", values));
+    return type;
+}
+
+#define GST_TYPE_HAND_TRACKER_STEER (gst_hand_tracker_steer_get_type())
+static GType gst_hand_tracker_steer_get_type()
+{
+    static GType type = 0;
+    static const GEnumValue values[] = {
+        {int(gc::SteerMode::Off), "Only read the head's pose (for the camera-motion offsets)", "off"},
+        {int(gc::SteerMode::Fixate), "Keep the hand in the middle of the left view and verge on its depth", "fixate"},
+        {int(gc::SteerMode::Point), "Look where the hand points, target-distance along its ray", "point"},
+        {0, nullptr, nullptr},
+    };
+    if (g_once_init_enter(&type))
+        g_once_init_leave(&type, g_enum_register_static("GstHandTrackerSteer", values));
     return type;
 }
 
@@ -313,6 +345,7 @@ static bool build_tracker(GstHandTracker* self, const Settings& settings)
     e.tracker = std::make_unique<gc::PointingTracker>(params, e.calibration);
     e.attention.reset();
     e.view_size = {};
+    e.tracked_inputs = {GST_CLOCK_TIME_NONE, GST_CLOCK_TIME_NONE};
     e.last_posted_state.reset();
     return true;
 }
@@ -335,17 +368,24 @@ static bool should_post(Engine& e, GstHandTrackerMessageUpdates mode, gc::TrackS
     return true;
 }
 
+// The running time and stream time of an output timestamp.
+static void output_times(GstHandTracker* self, GstClockTime pts, GstClockTime& running, GstClockTime& stream)
+{
+    GstAggregator* agg = GST_AGGREGATOR(self);
+    GST_OBJECT_LOCK(agg->srcpad);
+    const GstSegment* segment = &GST_AGGREGATOR_PAD(agg->srcpad)->segment;
+    running = gst_segment_to_running_time(segment, GST_FORMAT_TIME, pts);
+    stream = gst_segment_to_stream_time(segment, GST_FORMAT_TIME, pts);
+    GST_OBJECT_UNLOCK(agg->srcpad);
+}
+
 static void post_message(GstHandTracker* self, GstBuffer* outbuf, const gc::FrameResult& result,
                          const gc::gst::ReportContext& context)
 {
-    GstAggregator* agg = GST_AGGREGATOR(self);
     GstStructure* s = gc::gst::pointing_structure(result, context, true);
     const GstClockTime pts = GST_BUFFER_PTS(outbuf);
-    GST_OBJECT_LOCK(agg->srcpad);
-    const GstSegment* segment = &GST_AGGREGATOR_PAD(agg->srcpad)->segment;
-    const GstClockTime running = gst_segment_to_running_time(segment, GST_FORMAT_TIME, pts);
-    const GstClockTime stream = gst_segment_to_stream_time(segment, GST_FORMAT_TIME, pts);
-    GST_OBJECT_UNLOCK(agg->srcpad);
+    GstClockTime running = GST_CLOCK_TIME_NONE, stream = GST_CLOCK_TIME_NONE;
+    output_times(self, pts, running, stream);
     gst_structure_set(s, "timestamp", G_TYPE_UINT64, pts, "running-time", G_TYPE_UINT64, running, "stream-time",
                       G_TYPE_UINT64, stream, "duration", G_TYPE_UINT64, GST_BUFFER_DURATION(outbuf), nullptr);
     gst_element_post_message(GST_ELEMENT(self), gst_message_new_element(GST_OBJECT(self), s));
@@ -379,6 +419,33 @@ static GstFlowReturn size_mismatch(GstHandTracker* self, const GstVideoFrame* le
                        GST_VIDEO_FRAME_HEIGHT(left), GST_VIDEO_FRAME_WIDTH(right), GST_VIDEO_FRAME_HEIGHT(right)),
                       ("the two views of a stereo pair must have the same size"));
     return GST_FLOW_NOT_NEGOTIATED;
+}
+
+// The head link for views of `size`, (re)built when there is none yet or when, without a
+// calibration file, the views changed size (the nominal rig depends on it). Connecting
+// happens on the link's own thread.
+static bool ensure_head_link(GstHandTracker* self, const Settings& settings, cv::Size size)
+{
+    Engine& e = *self->engine;
+    if (e.head && (e.calibration || size == e.head_view_size))
+        return true;
+    e.head.reset();
+    gc::HeadLinkConfig config;
+    config.uri = settings.head;
+    config.steer = settings.steer;
+    config.target_distance_mm = settings.target_distance_mm;
+    config.clock = gc::gst::element_clock(GST_ELEMENT(self));
+    config.on_state_change = gc::gst::connection_reporter(GST_ELEMENT(self), settings.head);
+    try {
+        e.head = std::make_unique<gc::HeadLink>(std::move(config),
+                                                e.calibration ? *e.calibration : gc::default_calibration(size));
+    } catch (const std::exception& err) {
+        GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("Cannot use the head at \"%s\".", settings.head.c_str()),
+                          ("%s", err.what()));
+        return false;
+    }
+    e.head_view_size = size;
+    return true;
 }
 
 static GstFlowReturn gst_hand_tracker_aggregate_frames(GstVideoAggregator* vagg, GstBuffer* outbuf)
@@ -444,9 +511,17 @@ static GstFlowReturn gst_hand_tracker_aggregate_frames(GstVideoAggregator* vagg,
         return GST_FLOW_ERROR;
     }
 
-    // Track when the pair is complete (mono: the left view alone).
+    // Track when the pair is complete (mono: the left view alone) and not the pair tracked
+    // last time: a live aggregator repeats its pads' last frames when a source is late or
+    // at EOS, and a frame tracked twice would count as a hand that stood still.
     const bool complete = stereo ? (have[0] && have[1]) : have[0];
-    if (complete) {
+    auto pts_of = [](const GstVideoFrame* f) { return views_ready(f) ? GST_BUFFER_PTS(f->buffer) : GST_CLOCK_TIME_NONE; };
+    const std::array<GstClockTime, 2> inputs = {pts_of(packed_pad ? packed : left),
+                                                packed_pad ? GST_CLOCK_TIME_NONE : pts_of(right)};
+    const bool repeated = complete && e.tracked_inputs == inputs && GST_CLOCK_TIME_IS_VALID(inputs[0]);
+    const bool tracked = complete && !repeated;
+    if (tracked) {
+        e.tracked_inputs = inputs;
         const cv::Size size = views[0].size();
         if (!e.view_size.empty() && (size != e.view_size || stereo != e.stereo)) {
             GST_INFO_OBJECT(self, "views changed to %dx%d: tracking starts over", size.width, size.height);
@@ -455,13 +530,24 @@ static GstFlowReturn gst_hand_tracker_aggregate_frames(GstVideoAggregator* vagg,
         }
         e.view_size = size;
         e.stereo = stereo;
+        // The head's pose when these views were taken and the image motion it caused;
+        // without a head: no pose, no motion.
+        gc::HeadAtCapture at;
+        if (!settings.head.empty()) {
+            if (!ensure_head_link(self, settings, size))
+                return GST_FLOW_ERROR;
+            e.head->set_steering(settings.steer, settings.target_distance_mm);
+            GstClockTime running = GST_CLOCK_TIME_NONE, stream = GST_CLOCK_TIME_NONE;
+            if (GST_CLOCK_TIME_IS_VALID(GST_BUFFER_PTS(outbuf)))
+                output_times(self, GST_BUFFER_PTS(outbuf), running, stream);
+            at = e.head->begin_frame(gc::gst::capture_time(GST_ELEMENT(self), running));
+        }
         try {
             const gint64 pts = GST_CLOCK_TIME_IS_VALID(GST_BUFFER_PTS(outbuf)) ? gint64(GST_BUFFER_PTS(outbuf)) : -1;
-            // The head pose at capture is not known without a head client: nullopt.
             if (stereo)
-                e.tracker->process_stereo(views[0], views[1], pts, std::nullopt);
+                e.tracker->process_stereo(views[0], views[1], pts, at.pose, at.left_motion, at.right_motion);
             else
-                e.tracker->process_mono(views[0], pts);
+                e.tracker->process_mono(views[0], pts, at.left_motion);
         } catch (const gc::CalibrationError& err) {
             GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("The calibration does not fit the stream."), ("%s", err.what()));
             return GST_FLOW_ERROR;
@@ -474,6 +560,8 @@ static GstFlowReturn gst_hand_tracker_aggregate_frames(GstVideoAggregator* vagg,
         }
     }
     const gc::FrameResult& result = e.tracker->last();
+    if (tracked && e.head)
+        e.head->end_frame(result);  // never waits: the command goes to the link's thread
 
     // Compose the output view.
     GstVideoFrame out;
@@ -535,7 +623,7 @@ static GstFlowReturn gst_hand_tracker_aggregate_frames(GstVideoAggregator* vagg,
     add_region_of_interest(outbuf, result, shown == 1, view, out_size, context);
     if (should_post(e, settings.message_updates, result.state))
         post_message(self, outbuf, result, context);
-    if (complete && e.json) {
+    if (tracked && e.json) {
         e.json_line = gc::to_json_line(result);
         e.json_line += '\n';
         if (std::fwrite(e.json_line.data(), 1, e.json_line.size(), e.json) != e.json_line.size()) {
@@ -559,6 +647,16 @@ static gboolean gst_hand_tracker_start(GstAggregator* agg)
         return FALSE;
     self->rebuild->store(false);
     Engine& e = *self->engine;
+    e.head.reset();
+    if (!settings.head.empty()) {
+        try {
+            gc::headctl::parse_head_uri(settings.head);
+        } catch (const std::exception& err) {
+            GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("Invalid head URI \"%s\".", settings.head.c_str()),
+                              ("%s", err.what()));
+            return FALSE;
+        }
+    }
     e.close_json();
     if (!settings.json_location.empty()) {
         e.json = std::fopen(settings.json_location.c_str(), "w");
@@ -577,9 +675,11 @@ static gboolean gst_hand_tracker_stop(GstAggregator* agg)
     const gboolean ok = GST_AGGREGATOR_CLASS(gst_hand_tracker_parent_class)->stop(agg);
     Engine& e = *self->engine;
     e.tracker.reset();
+    e.head.reset();  // joins the head client's thread
     e.close_json();
     e.attention.reset();
     e.view_size = {};
+    e.tracked_inputs = {GST_CLOCK_TIME_NONE, GST_CLOCK_TIME_NONE};
     e.last_posted_state.reset();
     return ok;
 }
@@ -639,6 +739,17 @@ static void gst_hand_tracker_set_property(GObject* object, guint prop_id, const 
         s.json_location = path ? path : "";
         break;
     }
+    case PROP_HEAD: {
+        const gchar* uri = g_value_get_string(value);
+        s.head = uri ? uri : "";
+        break;
+    }
+    case PROP_STEER:
+        s.steer = gc::SteerMode(g_value_get_enum(value));
+        break;
+    case PROP_TARGET_DISTANCE:
+        s.target_distance_mm = g_value_get_double(value);
+        break;
     default:
         G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
         break;
@@ -680,6 +791,15 @@ static void gst_hand_tracker_get_property(GObject* object, guint prop_id, GValue
         break;
     case PROP_JSON_LOCATION:
         g_value_set_string(value, s.json_location.empty() ? nullptr : s.json_location.c_str());
+        break;
+    case PROP_HEAD:
+        g_value_set_string(value, s.head.empty() ? nullptr : s.head.c_str());
+        break;
+    case PROP_STEER:
+        g_value_set_enum(value, int(s.steer));
+        break;
+    case PROP_TARGET_DISTANCE:
+        g_value_set_double(value, s.target_distance_mm);
         break;
     default:
         G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
@@ -760,6 +880,24 @@ static void gst_hand_tracker_class_init(GstHandTrackerClass* klass)
                             "unset: none",
                             nullptr, GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
 
+    g_object_class_install_property(
+        gobject_class, PROP_HEAD,
+        g_param_spec_string("head", "Head URI",
+                            "The motorised head carrying the cameras: tcp://host:port[?token=...] (the GCHP "
+                            "protocol, e.g. headsim), visca-udp://host[:port] or visca-tcp://host[:port]; unset: "
+                            "static cameras. Its pose at each frame's capture enters the tracker as camera motion; "
+                            "`steer` says how it is moved. Connection changes are posted as head-connection "
+                            "messages and a warning",
+                            nullptr, GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
+    g_object_class_install_property(gobject_class, PROP_STEER,
+                                    g_param_spec_enum("steer", "Steer", "How the head is moved (needs head)",
+                                                      GST_TYPE_HAND_TRACKER_STEER, int(kDefaultSteer), flags));
+    g_object_class_install_property(
+        gobject_class, PROP_TARGET_DISTANCE,
+        g_param_spec_double("target-distance", "Target distance",
+                            "steer=point: how far along the pointing ray, from the fingertip, the head looks (mm)",
+                            1.0, 1.0e6, kDefaultTargetDistanceMm, flags));
+
     gst_element_class_add_static_pad_template_with_gtype(element_class, &sink_left_template,
                                                          GST_TYPE_VIDEO_AGGREGATOR_PAD);
     gst_element_class_add_static_pad_template_with_gtype(element_class, &sink_right_template,
@@ -785,6 +923,7 @@ static void gst_hand_tracker_class_init(GstHandTrackerClass* klass)
 
     gst_type_mark_as_plugin_api(GST_TYPE_HAND_TRACKER_OUTPUT, GstPluginAPIFlags(0));
     gst_type_mark_as_plugin_api(GST_TYPE_HAND_TRACKER_MESSAGE_UPDATES, GstPluginAPIFlags(0));
+    gst_type_mark_as_plugin_api(GST_TYPE_HAND_TRACKER_STEER, GstPluginAPIFlags(0));
 }
 
 static void gst_hand_tracker_init(GstHandTracker* self)

@@ -46,6 +46,7 @@ HeadClient::~HeadClient() {
         std::lock_guard lock(mutex_);
         stopping_ = true;
     }
+    cancel_ = true;  // cuts a blocking exchange with the head short
     wake_.notify_all();
     thread_.join();
 }
@@ -119,6 +120,7 @@ void HeadClient::wait_for(SteadyClock::duration d) {
 }
 
 void HeadClient::run() {
+    const net::CancelScope cancel_scope(cancel_);
     auto backoff = config_.backoff_initial;
     for (;;) {
         {

@@ -82,6 +82,7 @@ private:
     mutable std::mutex mutex_;
     std::condition_variable wake_;
     bool stopping_ = false;
+    std::atomic<bool> cancel_{false};  // stopping_, readable by the network waits without the mutex
     std::optional<HeadCommand> pending_;
     ConnectionState state_ = ConnectionState::Connecting;
     std::string last_error_;

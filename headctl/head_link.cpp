@@ -321,6 +321,30 @@ HeadAtCapture HeadLink::begin_frame(headctl::Timestamp capture_time)
 
 void HeadLink::end_frame(const FrameResult& result) { impl_->end_frame(result); }
 
+void HeadLink::set_steering(SteerMode mode, double target_distance_mm)
+{
+    Impl& s = *impl_;
+    if (!(std::isfinite(target_distance_mm) && target_distance_mm > 0.0))
+        throw std::invalid_argument("head link: target distance must be finite and > 0 mm");
+    if (mode == s.config.steer && target_distance_mm == s.config.target_distance_mm) return;
+    const bool new_mode = mode != s.config.steer;
+    s.config.steer = mode;
+    s.config.target_distance_mm = target_distance_mm;
+    s.last_aim.reset();  // point mode re-aims at the new distance at once
+    if (!new_mode) return;
+    s.pointing_run = 0;
+    s.hand_direction.reset();
+    s.rate_pan_dps = s.rate_tilt_dps = 0.0;
+    s.steer_time.reset();
+    s.refresh_limits();
+    headctl::FixateConfig fc = s.config.fixate;
+    if (s.limits) fc.limits = *s.limits;
+    s.fixate = headctl::FixateController(fc);
+    // Leaving a mode that was driving the head by velocity: stop it where it is.
+    if (s.client->state() == headctl::ConnectionState::Connected)
+        s.submit(HeadCommand{CommandKind::Stop, {}});
+}
+
 headctl::ConnectionState HeadLink::state() const { return impl_->client->state(); }
 const headctl::HeadClient& HeadLink::client() const { return *impl_->client; }
 headctl::Timestamp HeadLink::now() const { return impl_->client->now(); }

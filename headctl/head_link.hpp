@@ -67,6 +67,10 @@ public:
     HeadAtCapture begin_frame(headctl::Timestamp capture_time);
     // After tracking that frame: remembers where the hand is and submits the steering command.
     void end_frame(const FrameResult& result);
+    // Changes the steering mode and the point-mode target distance while running (the
+    // connection stays); a new mode starts from rest: the fixate law's memory and the
+    // last aim are forgotten. Throws std::invalid_argument for a distance that is not > 0.
+    void set_steering(SteerMode mode, double target_distance_mm);
 
     headctl::ConnectionState state() const;
     const headctl::HeadClient& client() const;

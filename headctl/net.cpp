@@ -16,14 +16,18 @@ namespace gc::headctl::net {
 
 namespace {
 
+thread_local const std::atomic<bool>* t_cancel = nullptr;
+constexpr long long kCancelCheckMs = 20;
+
 int poll_timeout_ms(Clock::time_point deadline) {
     const auto left = std::chrono::ceil<std::chrono::milliseconds>(deadline - Clock::now()).count();
-    return static_cast<int>(std::clamp<long long>(left, 0, 60'000));
+    return static_cast<int>(std::clamp<long long>(left, 0, t_cancel ? kCancelCheckMs : 60'000));
 }
 
 // Waits for events on fd; false on timeout.
 bool wait_for(int fd, short events, Clock::time_point deadline) {
     for (;;) {
+        if (t_cancel && t_cancel->load()) throw NetError("cancelled");
         pollfd p{fd, events, 0};
         const int n = ::poll(&p, 1, poll_timeout_ms(deadline));
         if (n > 0) return true;
@@ -38,6 +42,9 @@ bool wait_for(int fd, short events, Clock::time_point deadline) {
 std::string errno_text(const char* what) { return std::string(what) + ": " + std::strerror(errno); }
 
 }  // namespace
+
+CancelScope::CancelScope(const std::atomic<bool>& flag) : previous_(t_cancel) { t_cancel = &flag; }
+CancelScope::~CancelScope() { t_cancel = previous_; }
 
 Fd& Fd::operator=(Fd&& o) noexcept {
     if (this != &o) {

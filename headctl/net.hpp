@@ -2,6 +2,7 @@
 // Every descriptor passed in must be non-blocking, or a deadline cannot be kept.
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <optional>
@@ -17,6 +18,20 @@ using Clock = std::chrono::steady_clock;
 class NetError : public std::runtime_error {
 public:
     using std::runtime_error::runtime_error;
+};
+
+// While a CancelScope lives on a thread, every wait of that thread here looks at `flag`
+// at least every 20 ms and throws NetError("cancelled") once it is set: a client being
+// destroyed does not sit out a silent head's timeouts.
+class CancelScope {
+public:
+    explicit CancelScope(const std::atomic<bool>& flag);
+    ~CancelScope();
+    CancelScope(const CancelScope&) = delete;
+    CancelScope& operator=(const CancelScope&) = delete;
+
+private:
+    const std::atomic<bool>* previous_;
 };
 
 // Owns a file descriptor.

@@ -6,6 +6,7 @@
 #include <gst/gst.h>
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <functional>
 #include <memory>
 #include <string>
@@ -42,6 +43,9 @@ struct RunResult {
     std::string error;                       // the first error's message, empty if none
     std::vector<StructurePtr> messages;      // element messages, in posting order
     std::vector<std::string> sources;        // the name of each message's element
+    std::vector<double> received_s;          // when each was read, seconds after PLAYING
+    std::vector<std::string> warnings;       // "element: message" of each warning
+    std::vector<double> warnings_s;          // when each warning was read
 
     std::vector<const GstStructure*> named(const char* name, const char* source = nullptr) const
     {
@@ -52,6 +56,16 @@ struct RunResult {
         return out;
     }
 };
+
+// The lines of a text file (a JSON-lines output), without their newlines.
+inline std::vector<std::string> read_lines(const std::string& path)
+{
+    std::vector<std::string> lines;
+    std::ifstream in(path);
+    for (std::string line; std::getline(in, line);)
+        lines.push_back(line);
+    return lines;
+}
 
 inline ElementPtr parse_pipeline(const std::string& description)
 {
@@ -75,6 +89,7 @@ inline RunResult run_pipeline(GstElement* pipeline, GstClockTime timeout = 60 * 
     RunResult result;
     GstBus* bus = gst_element_get_bus(pipeline);
     GstClockTime deadline = gst_util_get_timestamp() + timeout;
+    const GstClockTime started_at = gst_util_get_timestamp();
     const bool started = gst_element_set_state(pipeline, GST_STATE_PLAYING) != GST_STATE_CHANGE_FAILURE;
     if (!started)  // the reason is on the bus already
         deadline = gst_util_get_timestamp() + 2 * GST_SECOND;
@@ -83,9 +98,11 @@ inline RunResult run_pipeline(GstElement* pipeline, GstClockTime timeout = 60 * 
         if (now >= deadline)
             break;
         GstMessage* msg = gst_bus_timed_pop_filtered(
-            bus, deadline - now, GstMessageType(GST_MESSAGE_EOS | GST_MESSAGE_ERROR | GST_MESSAGE_ELEMENT));
+            bus, deadline - now,
+            GstMessageType(GST_MESSAGE_EOS | GST_MESSAGE_ERROR | GST_MESSAGE_ELEMENT | GST_MESSAGE_WARNING));
         if (!msg)
             continue;
+        const double received = double(gst_util_get_timestamp() - started_at) / GST_SECOND;
         switch (GST_MESSAGE_TYPE(msg)) {
         case GST_MESSAGE_EOS:
             result.eos = true;
@@ -101,10 +118,19 @@ inline RunResult run_pipeline(GstElement* pipeline, GstClockTime timeout = 60 * 
             stop = true;
             break;
         }
+        case GST_MESSAGE_WARNING: {
+            GError* err = nullptr;
+            gst_message_parse_warning(msg, &err, nullptr);
+            result.warnings.push_back(std::string(GST_OBJECT_NAME(GST_MESSAGE_SRC(msg))) + ": " + err->message);
+            result.warnings_s.push_back(received);
+            g_error_free(err);
+            break;
+        }
         default:
             if (const GstStructure* s = gst_message_get_structure(msg)) {
                 result.messages.emplace_back(gst_structure_copy(s));
                 result.sources.emplace_back(GST_OBJECT_NAME(GST_MESSAGE_SRC(msg)));
+                result.received_s.push_back(received);
             }
             break;
         }
@@ -122,8 +148,11 @@ inline RunResult run_pipeline(GstElement* pipeline, GstClockTime timeout = 60 * 
 inline RunResult run_pipeline(const std::string& description, GstClockTime timeout = 60 * GST_SECOND)
 {
     ElementPtr pipeline = parse_pipeline(description);
-    if (!pipeline)
-        return RunResult{false, "parse failed", {}, {}};
+    if (!pipeline) {
+        RunResult failed;
+        failed.error = "parse failed";
+        return failed;
+    }
     return run_pipeline(pipeline.get(), timeout);
 }
 

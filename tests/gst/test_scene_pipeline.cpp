@@ -47,15 +47,6 @@ std::string scene_sources(const std::string& extra)
            "handscenesrc name=r eye=right" + common + extra + " ! t.sink_right ";
 }
 
-std::vector<std::string> read_lines(const std::string& path)
-{
-    std::vector<std::string> lines;
-    std::ifstream in(path);
-    for (std::string line; std::getline(in, line);)
-        lines.push_back(line);
-    return lines;
-}
-
 TEST(ScenePipeline, MetaAndMessagesFollowTheGroundTruth)
 {
     gc::test::init_gstreamer();
@@ -197,8 +188,8 @@ TEST(ScenePipeline, SideBySideFramesTrackLikeTwoViews)
     const gc::test::RunResult b = gc::test::run_pipeline(pipeline.get(), 60 * GST_SECOND);
     ASSERT_TRUE(b.eos) << b.error;
 
-    const auto expected = read_lines(two_views);
-    const auto actual = read_lines(packed);
+    const auto expected = gc::test::read_lines(two_views);
+    const auto actual = gc::test::read_lines(packed);
     ASSERT_EQ(expected.size(), size_t(kFrames));
     ASSERT_EQ(actual.size(), expected.size());
     for (size_t i = 0; i < expected.size(); ++i)

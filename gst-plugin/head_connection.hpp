@@ -1,0 +1,30 @@
+// What an element needs to use a head client from GStreamer: the head's state samples and
+// the buffers' capture times on one time line (the pipeline clock), and connection changes
+// reported on the bus.
+#pragma once
+
+#include "headctl/head_client.hpp"
+
+#include <gst/gst.h>
+
+#include <functional>
+#include <string>
+
+namespace gc::gst {
+
+// The element's pipeline clock as a head client clock. Without a clock (not yet playing)
+// it reads steady_clock, which is also what GStreamer's default system clock reads.
+std::function<headctl::Timestamp()> element_clock(GstElement* element);
+
+// When the frame at `running_time` was captured, on element_clock: base time + running
+// time; the clock's now when the running time or the base time is unknown.
+headctl::Timestamp capture_time(GstElement* element, GstClockTime running_time);
+
+// A connection-change callback for the head client (called on its thread) that posts on
+// the element's bus: a `head-connection` element message (uri, state, error) for every
+// change between connected and not, a warning when the head is lost or cannot be reached
+// (once per outage, not once per retry) and an info message when it is back.
+std::function<void(headctl::ConnectionState, const std::string&)> connection_reporter(GstElement* element,
+                                                                                     const std::string& uri);
+
+}  // namespace gc::gst

@@ -1,0 +1,140 @@
+// The head properties of handtracker and handscenesrc: defaults, a bad URI refused at start
+// with its reason, and heads that cannot be reached, never answer or answer garbage: the
+// pipeline runs to its end with the same tracking as without a head, with one warning.
+#include "fake_heads.hpp"
+#include "gst_fixture.hpp"
+
+#include <glib/gstdio.h>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using gc::test::ElementPtr;
+
+constexpr int kFrames = 45;
+
+std::string temp_path(const char* name)
+{
+    return std::string(g_get_tmp_dir()) + "/gesturecam-" + std::to_string(getpid()) + "-" + name;
+}
+
+struct TrackRun {
+    gc::test::RunResult bus;
+    std::vector<std::string> json;
+    double seconds = 0.0;
+};
+
+// scene -> handtracker -> fakesink; the tracker's JSON lines and the bus.
+TrackRun track(const std::string& head_uri, int frames = kFrames, bool live = false)
+{
+    const std::string json = temp_path("head.jsonl");
+    const std::string common = std::string(" scene=light motion=translate seed=3 truth-messages=false is-live=") +
+                               (live ? "true" : "false") + " num-buffers=" + std::to_string(frames) + " ";
+    std::string tracker = "handtracker name=t particles=300 message-updates=none json-location=" + json;
+    if (!head_uri.empty())
+        tracker += " head=" + head_uri + " steer=fixate";
+    const std::string description = "handscenesrc eye=left" + common + "! t.sink_left handscenesrc eye=right" +
+                                    common + "! t.sink_right " + tracker + " ! fakesink";
+    TrackRun run;
+    const auto start = std::chrono::steady_clock::now();
+    run.bus = gc::test::run_pipeline(description);
+    run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    run.json = gc::test::read_lines(json);
+    g_remove(json.c_str());
+    return run;
+}
+
+TEST(HeadProperties, Defaults)
+{
+    gc::test::init_gstreamer();
+    ElementPtr tracker(gst_element_factory_make("handtracker", nullptr));
+    ElementPtr scene(gst_element_factory_make("handscenesrc", nullptr));
+    ASSERT_TRUE(tracker && scene);
+    gchar* head = nullptr;
+    gdouble distance = 0.0;
+    g_object_get(tracker.get(), "head", &head, "target-distance", &distance, nullptr);
+    EXPECT_EQ(head, nullptr);
+    EXPECT_DOUBLE_EQ(distance, 2000.0);
+    GParamSpec* spec = g_object_class_find_property(G_OBJECT_GET_CLASS(tracker.get()), "steer");
+    ASSERT_TRUE(spec);
+    GEnumClass* modes = G_ENUM_CLASS(g_type_class_ref(G_PARAM_SPEC_VALUE_TYPE(spec)));
+    EXPECT_STREQ(g_enum_get_value(modes, G_PARAM_SPEC_ENUM(spec)->default_value)->value_nick, "fixate");
+    gst_util_set_object_arg(G_OBJECT(tracker.get()), "steer", "point");
+    int mode = -1;
+    g_object_get(tracker.get(), "steer", &mode, nullptr);
+    EXPECT_STREQ(g_enum_get_value(modes, mode)->value_nick, "point");
+    g_type_class_unref(modes);
+    g_object_get(scene.get(), "head", &head, nullptr);
+    EXPECT_EQ(head, nullptr);
+}
+
+TEST(HeadProperties, ABadUriFailsTheStartAndSaysWhy)
+{
+    gc::test::init_gstreamer();
+    for (const char* element : {"handtracker", "handscenesrc"}) {
+        const std::string pipeline =
+            std::string(element) == "handtracker"
+                ? "handscenesrc num-buffers=3 ! handtracker head=ftp://127.0.0.1:21 ! fakesink"
+                : "handscenesrc num-buffers=3 head=tcp://127.0.0.1:notaport ! fakesink";
+        const gc::test::RunResult r = gc::test::run_pipeline(pipeline, 10 * GST_SECOND);
+        EXPECT_FALSE(r.eos) << element;
+        EXPECT_NE(r.error.find("Invalid head URI"), std::string::npos) << element << ": " << r.error;
+    }
+}
+
+TEST(HeadProperties, HeadsThatDoNotAnswerChangeNothing)
+{
+    gc::test::init_gstreamer();
+    const TrackRun reference = track("");
+    ASSERT_TRUE(reference.bus.eos) << reference.bus.error;
+    ASSERT_EQ(reference.json.size(), size_t(kFrames));
+
+    gc::test::MisbehavingHead silent(gc::test::MisbehavingHead::Kind::Silent);
+    gc::test::MisbehavingHead garbage(gc::test::MisbehavingHead::Kind::Garbage);
+    const struct {
+        const char* what;
+        std::string uri;
+    } heads[] = {
+        {"nothing listening", "tcp://127.0.0.1:" + std::to_string(gc::test::closed_port())},
+        {"accepts, never answers", silent.uri()},
+        {"answers garbage", garbage.uri()},
+    };
+    std::printf("no head: %.1f ms per frame (whole pipeline)\n", 1000.0 * reference.seconds / kFrames);
+    for (const auto& head : heads) {
+        const TrackRun run = track(head.uri);
+        std::printf("%s: %.1f ms per frame, %zu warning(s)\n", head.what, 1000.0 * run.seconds / kFrames,
+                    run.bus.warnings.size());
+        EXPECT_TRUE(run.bus.eos) << head.what << ": " << run.bus.error;
+        // Without a pose the tracker sees exactly what it sees without a head.
+        EXPECT_EQ(run.json, reference.json) << head.what;
+        // A failure may come after these few frames are done; at most one warning.
+        EXPECT_LE(run.bus.warnings.size(), 1u) << head.what;
+    }
+    EXPECT_GE(silent.accepted(), 1);
+    EXPECT_GE(garbage.accepted(), 1);
+}
+
+TEST(HeadProperties, AnOutageIsReportedOnceNamingTheHead)
+{
+    // 3 s of live frames: the client gives up on the silent head after its 1 s timeout and
+    // then retries every 0.5 s; the bus gets one warning for all of it, from handtracker.
+    gc::test::init_gstreamer();
+    gc::test::MisbehavingHead silent(gc::test::MisbehavingHead::Kind::Silent);
+    const TrackRun run = track(silent.uri(), 90, true);
+    EXPECT_TRUE(run.bus.eos) << run.bus.error;
+    EXPECT_EQ(run.json.size(), 90u);
+    ASSERT_EQ(run.bus.warnings.size(), 1u);
+    EXPECT_EQ(run.bus.warnings[0].rfind("t: ", 0), 0u) << run.bus.warnings[0];
+    EXPECT_NE(run.bus.warnings[0].find(silent.uri()), std::string::npos) << run.bus.warnings[0];
+    EXPECT_GE(silent.accepted(), 2);  // it kept trying
+    const auto changes = run.bus.named("head-connection", "t");
+    ASSERT_EQ(changes.size(), 1u);
+    EXPECT_STREQ(gst_structure_get_string(changes[0], "state"), "disconnected");
+}
+
+}  // namespace
