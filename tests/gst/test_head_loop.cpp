@@ -1,0 +1,170 @@
+// The whole loop through GStreamer, in real time: two live handscenesrc rendering from the
+// simulated head's pose -> handtracker steering that head over loopback TCP -> fakesink.
+// The hand must stay in the middle of the left view; a head killed and restarted mid-stream
+// must not stop the pipeline, must be reported, and must be back within 2 s.
+#include "gst_fixture.hpp"
+
+#include "../closedloop/running_head.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <string>
+#include <thread>
+
+namespace {
+
+using gc::closedloop_test::loopback_head;
+using gc::closedloop_test::RunningHead;
+using namespace std::chrono_literals;
+
+constexpr int kFps = 30;
+
+std::string loop_pipeline(const std::string& uri, const char* steer, int frames)
+{
+    const std::string common = " is-live=true scene=light motion=translate seed=3 head=" + uri +
+                               " num-buffers=" + std::to_string(frames) + " ";
+    return "handscenesrc name=l eye=left" + common + "! t.sink_left handscenesrc name=r eye=right truth-messages=false" +
+           common + "! t.sink_right handtracker name=t particles=500 seed=7 head=" + uri + " steer=" + steer +
+           " ! fakesink";
+}
+
+GstClockTime timestamp_of(const GstStructure* s)
+{
+    guint64 t = GST_CLOCK_TIME_NONE;
+    gst_structure_get_uint64(s, "timestamp", &t);
+    return t;
+}
+
+struct LoopFigures {
+    GstClockTime acquired = GST_CLOCK_TIME_NONE;  // first output with the left eye tracking
+    int scored = 0, centred = 0;                  // truth frames from 1 s after acquisition
+    int outputs = 0, tracked = 0;                 // output frames from 1 s after acquisition
+    double max_pan_deg = 0.0;
+    double centred_fraction() const { return scored ? double(centred) / scored : 0.0; }
+    double tracked_fraction() const { return outputs ? double(tracked) / outputs : 0.0; }
+};
+
+LoopFigures figures(const gc::test::RunResult& r, const char* steer)
+{
+    LoopFigures f;
+    const auto outputs = r.named("hand-pointing", "t");
+    for (const GstStructure* m : outputs) {
+        const GstStructure* left = gc::test::get_child(m, "left");
+        if (left && g_str_equal(gst_structure_get_string(left, "state"), "tracking")) {
+            f.acquired = timestamp_of(m);
+            break;
+        }
+    }
+    if (!GST_CLOCK_TIME_IS_VALID(f.acquired))
+        return f;
+    const GstClockTime from = f.acquired + GST_SECOND;
+    for (const GstStructure* m : outputs) {
+        if (timestamp_of(m) < from)
+            continue;
+        ++f.outputs;
+        const GstStructure* left = gc::test::get_child(m, "left");
+        f.tracked += left && g_str_equal(gst_structure_get_string(left, "state"), "tracking");
+    }
+    for (const GstStructure* t : r.named("hand-truth", "l")) {
+        f.max_pan_deg = std::max(f.max_pan_deg, std::abs(gc::test::get_double(t, "head-pan-deg")));
+        if (timestamp_of(t) < from)
+            continue;
+        ++f.scored;
+        gboolean visible = FALSE;
+        gst_structure_get_boolean(t, "visible", &visible);
+        const double x = gc::test::get_double(t, "palm-x"), y = gc::test::get_double(t, "palm-y");
+        f.centred += visible && std::abs(x - 320.0) < 640.0 / 6 && std::abs(y - 240.0) < 480.0 / 6;
+    }
+    std::printf("steer=%s: acquired at %.2f s; from 1 s later: hand in the central third of the left view in "
+                "%.1f %% of %d frames, left eye tracking in %.1f %% of %d outputs, largest pan %.1f deg\n",
+                steer, double(f.acquired) / GST_SECOND, 100.0 * f.centred_fraction(), f.scored,
+                100.0 * f.tracked_fraction(), f.outputs, f.max_pan_deg);
+    return f;
+}
+
+TEST(HeadLoop, FixateKeepsTheHandInTheMiddleAndTracksAsWellAsStaticCameras)
+{
+    gc::test::init_gstreamer();
+    LoopFigures off, fixate;
+    for (const char* steer : {"off", "fixate"}) {
+        RunningHead head(loopback_head(0, 0.02));
+        const gc::test::RunResult r = gc::test::run_pipeline(loop_pipeline(head.uri(), steer, 10 * kFps));
+        ASSERT_TRUE(r.eos) << r.error;
+        (g_str_equal(steer, "off") ? off : fixate) = figures(r, steer);
+    }
+    ASSERT_TRUE(GST_CLOCK_TIME_IS_VALID(fixate.acquired)) << "never acquired";
+    ASSERT_GT(fixate.scored, 150);
+    EXPECT_GE(fixate.centred_fraction(), 0.95);
+    EXPECT_GT(fixate.max_pan_deg, 3.0);  // the head did follow
+    EXPECT_EQ(off.max_pan_deg, 0.0);
+    EXPECT_LT(off.centred_fraction(), 0.9);  // without steering the same motion leaves the middle
+    EXPECT_GE(fixate.tracked_fraction(), off.tracked_fraction() - 0.01);
+}
+
+TEST(HeadLoop, AHeadRestartedMidStreamIsBackWithinTwoSeconds)
+{
+    gc::test::init_gstreamer();
+    auto head = std::make_unique<RunningHead>(loopback_head(0, 0.02));
+    const std::uint16_t port = head->port();
+    const std::string uri = head->uri();
+    gc::test::ElementPtr pipeline = gc::test::parse_pipeline(loop_pipeline(uri, "fixate", 8 * kFps));
+    ASSERT_TRUE(pipeline);
+
+    // Kill the head 2.5 s after PLAYING and start a new one on the same port 1 s later.
+    const auto start = std::chrono::steady_clock::now();
+    double killed_s = 0.0, restarted_s = 0.0;
+    std::thread operator_thread([&] {
+        std::this_thread::sleep_until(start + 2500ms);
+        head.reset();
+        killed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        std::this_thread::sleep_until(start + 3500ms);
+        head = std::make_unique<RunningHead>(loopback_head(port, 0.02));
+        restarted_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    });
+    const gc::test::RunResult r = gc::test::run_pipeline(pipeline.get());
+    operator_thread.join();
+    ASSERT_TRUE(r.eos) << r.error;
+
+    // Every frame came out, with no stall while the head was away.
+    const auto outputs = r.named("hand-pointing", "t");
+    EXPECT_GE(outputs.size(), size_t(8 * kFps - 2));
+    double largest_gap_s = 0.0, previous_s = -1.0;
+    for (size_t i = 0; i < r.messages.size(); ++i) {
+        if (r.sources[i] != "t" || !gst_structure_has_name(r.messages[i].get(), "hand-pointing"))
+            continue;
+        if (previous_s >= 0.0)
+            largest_gap_s = std::max(largest_gap_s, r.received_s[i] - previous_s);
+        previous_s = r.received_s[i];
+    }
+    EXPECT_LT(largest_gap_s, 0.5);
+
+    // One warning from the tracker for the outage, naming the head, after the kill.
+    int tracker_warnings = 0;
+    for (size_t i = 0; i < r.warnings.size(); ++i) {
+        if (r.warnings[i].rfind("t: ", 0) != 0)
+            continue;
+        ++tracker_warnings;
+        EXPECT_NE(r.warnings[i].find(uri), std::string::npos) << r.warnings[i];
+        EXPECT_GE(r.warnings_s[i], killed_s - 0.1);
+    }
+    EXPECT_EQ(tracker_warnings, 1);
+
+    // Connected again: the tracker's head-connection messages after the restart.
+    std::optional<double> back_s;
+    for (size_t i = 0; i < r.messages.size(); ++i)
+        if (r.sources[i] == "t" && gst_structure_has_name(r.messages[i].get(), "head-connection") &&
+            g_str_equal(gst_structure_get_string(r.messages[i].get(), "state"), "connected") &&
+            r.received_s[i] > restarted_s && !back_s)
+            back_s = r.received_s[i];
+    ASSERT_TRUE(back_s.has_value()) << "never reconnected";
+    std::printf("head killed at %.2f s, restarted at %.2f s, handtracker reconnected %.0f ms later; largest gap "
+                "between output frames %.0f ms; %zu outputs\n",
+                killed_s, restarted_s, 1000.0 * (*back_s - restarted_s), 1000.0 * largest_gap_s, outputs.size());
+    EXPECT_LT(*back_s - restarted_s, 2.0);
+}
+
+}  // namespace
