@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
-# The main job, on the built-in default input: two handscenesrc eyes of a synthetic scene ->
-# handtracker (tracking overlay, attended view) -> H.264 -> out/demo.mp4, with one JSON line
-# per frame in out/demo.jsonl, then a summary. Installs what is missing and builds first.
-# Environment: FRAMES (default 300), SCENE (clean|light|heavy|face_pass, default light),
-# MOTION (default mixed), SEED (default 1), PARTICLES (default 1000).
+# The main job, on the built-in default input: the whole loop. headsim (the simulated head)
+# carries two live handscenesrc cameras; handtracker tracks the hand in both views, steers
+# the head to keep the hand in the middle of the view (steer=fixate) and outputs the
+# attended view with the tracking overlay -> H.264 -> out/demo.mp4, one JSON line per frame
+# in out/demo.jsonl; then the figures of the run. Installs what is missing and builds first.
+# Environment: FRAMES (default 300, at 30 frames/s in real time), SCENE (clean|light|heavy|
+# face_pass, default light), MOTION (default translate), SEED (default 3), PARTICLES
+# (default 1000), STEER (off|fixate|point, default fixate).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
@@ -14,37 +17,76 @@ meson compile -C build -j "$(nproc)"
 
 frames=${FRAMES:-300}
 scene=${SCENE:-light}
-motion=${MOTION:-mixed}
-seed=${SEED:-1}
+motion=${MOTION:-translate}
+seed=${SEED:-3}
 particles=${PARTICLES:-1000}
+steer=${STEER:-fixate}
 export GST_PLUGIN_PATH="$root/build/gst-plugin${GST_PLUGIN_PATH:+:$GST_PLUGIN_PATH}"
 mkdir -p out
-rm -f out/demo.mp4 out/demo.jsonl
+rm -f out/demo.mp4 out/demo.jsonl out/demo.bus.txt
+
+# The simulated head on a free loopback port; stopped on exit.
+headsim_out=$(mktemp)
+build/headctl/headsim --listen 127.0.0.1:0 --latency-ms 20 >"$headsim_out" &
+headsim_pid=$!
+trap 'kill "$headsim_pid" 2>/dev/null || true; wait "$headsim_pid" 2>/dev/null || true; rm -f "$headsim_out"' EXIT
+for _ in $(seq 100); do grep -q '^listening' "$headsim_out" && break; sleep 0.05; done
+address=$(sed -n 's/^listening //p' "$headsim_out")
+[ -n "$address" ] || { echo "headsim did not start" >&2; exit 1; }
+head="tcp://$address"
 
 caps="video/x-raw,width=640,height=480,framerate=30/1"
-eye() { echo "handscenesrc eye=$1 scene=$scene motion=$motion seed=$seed num-buffers=$frames ! $caps"; }
+eye() {
+  echo "handscenesrc name=$1 eye=$1 is-live=true head=$head scene=$scene motion=$motion seed=$seed" \
+       "num-buffers=$frames truth-messages=$2 ! $caps"
+}
 
-echo "Rendering $frames stereo frames of the '$scene' scene, tracking with $particles particles per eye..."
+echo "Head: headsim at $head. Rendering $frames live stereo frames ($((frames / 30)) s) of the '$scene' scene,"
+echo "tracking with $particles particles per eye, steer=$steer..."
 start=$(date +%s.%N)
+# -m: the bus messages (the scene's ground truth among them) go to out/demo.bus.txt.
 # shellcheck disable=SC2046
-gst-launch-1.0 -q -e \
-  $(eye left) ! t.sink_left \
-  $(eye right) ! t.sink_right \
-  handtracker name=t particles="$particles" draw=true output=attended json-location=out/demo.jsonl \
-  ! videoconvert ! x264enc tune=zerolatency speed-preset=veryfast ! mp4mux ! filesink location=out/demo.mp4
+gst-launch-1.0 -m -e \
+  $(eye left true) ! t.sink_left \
+  $(eye right false) ! t.sink_right \
+  handtracker name=t particles="$particles" head="$head" steer="$steer" draw=true output=attended \
+    message-updates=on-change json-location=out/demo.jsonl \
+  ! videoconvert ! x264enc tune=zerolatency speed-preset=veryfast ! mp4mux ! filesink location=out/demo.mp4 \
+  >out/demo.bus.txt
 end=$(date +%s.%N)
+grep -E '^(WARNING|ERROR|INFO)' -A1 out/demo.bus.txt || true
 
-python3 - "$start" "$end" <<'PY'
-import json, sys
-start, end = float(sys.argv[1]), float(sys.argv[2])
+python3 - "$start" "$end" "$steer" <<'PY'
+import json, re, sys
+start, end, steer = float(sys.argv[1]), float(sys.argv[2]), sys.argv[3]
 rows = [json.loads(line) for line in open("out/demo.jsonl")]
 n = len(rows)
 tracked = sum(r["state"] == "tracking" for r in rows)
-first = next((r["frame"] for r in rows if r["state"] == "tracking"), None)
-pointing = [r["pointing"] for r in rows if r.get("pointing")]
+first = next((r for r in rows if r["state"] == "tracking"), None)
+pointing = sum(1 for r in rows if r.get("pointing"))
+
+def field(line, name, kind="double"):
+    m = re.search(name + r"=\(" + kind + r"\)([^,;]+)", line)
+    return m.group(1) if m else None
+
+truth = []  # (timestamp ns, visible, palm x, palm y, pan, tilt) of the left view
+for line in open("out/demo.bus.txt"):
+    if "hand-truth" not in line or 'element "left"' not in line:
+        continue
+    truth.append((int(field(line, "timestamp", "guint64")), field(line, "visible", "boolean") == "true",
+                  float(field(line, "palm-x")), float(field(line, "palm-y")),
+                  float(field(line, "head-pan-deg")), float(field(line, "head-tilt-deg"))))
 print(f"frames: {n}")
-print(f"tracked: {tracked} ({100.0 * tracked / max(n, 1):.1f} %), first at frame {first}")
-print(f"3D pointing ray in {len(pointing)} frames")
-print(f"throughput: {n / (end - start):.1f} stereo frames/s (render + track + draw + encode)")
-print("video: out/demo.mp4   JSON lines: out/demo.jsonl")
+print(f"tracked: {tracked} ({100.0 * tracked / max(n, 1):.1f} %), first at frame {first['frame'] if first else None}")
+print(f"3D pointing ray in {pointing} frames")
+if first and truth:
+    since = first["pts_ns"] + 1_000_000_000  # from one second after acquisition
+    scored = [t for t in truth if t[0] >= since]
+    centred = sum(1 for t in scored if t[1] and abs(t[2] - 320) < 640 / 6 and abs(t[3] - 240) < 480 / 6)
+    print(f"hand in the central third of the left view: {100.0 * centred / max(len(scored), 1):.1f} % "
+          f"of {len(scored)} frames from 1 s after acquisition (steer={steer})")
+    pans, tilts = [t[4] for t in truth], [t[5] for t in truth]
+    print(f"head pan {min(pans):+.1f} .. {max(pans):+.1f} deg, tilt {min(tilts):+.1f} .. {max(tilts):+.1f} deg")
+print(f"wall time: {end - start:.1f} s for {n / 30:.1f} s of video (live)")
+print("video: out/demo.mp4   JSON lines: out/demo.jsonl   bus messages: out/demo.bus.txt")
 PY
