@@ -61,6 +61,7 @@ struct SceneState {
     cv::Mat yuv_scratch;
     gc::sim::EyeTruth truth;
     gc::HeadPose pose;  // the pose the last frame was rendered from
+    bool warned_pose = false;  // about a head pose the room cannot be rendered from
     std::unique_ptr<gc::headctl::HeadClient> head;
 };
 
@@ -315,10 +316,11 @@ static GstFlowReturn gst_hand_scene_src_fill(GstPushSrc* src, GstBuffer* buffer)
     // live frame is rendered up to one frame ahead, so the pose is extrapolated along the
     // head's last velocity. Home until the head is first heard from; its last pose while
     // it is away.
+    gc::HeadPose pose = st.pose;
     if (st.head) {
         const GstClockTime running = gst_segment_to_running_time(&GST_BASE_SRC(self)->segment, GST_FORMAT_TIME, pts);
-        if (std::optional<gc::HeadPose> pose = st.head->pose_at(gc::gst::capture_time(GST_ELEMENT(self), running)))
-            st.pose = *pose;
+        if (std::optional<gc::HeadPose> at = st.head->pose_at(gc::gst::capture_time(GST_ELEMENT(self), running)))
+            pose = *at;
     }
     GstVideoFrame out;
     if (!gst_video_frame_map(&out, &st.info, buffer, GST_MAP_WRITE)) {
@@ -326,8 +328,25 @@ static GstFlowReturn gst_hand_scene_src_fill(GstPushSrc* src, GstBuffer* buffer)
         return GST_FLOW_ERROR;
     }
     try {
-        st.scene->render(int(frame), settings.eye, st.pose, st.bgr,
-                         settings.truth_messages ? &st.truth : nullptr);
+        gc::sim::EyeTruth* truth = settings.truth_messages ? &st.truth : nullptr;
+        if (st.head) {
+            // A head turned further than the simulated room reaches (one wall ahead): keep
+            // the last pose that could be shown rather than stopping the stream.
+            try {
+                st.scene->render(int(frame), settings.eye, pose, st.bgr, truth);
+                st.pose = pose;
+            } catch (const std::invalid_argument& err) {
+                if (!st.warned_pose)
+                    GST_ELEMENT_WARNING(self, STREAM, FAILED,
+                                        ("The head turned past what the simulated room can show; rendering from "
+                                         "the last pose it could."),
+                                        ("%s", err.what()));
+                st.warned_pose = true;
+                st.scene->render(int(frame), settings.eye, st.pose, st.bgr, truth);
+            }
+        } else {
+            st.scene->render(int(frame), settings.eye, st.pose, st.bgr, truth);
+        }
         gc::gst::write_bgr(st.bgr, out, st.yuv_scratch);
     } catch (const std::exception& err) {
         gst_video_frame_unmap(&out);
@@ -357,6 +376,7 @@ static gboolean gst_hand_scene_src_start(GstBaseSrc* src)
     SceneState& st = *self->state;
     st.next_frame = 0;
     st.pose = {};
+    st.warned_pose = false;
     gst_video_info_init(&st.info);
     GST_OBJECT_LOCK(self);
     const std::string uri = self->settings->head;

@@ -242,7 +242,12 @@ struct HeadLink::Impl {
 
     void steer_point(const FrameResult& r)
     {
-        pointing_run = r.pointing.valid ? pointing_run + 1 : 0;
+        // Only a ray seen from a head at rest counts: frames taken while turning carry the
+        // pose's interpolation error and motion blur, and re-aiming on them makes the head hunt.
+        const std::optional<headctl::StateSample> latest = client->latest();
+        const bool moving = latest && std::any_of(latest->state.moving.begin(), latest->state.moving.end(),
+                                                  [](bool m) { return m; });
+        pointing_run = r.pointing.valid && !moving ? pointing_run + 1 : 0;
         if (pointing_run < config.point_settle_frames) return;
         const cv::Vec3d target =
             r.pointing.fingertip_head_mm + config.target_distance_mm * r.pointing.direction_head;

@@ -37,6 +37,7 @@ struct HeadLinkConfig {
     double vergence_dead_band_deg = 0.3;
     double point_release_deg = 2.0;       // point mode: re-aim when the target moved this far
     int point_settle_frames = 5;          // ...and the pointing held valid this many frames
+                                          // with the head at rest
     std::chrono::milliseconds reconnect_max{500};  // longest wait between connection attempts
     // The clock capture times are on; steady_clock when empty.
     std::function<headctl::Timestamp()> clock;
