@@ -5,6 +5,7 @@
 #include "gst_fixture.hpp"
 
 #include "../closedloop/running_head.hpp"
+#include "headctl/head_client.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -165,6 +166,37 @@ TEST(HeadLoop, AHeadRestartedMidStreamIsBackWithinTwoSeconds)
                 "between output frames %.0f ms; %zu outputs\n",
                 killed_s, restarted_s, 1000.0 * (*back_s - restarted_s), 1000.0 * largest_gap_s, outputs.size());
     EXPECT_LT(*back_s - restarted_s, 2.0);
+}
+
+TEST(HeadLoop, AHeadTurnedPastTheSimulatedRoomDoesNotStopTheScene)
+{
+    // headsim pans to 120 deg; the simulated room (one wall ahead) cannot be seen from there.
+    // handscenesrc follows the head as far as the room reaches, then keeps that view with
+    // one warning, and the stream runs to its end.
+    gc::test::init_gstreamer();
+    RunningHead head(loopback_head(0, 0.0));
+    gc::headctl::HeadClientConfig driver_config;
+    driver_config.uri = head.uri();
+    gc::headctl::HeadClient driver(driver_config);
+    std::thread mover([&] {
+        std::this_thread::sleep_for(300ms);
+        gc::headctl::HeadCommand turn{gc::headctl::CommandKind::Absolute, {}};
+        turn.values.set(gc::headctl::Axis::Pan, 120.0);
+        driver.submit(turn);
+    });
+    const gc::test::RunResult r = gc::test::run_pipeline(
+        "handscenesrc name=l is-live=true scene=light head=" + head.uri() + " num-buffers=75 ! fakesink");
+    mover.join();
+    ASSERT_TRUE(r.eos) << r.error;
+    const auto truths = r.named("hand-truth", "l");
+    EXPECT_EQ(truths.size(), 75u);
+    double largest_pan = 0.0;
+    for (const GstStructure* t : truths)
+        largest_pan = std::max(largest_pan, gc::test::get_double(t, "head-pan-deg"));
+    EXPECT_GT(largest_pan, 20.0);  // it did follow the head
+    EXPECT_LT(largest_pan, 90.0);  // but only as far as the room can be shown
+    ASSERT_EQ(r.warnings.size(), 1u);
+    EXPECT_NE(r.warnings[0].find("simulated room"), std::string::npos) << r.warnings[0];
 }
 
 }  // namespace
