@@ -38,6 +38,18 @@ std::vector<cv::Point2d> smooth_ring(const std::vector<cv::Point>& ring, double 
     return out;
 }
 
+// Distance to the outline of each pixel inside it (holes filled), over `box` (the
+// outline's bounding box) with a one-pixel margin: pixel (x, y) is at (x - box.x + 1, y - box.y + 1).
+cv::Mat1f inside_distance(const std::vector<cv::Point>& outline, const cv::Rect& box) {
+    cv::Mat1b filled(box.height + 2, box.width + 2, uchar(0));
+    std::vector<std::vector<cv::Point>> one{outline};
+    cv::drawContours(filled, one, 0, 255, cv::FILLED, cv::LINE_8, cv::noArray(), 0,
+                     cv::Point(1 - box.x, 1 - box.y));
+    cv::Mat1f dist;
+    cv::distanceTransform(filled, dist, cv::DIST_L2, cv::DIST_MASK_5);
+    return dist;
+}
+
 }  // namespace
 
 HandLandmarks find_hand_landmarks(const cv::Mat& mask) {
@@ -62,12 +74,7 @@ HandLandmarks find_hand_landmarks(const cv::Mat& mask) {
     // The palm is the thickest part: the maximum of the distance transform of the filled
     // outline (holes filled, so a shadowed spot on the palm cannot move it).
     const cv::Rect box = cv::boundingRect(lm.outline);
-    cv::Mat1b filled(box.height + 2, box.width + 2, uchar(0));
-    std::vector<std::vector<cv::Point>> one{lm.outline};
-    cv::drawContours(filled, one, 0, 255, cv::FILLED, cv::LINE_8, cv::noArray(), 0,
-                     cv::Point(1 - box.x, 1 - box.y));
-    cv::Mat1f dist;
-    cv::distanceTransform(filled, dist, cv::DIST_L2, cv::DIST_MASK_5);
+    const cv::Mat1f dist = inside_distance(lm.outline, box);
     double max_dist = 0.0;
     cv::Point at;
     cv::minMaxLoc(dist, nullptr, &max_dist, nullptr, &at);
@@ -177,6 +184,30 @@ HandTemplate HandTemplate::from_mask(const cv::Mat& mask, const cv::Mat1b& membe
     sample(options.measurement_normals, t.points, t.normals, t.weights);
     sample(options.outline_points, t.outline, t.outline_normals, t.outline_weights);
     return t;
+}
+
+HandProportions hand_proportions(const cv::Mat& mask) {
+    HandProportions out;
+    HandLandmarks lm;
+    try {
+        lm = find_hand_landmarks(mask);
+    } catch (const std::invalid_argument&) {
+        return out;
+    }
+    const cv::Rect box = cv::boundingRect(lm.outline);
+    const cv::Mat1f dist = inside_distance(lm.outline, box);
+    double widest = 0.0;
+    for (int k = 0; k <= 8; ++k) {
+        const cv::Point2d p = lm.palm + (0.55 + 0.05 * k) * (lm.fingertip - lm.palm);
+        const int x = cvRound(p.x) - box.x + 1, y = cvRound(p.y) - box.y + 1;
+        if (x >= 0 && y >= 0 && x < dist.cols && y < dist.rows)
+            widest = std::max(widest, double(dist(y, x)));
+    }
+    const double r = std::max(1.0, lm.palm_radius);
+    out.finger_width = widest / r;
+    out.reach = norm(lm.fingertip - lm.palm) / r;
+    out.valid = true;
+    return out;
 }
 
 }  // namespace gc

@@ -53,4 +53,16 @@ struct HandLandmarks {
 };
 HandLandmarks find_hand_landmarks(const cv::Mat& mask);
 
+// Proportions of a binary hand mask that tell a pointing hand from a blob merged with a
+// touching object: `finger_width`, the largest inscribed-circle radius 55-95 % of the way
+// from the palm centre to the fingertip, and `reach`, palm centre to fingertip, both in
+// palm radii. `pointing()` applies the bounds (see docs/tracker.md).
+struct HandProportions {
+    double finger_width = 0.0;
+    double reach = 0.0;
+    bool valid = false;  // false: no landmarks could be found
+    bool pointing() const { return valid && finger_width <= 0.33 && reach >= 1.8 && reach <= 3.0; }
+};
+HandProportions hand_proportions(const cv::Mat& mask);
+
 }  // namespace gc

@@ -1,5 +1,7 @@
 #include "detect/motion_detector.hpp"
 
+#include "contour/hand_template.hpp"
+
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
@@ -74,6 +76,22 @@ std::optional<SkinModel> learn_skin(const cv::Mat& bgr, const cv::Mat1b& moving,
     }
 }
 
+// The largest 8-connected component of `mask` and its area (0 and an empty mask if none).
+cv::Mat1b largest_component(const cv::Mat1b& mask, int& area) {
+    cv::Mat1i labels;
+    cv::Mat stats, centroids;
+    const int n = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
+    int keep = 0;
+    area = 0;
+    for (int i = 1; i < n; ++i)
+        if (stats.at<int>(i, cv::CC_STAT_AREA) > area) {
+            area = stats.at<int>(i, cv::CC_STAT_AREA);
+            keep = i;
+        }
+    if (keep == 0) return {};
+    return labels == keep;
+}
+
 }  // namespace
 
 std::optional<Detection> segment_hand(const cv::Mat& bgr, const cv::Mat1b& moving,
@@ -114,36 +132,61 @@ std::optional<Detection> segment_hand(const cv::Mat& bgr, const cv::Mat1b& movin
     if (votes[best] == 0) return std::nullopt;
     cv::Mat1b blob = labels == best;
     int area = stats.at<int>(best, cv::CC_STAT_AREA);
+    double support = 1.0;
+    bool cut = false;
     if (!recent_motion.empty() && recent_motion.size() == bgr.size()) {
         cv::Mat1b near;
         const int k = 2 * params.history_reach + 1;
         cv::dilate(recent_motion, near, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(k, k)));
         cv::bitwise_and(near, blob, near);
         const int kept = cv::countNonZero(near);
+        support = double(kept) / std::max(1, area);
         // Cut only when a large part is static: a hand that barely moved keeps its palm.
         // Until motion has been seen for a while, a mostly static blob is not trusted
         // either way: wait for more of the hand to move.
         if (kept < 0.75 * area && !history_mature) return std::nullopt;
         if (kept < 0.75 * area) {
             cv::morphologyEx(near, near, cv::MORPH_OPEN, kernel);
-            cv::Mat1i cut_labels;
-            cv::Mat cut_stats, cut_centroids;
-            const int n = cv::connectedComponentsWithStats(near, cut_labels, cut_stats, cut_centroids, 8, CV_32S);
-            int keep = 0, keep_area = 0;
-            for (int i = 1; i < n; ++i)
-                if (cut_stats.at<int>(i, cv::CC_STAT_AREA) > keep_area) {
-                    keep_area = cut_stats.at<int>(i, cv::CC_STAT_AREA);
-                    keep = i;
-                }
-            if (keep == 0) return std::nullopt;
-            blob = cut_labels == keep;
+            int keep_area = 0;
+            cv::Mat1b kept_part = largest_component(near, keep_area);
+            if (keep_area == 0) return std::nullopt;
+            blob = kept_part;
             area = keep_area;
+            cut = true;
+        }
+    }
+    // A component that is still not shaped like a pointing hand (a touching object's
+    // remnant next to the finger or the palm) is cut closer to the motion: the
+    // neighbourhood shrinks until the shape is a pointing hand (holes filled, since the
+    // middle of the palm may not have changed), else the wider cut stands.
+    if (!recent_motion.empty() && recent_motion.size() == bgr.size() && history_mature &&
+        !hand_proportions(blob).pointing()) {
+        const cv::Mat1b component = labels == best;
+        for (const int reach : {params.history_reach * 2 / 3, params.history_reach / 3}) {
+            if (reach < 2) break;
+            cv::Mat1b near;
+            cv::dilate(recent_motion, near,
+                       cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * reach + 1, 2 * reach + 1)));
+            cv::bitwise_and(near, component, near);
+            std::vector<std::vector<cv::Point>> outer;
+            cv::findContours(near, outer, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE);
+            cv::drawContours(near, outer, -1, 255, cv::FILLED);
+            cv::bitwise_and(near, component, near);
+            cv::morphologyEx(near, near, cv::MORPH_OPEN, kernel);
+            int keep_area = 0;
+            cv::Mat1b candidate = largest_component(near, keep_area);
+            if (keep_area == 0) break;
+            if (!hand_proportions(candidate).pointing()) continue;
+            blob = candidate;
+            area = keep_area;
+            cut = true;
+            break;
         }
     }
     if (area < params.min_hand_area ||
         area > params.max_hand_fraction * double(bgr.rows) * bgr.cols)
         return std::nullopt;
-    Detection d{blob, roi, *skin, double(area)};
+    Detection d{blob, roi, *skin, double(area), support, cut};
     // Refit on the whole blob: the moving pixels were only part of the hand.
     try {
         d.skin = SkinModel::fit(bgr, d.mask, prior.dark_threshold());
@@ -166,7 +209,8 @@ void MotionDetector::reset() {
     history_.release();
 }
 
-std::optional<Detection> MotionDetector::process(const cv::Mat& bgr, const SkinModel& prior) {
+std::optional<Detection> MotionDetector::process(const cv::Mat& bgr, const SkinModel& prior,
+                                                 bool segment) {
     check_frame(bgr);
     cv::cvtColor(bgr, grey_, cv::COLOR_BGR2GRAY);
     if (previous_.empty() || previous_.size() != grey_.size()) {
@@ -187,6 +231,7 @@ std::optional<Detection> MotionDetector::process(const cv::Mat& bgr, const SkinM
         return std::nullopt;
     }
     ++motion_frames_;
+    if (!segment) return std::nullopt;
     cv::Rect box = cv::boundingRect(changed_);
     box.x -= p_.box_margin;
     box.y -= p_.box_margin;

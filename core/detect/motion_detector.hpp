@@ -30,6 +30,10 @@ struct Detection {
     cv::Rect box;       // where the motion was
     SkinModel skin;     // fitted to the hand's pixels
     double area = 0.0;  // hand pixels
+    // Fraction of the skin component within history_reach of recent motion (1 without a
+    // history), before any cut: how sure the capture is to be the moving hand alone.
+    double motion_support = 1.0;
+    bool cut = false;   // the component was cut to the neighbourhood of recent motion
 };
 
 class MotionDetector {
@@ -40,8 +44,11 @@ public:
     // Compares `bgr` (CV_8UC3) with the previous frame given; returns the hand when a
     // moving skin-coloured blob is found. The first frame, or one whose size changed, only
     // primes the detector. Throws std::invalid_argument on an empty or non-BGR frame.
+    // With `segment` false only the frame difference and the motion history are updated
+    // (cheap), and nullopt is returned: for watching the hand between full detections.
     std::optional<Detection> process(const cv::Mat& bgr,
-                                     const SkinModel& prior = SkinModel::generic());
+                                     const SkinModel& prior = SkinModel::generic(),
+                                     bool segment = true);
 
     void reset();
 

@@ -68,6 +68,19 @@ MotionScript::MotionScript(const SceneConfig& c, double half_fov_x, double half_
     leave_start_ = kWaveSeconds + kHold;
     leave_side_ = uniform(rng, 0, 1) < 0.5 ? -1.0 : 1.0;
 
+    limit_speed();
+}
+
+void MotionScript::set_pass(double start, double duration, cv::Vec2d target)
+{
+    pass_start_ = start;
+    pass_duration_ = duration;
+    pass_target_ = target;
+    limit_speed();
+}
+
+void MotionScript::limit_speed()
+{
     // Slow the script down (never change its path) until the fingertip stays under the
     // speed limit.
     for (int iter = 0; iter < 20; ++iter) {
@@ -118,6 +131,11 @@ HandPose MotionScript::at(double t) const
     p.roll_deg = 90.0 + bounded(rest_.roll_deg - 90.0, ramp * channels_[Roll].value(tau), 105.0);
     p.yaw_deg = bounded(rest_.yaw_deg, ramp * channels_[Yaw].value(tau), 60.0);
     p.pitch_deg = bounded(rest_.pitch_deg, ramp * channels_[Pitch].value(tau), 30.0);
+    if (pass_duration_ > 0.0 && t > pass_start_ && t < pass_start_ + pass_duration_) {
+        const double w = std::pow(std::sin(kPi * (t - pass_start_) / pass_duration_), 2);
+        p.palm_mm[0] += w * (pass_target_[0] * z - p.palm_mm[0]);
+        p.palm_mm[1] += w * (pass_target_[1] * z - p.palm_mm[1]);
+    }
     if (away > 0.0) {
         // Out past the edge of both views, hand and all.
         const double out = z * half_fov_x_ + 0.5 * baseline_ + 1.6 * finger_ + std::abs(rest_.palm_mm[0]);

@@ -18,6 +18,12 @@ public:
 
     HandPose at(double t) const;
 
+    // face_pass: between `start` and `start + duration` seconds the palm's view direction
+    // (x / z, y / z) is blended towards `target` and back (sin^2), so at the middle the
+    // palm is exactly on that ray, whatever the motion does. The speed limit is re-applied.
+    void set_pass(double start, double duration, cv::Vec2d target);
+    double pass_middle() const { return pass_start_ + 0.5 * pass_duration_; }
+
     static constexpr double kWaveSeconds = 1.2;
     static constexpr double kMaxSpeedMmS = 480.0;
 
@@ -31,6 +37,7 @@ private:
     enum Index { X, Y, Z, Roll, Yaw, Pitch, kChannels };
 
     double peak_speed() const;
+    void limit_speed();
 
     Motion motion_;
     double distance_;
@@ -40,6 +47,8 @@ private:
     std::array<Channel, kChannels> channels_;
     double leave_start_ = 0.0;  // LeaveReturn: when the hand starts to leave
     double leave_side_ = 1.0;
+    double pass_start_ = 0.0, pass_duration_ = 0.0;  // duration 0: no pass
+    cv::Vec2d pass_target_;
 };
 
 }  // namespace gc::sim

@@ -172,13 +172,29 @@ Scene::Impl::Impl(const SceneConfig& c) : config(c)
     light_phase[1] = uniform(motion_rng, 0, 2 * kPi);
 
     if (c.preset == Preset::FacePass) {
-        // A person sits behind the hand's path: the face is where the palm will be at a
-        // seeded moment, seen from the head, further back.
+        // A person sits behind the hand's path, and the hand starts (waves, is acquired)
+        // beside the face, not on it: the face is a hand's reach plus the face's own half
+        // height (in the hand's plane) away from where the palm waves, to one side towards
+        // the image centre, and the hand makes a seeded pass across it 2.2-3.2 s after the
+        // wave (the crossing, whatever the motion does meanwhile; after the return for
+        // leave_return).
         Rng person_rng(mix_seed(c.seed, kPersonStream));
-        const double when = MotionScript::kWaveSeconds + uniform(person_rng, 2.5, 5.0);
-        const cv::Vec3d palm = script->at(when).palm_mm;
+        Rng pass_rng(mix_seed(c.seed, kPersonStream) ^ 0x9A55ULL);
         const double depth = c.hand_distance_mm + 600.0;
-        person = build_person(palm * (depth / palm[2]), skin, person_rng);
+        cv::Vec2d wave(0.0, 0.0);
+        int samples = 0;
+        for (double t = 0.0; t <= MotionScript::kWaveSeconds; t += 0.05, ++samples)
+            wave += cv::Vec2d(script->at(t).palm_mm[0], script->at(t).palm_mm[1]) *
+                    (1.0 / script->at(t).palm_mm[2]);
+        wave *= 1.0 / samples;
+        const double reach = (hand.finger_length_mm + 15.0) / c.hand_distance_mm + 110.0 / depth;
+        const double angle = uniform(pass_rng, -0.45, 0.45);  // radians off the horizontal
+        const double side = wave[0] > 0.0 ? -1.0 : 1.0;       // towards the image centre
+        const cv::Vec2d target = wave + reach * cv::Vec2d(side * std::cos(angle), std::sin(angle));
+        const double after = c.motion == Motion::LeaveReturn ? 11.0 : 0.0;  // back in view
+        const double start = MotionScript::kWaveSeconds + after + uniform(person_rng, 0.2, 1.2);
+        script->set_pass(start, 4.0, target);
+        person = build_person(cv::Vec3d(target[0] * depth, target[1] * depth, depth), skin, person_rng);
     }
 
     if (c.noise_sigma > 0.0) {

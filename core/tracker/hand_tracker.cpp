@@ -32,6 +32,14 @@ constexpr double kAdaptConfidence = 0.8;  // skin mean adapts only from a truste
 constexpr double kAdaptRate = 0.05;
 constexpr int kMinFrameSide = 32;
 constexpr double kRimSkinFraction = 0.85;  // inner rim this much skin: the hand is there
+// A capture is clean when nearly all of its skin component lay near recent motion and
+// nothing had to be cut off: then it is the moving hand alone. Otherwise it may include
+// a static skin-coloured thing the hand touched, and a cleaner capture replaces it when
+// one appears while tracking.
+constexpr double kCleanSupport = 0.9;
+constexpr int kLostSearchEvery = 3;
+constexpr int kRecapturePeriod = 16;  // while the capture is unsure, look again this often
+constexpr int kRecaptureFrames = 7;   // ... over this many frames (history_frames + 1)
 
 void check_frame(const cv::Mat& bgr) {
     if (bgr.empty()) throw std::invalid_argument("HandTracker: empty frame");
@@ -89,6 +97,10 @@ struct HandTracker::Impl {
     bool awaiting_p_init = false;
     int low_frames = 0;
     HandState previous;            // the last reported (refined) state
+    bool provisional = false;      // the template's capture was not clean (kCleanSupport)
+    int tracked_frames = 0;        // since the last start_tracking
+    int lost_search = 0;           // frames searched since the hand was lost
+    cv::Rect recapture_roi;        // the window the detector watches while tracking
 
     explicit Impl(const TrackerParams& p)
         : params(p), sampler(4, p.seed ^ 0x5EEDULL), rng(p.seed) {
@@ -101,7 +113,14 @@ struct HandTracker::Impl {
         ancestors.resize(p.particles);
     }
 
+    // Back to the state of a fresh tracker, random streams included: a reset tracker gives
+    // the same output as a new one with the same parameters.
     void reset() {
+        sampler = QuasiNormalSampler(4, params.seed ^ 0x5EEDULL);
+        rng.seed(params.seed);
+        template_radius = 0.0;
+        previous = HandState{};
+        membership_roi = {};
         detector.reset();
         noise.reset();
         skin.reset();
@@ -112,6 +131,10 @@ struct HandTracker::Impl {
         p_init = 0.0;
         awaiting_p_init = false;
         low_frames = 0;
+        provisional = false;
+        tracked_frames = 0;
+        lost_search = 0;
+        recapture_roi = {};
         for (auto& p : particles) p = Particle{};
     }
 
@@ -140,9 +163,14 @@ struct HandTracker::Impl {
 
     void acquire(const cv::Mat& bgr) {
         // A known hand that was lost may return without waving: look for it by skin first.
-        if (estimate.state == TrackState::Lost && shape && skin && reacquire_by_skin(bgr)) return;
+        // While lost, the whole-frame searches are the expensive part of a frame: the skin
+        // search runs every kLostSearchEvery frames and the motion detection segments every
+        // other frame (it still differences every frame, so no motion is missed).
+        const bool lost = estimate.state == TrackState::Lost;
+        const int turn = lost ? lost_search++ : 0;
+        if (lost && shape && skin && turn % kLostSearchEvery == 0 && reacquire_by_skin(bgr)) return;
         const SkinModel prior = skin ? *skin : SkinModel::generic();
-        const auto found = detector.process(bgr, prior);
+        const auto found = detector.process(bgr, prior, !lost || turn % 2 == 1);
         if (!found) return;
         // A template is only captured from a hand wholly in view: a shape cut by the image
         // border would be tracked as that cut shape from then on.
@@ -152,19 +180,68 @@ struct HandTracker::Impl {
         cv::Mat1b memb(bgr.size(), uchar(0));
         found->skin.membership(bgr, cv::Rect(0, 0, bgr.cols, bgr.rows), memb);
         // The hand seen before is kept when it fits the detection: a new capture could
-        // include skin-coloured things the hand touches at this moment.
-        if (shape && skin && refit_known_shape(*found, memb)) return;
+        // include skin-coloured things the hand touches at this moment. Unless the known
+        // template was itself unsure and this capture is clean.
+        const bool clean = is_clean(*found);
+        if (shape && skin && !(provisional && clean) && refit_known_shape(*found, memb)) return;
+        capture(*found, memb);
+    }
+
+    static bool is_sane(const cv::Mat1b& mask) { return hand_proportions(mask).pointing(); }
+    static bool is_clean(const Detection& d) {
+        return !d.cut && d.motion_support >= kCleanSupport && is_sane(d.mask);
+    }
+
+    // A new template from a detection; false (nothing changed) if the blob has no finger.
+    bool capture(const Detection& found, const cv::Mat1b& memb) {
+        std::optional<HandTemplate> captured;
         try {
-            shape = HandTemplate::from_mask(found->mask, memb);
+            captured = HandTemplate::from_mask(found.mask, memb);
         } catch (const std::invalid_argument&) {
-            return;  // a moving blob without a finger: keep waiting
+            return false;  // a moving blob without a finger: keep waiting
         }
-        skin = found->skin;
+        shape = std::move(captured);
+        skin = found.skin;
         template_radius = 0.0;
         for (const auto& p : shape->outline)
             template_radius = std::max(template_radius, double(std::hypot(p.x, p.y)));
         start_tracking(HandState{shape->origin_px.x, shape->origin_px.y, 0.0, 1.0});
+        provisional = !is_clean(found);
         report(HandState{shape->origin_px.x, shape->origin_px.y, 0.0, 1.0});
+        return true;
+    }
+
+    // While the template is unsure, the detector looks again now and then: every
+    // kRecapturePeriod frames it watches kRecaptureFrames consecutive frames of a window
+    // around the tracked hand (three times its box: a fraction of the frame's cost) and
+    // segments the last one. A clean capture of a hand wholly inside the window, overlapping
+    // the tracked one, replaces the template.
+    bool recapture(const cv::Mat& bgr) {
+        const int phase = tracked_frames % kRecapturePeriod;
+        const int first = kRecapturePeriod - kRecaptureFrames;
+        if (phase < first) return false;
+        if (phase == first) {
+            const cv::Rect b = estimate.bbox;
+            recapture_roi = cv::Rect(b.x - b.width, b.y - b.height, 3 * b.width, 3 * b.height) &
+                            cv::Rect(0, 0, bgr.cols, bgr.rows);
+            detector.reset();
+        }
+        if (recapture_roi.width < 32 || recapture_roi.height < 32) return false;
+        const bool last = phase == kRecapturePeriod - 1;
+        const auto found = detector.process(bgr(recapture_roi), *skin, last);
+        if (last) detector.reset();
+        if (!found || !is_clean(*found)) return false;
+        const cv::Rect local = cv::boundingRect(found->mask);
+        if (local.x <= 1 || local.y <= 1 || local.br().x >= recapture_roi.width - 1 ||
+            local.br().y >= recapture_roi.height - 1)
+            return false;  // cut by the window (or the frame): not the whole hand
+        if (((local + recapture_roi.tl()) & estimate.bbox).area() == 0) return false;
+        Detection whole = *found;
+        whole.mask = cv::Mat1b(bgr.size(), uchar(0));
+        found->mask.copyTo(whole.mask(recapture_roi));
+        cv::Mat1b memb(bgr.size(), uchar(0));
+        found->skin.membership(bgr, recapture_roi, memb);
+        return capture(whole, memb);
     }
 
     // Places the known template on a detected blob (palm to palm, finger direction to
@@ -217,6 +294,7 @@ struct HandTracker::Impl {
         previous = x0;
         awaiting_p_init = true;
         low_frames = 0;
+        tracked_frames = 0;
         detector.reset();
     }
 
@@ -370,6 +448,8 @@ struct HandTracker::Impl {
         previous = out;
         report(out);
         if (params.adapt_skin && estimate.confidence >= kAdaptConfidence) adapt_skin(bgr);
+        ++tracked_frames;
+        if (provisional) recapture(bgr);
     }
 
     // Fraction of points just inside the contour (2.5 px in along the normals) where the
@@ -395,6 +475,7 @@ struct HandTracker::Impl {
         estimate.contour.clear();
         estimate.bbox = {};
         low_frames = 0;
+        lost_search = 0;
         detector.reset();
     }
 

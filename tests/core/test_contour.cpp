@@ -134,6 +134,35 @@ TEST(HandTemplate, OutlineIsFaithfulAndDenserOnTheFinger) {
     EXPECT_GE(finger_n, 7);  // ~40 px of outline within 20 px of the tip: 48 normals would give ~4 if even
 }
 
+// The proportions tell a pointing hand from one merged with a touching object: a box at the
+// fingertip makes the finger thick, a box beside the palm moves the palm into it.
+TEST(HandProportions, FlagAHandMergedWithATouchingObject) {
+    const cv::Size size(320, 240);
+    const cv::Mat1b hand = drawn_hand_mask(size, {150, 140}, 60.0, 1.0);
+    const gc::HandProportions plain = gc::hand_proportions(hand);
+    ASSERT_TRUE(plain.valid);
+    EXPECT_LT(plain.finger_width, 0.33);
+    EXPECT_GT(plain.reach, 1.8);
+    EXPECT_LT(plain.reach, 3.3);
+
+    // A 30 x 30 box over the fingertip (60 deg: up and to the right).
+    cv::Mat1b at_tip = hand.clone();
+    const double a = 60.0 * std::numbers::pi / 180.0;
+    const cv::Point2d tip(150 + 62 * std::cos(a), 140 - 62 * std::sin(a));
+    cv::rectangle(at_tip, cv::Rect(cvRound(tip.x) - 10, cvRound(tip.y) - 25, 30, 30), 255, cv::FILLED);
+    const gc::HandProportions merged = gc::hand_proportions(at_tip);
+    ASSERT_TRUE(merged.valid);
+    EXPECT_FALSE(merged.pointing());
+    EXPECT_GT(merged.finger_width, plain.finger_width + 0.2);
+
+    // A large box touching the palm's side: its middle becomes the "palm".
+    cv::Mat1b beside = hand.clone();
+    cv::rectangle(beside, cv::Rect(60, 110, 70, 60), 255, cv::FILLED);
+    EXPECT_FALSE(gc::hand_proportions(beside).pointing());
+
+    EXPECT_FALSE(gc::hand_proportions(cv::Mat1b(size, uchar(0))).valid);
+}
+
 TEST(HandTemplate, BadMasksGiveClearErrors) {
     EXPECT_THROW(gc::HandTemplate::from_mask(cv::Mat1b()), std::invalid_argument);
     EXPECT_THROW(gc::HandTemplate::from_mask(cv::Mat3b(50, 50)), std::invalid_argument);

@@ -286,6 +286,48 @@ TEST(SimScene, FacePassPutsAFaceOnTheHandsPath)
     EXPECT_GT(most, 0.003);
 }
 
+// face_pass: the hand waves (and is acquired) beside the face, not on it, and crosses it
+// later. The face's pixels are those that differ from the light preset of the same seed
+// (same room, noise and hand) and are skin-coloured for a model fitted to the hand.
+TEST(SimScene, FacePassStartsBesideTheFaceAndCrossesIt)
+{
+    for (std::uint64_t seed : {1, 2, 3}) {
+        const Scene face(config(Preset::FacePass, Motion::Mixed, seed));
+        const Scene light(config(Preset::Light, Motion::Mixed, seed));
+        cv::Mat a, b, diff;
+        EyeTruth t;
+        auto face_skin = [&](int frame) {
+            face.render(frame, Eye::Left, {}, a, &t);
+            light.render(frame, Eye::Left, {}, b);
+            cv::absdiff(a, b, diff);
+            cv::Mat1b person;
+            cv::cvtColor(diff, person, cv::COLOR_BGR2GRAY);
+            cv::threshold(person, person, 0, 255, cv::THRESH_BINARY);
+            cv::Mat1b skin = gc::SkinModel::fit(a, t.mask).segment(a);
+            cv::bitwise_and(person, skin, person);
+            return person;
+        };
+        const cv::Mat1b face_at_rest = face_skin(0);
+        const int face_area = cv::countNonZero(face_at_rest);
+        ASSERT_GT(face_area, 500) << "seed " << seed;
+        for (int frame = 0; frame <= 36; frame += 4) {  // the wave
+            face_skin(frame);
+            cv::Mat1b near;
+            cv::dilate(t.mask, near, cv::getStructuringElement(cv::MORPH_ELLIPSE, {7, 7}));
+            cv::bitwise_and(near, face_at_rest, near);
+            EXPECT_LT(cv::countNonZero(near), 0.02 * face_area) << "seed " << seed << " frame " << frame;
+        }
+        double most = 0.0;  // the crossing: the hand covers much of the face
+        for (int frame = 60; frame < 200; frame += 5) {
+            face.render(frame, Eye::Left, {}, a, &t);
+            cv::Mat1b over;
+            cv::bitwise_and(t.mask, face_at_rest, over);
+            most = std::max(most, double(cv::countNonZero(over)) / face_area);
+        }
+        EXPECT_GT(most, 0.3) << "seed " << seed;
+    }
+}
+
 TEST(SimScene, HandIsVisibleAndOfPlausibleSize)
 {
     for (Motion motion : {Motion::Translate, Motion::Scale, Motion::Mixed})
