@@ -57,6 +57,12 @@ struct SceneState {
     std::optional<gc::sim::Scene> scene;
     GstVideoInfo info;
     guint64 next_frame = 0;  // the offset of the next buffer
+    // Live: the running time at which frame 0 was taken; NONE until then.
+    GstClockTime live_origin = GST_CLOCK_TIME_NONE;
+    // Live: the wait for the next frame's capture time, and whether basesrc asked us to stop
+    // waiting. Both under the object lock.
+    GstClockID capture_wait = nullptr;
+    bool unlocked = false;
     cv::Mat bgr;
     cv::Mat yuv_scratch;
     gc::sim::EyeTruth truth;
@@ -221,19 +227,79 @@ static GstClockTime frame_time(const GstVideoInfo& info, guint64 frame)
     return gst_util_uint64_scale(frame, GST_SECOND * GST_VIDEO_INFO_FPS_D(&info), GST_VIDEO_INFO_FPS_N(&info));
 }
 
-// A live source is synchronised on its buffers' timestamps.
-static void gst_hand_scene_src_get_times(GstBaseSrc* src, GstBuffer* buffer, GstClockTime* start, GstClockTime* end)
+// A live frame's timestamp is the running time it is taken at: frame 0 when the first frame
+// is asked for, then one frame duration apart. Not live: the frame's place in the stream.
+static GstClockTime capture_timestamp(GstHandSceneSrc* self, guint64 frame)
+{
+    SceneState& st = *self->state;
+    if (!gst_base_src_is_live(GST_BASE_SRC(self)))
+        return frame_time(st.info, frame);
+    if (!GST_CLOCK_TIME_IS_VALID(st.live_origin)) {
+        st.live_origin = 0;
+        if (GstClock* clock = gst_element_get_clock(GST_ELEMENT(self))) {
+            const GstClockTime now = gst_clock_get_time(clock);
+            const GstClockTime base = gst_element_get_base_time(GST_ELEMENT(self));
+            st.live_origin = now > base ? now - base : 0;
+            gst_object_unref(clock);
+        }
+    }
+    return st.live_origin + frame_time(st.info, frame);
+}
+
+// A live source waits for its frames' capture times itself (fill), so basesrc does not sync:
+// when it does, it also shifts every timestamp by the startup delay of the first frame, and
+// downstream would see other times than the ones the head's pose was read at.
+static void gst_hand_scene_src_get_times(GstBaseSrc*, GstBuffer*, GstClockTime* start, GstClockTime* end)
 {
     *start = GST_CLOCK_TIME_NONE;
     *end = GST_CLOCK_TIME_NONE;
-    if (!gst_base_src_is_live(src))
-        return;
-    const GstClockTime pts = GST_BUFFER_PTS(buffer);
-    if (GST_CLOCK_TIME_IS_VALID(pts)) {
-        *start = pts;
-        if (GST_BUFFER_DURATION_IS_VALID(buffer))
-            *end = pts + GST_BUFFER_DURATION(buffer);
+}
+
+// Waits until the clock reaches the running time `until`. False when basesrc unlocked the
+// source (flushing or stopping) meanwhile.
+static bool wait_for_running_time(GstHandSceneSrc* self, GstClockTime until)
+{
+    GstClock* clock = gst_element_get_clock(GST_ELEMENT(self));
+    if (!clock)
+        return true;
+    SceneState& st = *self->state;
+    const GstClockTime at = gst_element_get_base_time(GST_ELEMENT(self)) + until;
+    GST_OBJECT_LOCK(self);
+    if (st.unlocked) {
+        GST_OBJECT_UNLOCK(self);
+        gst_object_unref(clock);
+        return false;
     }
+    GstClockID wait = gst_clock_new_single_shot_id(clock, at);
+    st.capture_wait = wait;
+    GST_OBJECT_UNLOCK(self);
+    const GstClockReturn r = gst_clock_id_wait(wait, nullptr);
+    GST_OBJECT_LOCK(self);
+    st.capture_wait = nullptr;
+    GST_OBJECT_UNLOCK(self);
+    gst_clock_id_unref(wait);
+    gst_object_unref(clock);
+    return r != GST_CLOCK_UNSCHEDULED;
+}
+
+static gboolean gst_hand_scene_src_unlock(GstBaseSrc* src)
+{
+    GstHandSceneSrc* self = GST_HAND_SCENE_SRC(src);
+    GST_OBJECT_LOCK(self);
+    self->state->unlocked = true;
+    if (self->state->capture_wait)
+        gst_clock_id_unschedule(self->state->capture_wait);
+    GST_OBJECT_UNLOCK(self);
+    return TRUE;
+}
+
+static gboolean gst_hand_scene_src_unlock_stop(GstBaseSrc* src)
+{
+    GstHandSceneSrc* self = GST_HAND_SCENE_SRC(src);
+    GST_OBJECT_LOCK(self);
+    self->state->unlocked = false;
+    GST_OBJECT_UNLOCK(self);
+    return TRUE;
 }
 
 static gboolean gst_hand_scene_src_is_seekable(GstBaseSrc* src) { return !gst_base_src_is_live(src); }
@@ -311,11 +377,13 @@ static GstFlowReturn gst_hand_scene_src_fill(GstPushSrc* src, GstBuffer* buffer)
         GST_ELEMENT_ERROR(self, STREAM, FAILED, ("The scene has no frame %" G_GUINT64_FORMAT ".", frame), (nullptr));
         return GST_FLOW_ERROR;
     }
-    const GstClockTime pts = frame_time(st.info, frame);
+    const GstClockTime pts = capture_timestamp(self, frame);
+    if (gst_base_src_is_live(GST_BASE_SRC(self)) && !wait_for_running_time(self, pts))
+        return GST_FLOW_FLUSHING;
     // The head's pose when this frame is exposed (its running time is its timestamp): a
-    // live frame is rendered up to one frame ahead, so the pose is extrapolated along the
-    // head's last velocity. Home until the head is first heard from; its last pose while
-    // it is away.
+    // live frame is rendered at that moment, so the pose is extrapolated from the head's
+    // last report (at most one status interval old) along its velocity. Home until the
+    // head is first heard from; its last pose while it is away.
     gc::HeadPose pose = st.pose;
     if (st.head) {
         const GstClockTime running = gst_segment_to_running_time(&GST_BASE_SRC(self)->segment, GST_FORMAT_TIME, pts);
@@ -358,7 +426,7 @@ static GstFlowReturn gst_hand_scene_src_fill(GstPushSrc* src, GstBuffer* buffer)
 
     GST_BUFFER_PTS(buffer) = pts;
     GST_BUFFER_DTS(buffer) = GST_CLOCK_TIME_NONE;
-    GST_BUFFER_DURATION(buffer) = frame_time(st.info, frame + 1) - pts;
+    GST_BUFFER_DURATION(buffer) = frame_time(st.info, frame + 1) - frame_time(st.info, frame);
     GST_BUFFER_OFFSET(buffer) = frame;
     GST_BUFFER_OFFSET_END(buffer) = frame + 1;
     if (frame == 0)
@@ -375,6 +443,7 @@ static gboolean gst_hand_scene_src_start(GstBaseSrc* src)
     GstHandSceneSrc* self = GST_HAND_SCENE_SRC(src);
     SceneState& st = *self->state;
     st.next_frame = 0;
+    st.live_origin = GST_CLOCK_TIME_NONE;
     st.pose = {};
     st.warned_pose = false;
     gst_video_info_init(&st.info);
@@ -576,6 +645,8 @@ static void gst_hand_scene_src_class_init(GstHandSceneSrcClass* klass)
     basesrc_class->query = gst_hand_scene_src_query;
     basesrc_class->start = gst_hand_scene_src_start;
     basesrc_class->stop = gst_hand_scene_src_stop;
+    basesrc_class->unlock = gst_hand_scene_src_unlock;
+    basesrc_class->unlock_stop = gst_hand_scene_src_unlock_stop;
     pushsrc_class->fill = gst_hand_scene_src_fill;
 
     gst_type_mark_as_plugin_api(GST_TYPE_HAND_SCENE_EYE, GstPluginAPIFlags(0));

@@ -96,9 +96,10 @@ struct Engine {
     std::string json_line;
     std::optional<gc::TrackState> last_posted_state;
     std::unique_ptr<gc::HeadLink> head;
-    cv::Size head_view_size;
+    cv::Size head_view_size;          // the view size of the head link's calibration
+    bool warned_stale_views = false;  // the current run of too-old views was reported
     // The input timestamps of the views tracked last (packed or left, right).
-    std::array<GstClockTime, 2> tracked_inputs = {GST_CLOCK_TIME_NONE, GST_CLOCK_TIME_NONE};       // the view size of the head link's calibration
+    std::array<GstClockTime, 2> tracked_inputs = {GST_CLOCK_TIME_NONE, GST_CLOCK_TIME_NONE};
 
     ~Engine() { close_json(); }
     void close_json()
@@ -379,6 +380,18 @@ static void output_times(GstHandTracker* self, GstClockTime pts, GstClockTime& r
     GST_OBJECT_UNLOCK(agg->srcpad);
 }
 
+// The running time of a pad's prepared frame (NONE if it has no timestamp).
+static GstClockTime input_running_time(GstVideoAggregatorPad* pad, const GstVideoFrame* frame)
+{
+    if (!pad || !views_ready(frame) || !GST_BUFFER_PTS_IS_VALID(frame->buffer))
+        return GST_CLOCK_TIME_NONE;
+    GstAggregatorPad* apad = GST_AGGREGATOR_PAD(pad);
+    GST_OBJECT_LOCK(apad);
+    const GstClockTime running = gst_segment_to_running_time(&apad->segment, GST_FORMAT_TIME, GST_BUFFER_PTS(frame->buffer));
+    GST_OBJECT_UNLOCK(apad);
+    return running;
+}
+
 static void post_message(GstHandTracker* self, GstBuffer* outbuf, const gc::FrameResult& result,
                          const gc::gst::ReportContext& context)
 {
@@ -436,6 +449,10 @@ static bool ensure_head_link(GstHandTracker* self, const Settings& settings, cv:
     config.target_distance_mm = settings.target_distance_mm;
     config.clock = gc::gst::element_clock(GST_ELEMENT(self));
     config.on_state_change = gc::gst::connection_reporter(GST_ELEMENT(self), settings.head);
+    // Only live views have an age: recorded ones are taken at their stream time, however
+    // fast or slow they are read.
+    if (!GST_CLOCK_TIME_IS_VALID(gst_aggregator_get_latency(GST_AGGREGATOR(self))))
+        config.max_view_age = std::chrono::hours(24 * 365);
     try {
         e.head = std::make_unique<gc::HeadLink>(std::move(config),
                                                 e.calibration ? *e.calibration : gc::default_calibration(size));
@@ -537,9 +554,13 @@ static GstFlowReturn gst_hand_tracker_aggregate_frames(GstVideoAggregator* vagg,
             if (!ensure_head_link(self, settings, size))
                 return GST_FLOW_ERROR;
             e.head->set_steering(settings.steer, settings.target_distance_mm);
-            GstClockTime running = GST_CLOCK_TIME_NONE, stream = GST_CLOCK_TIME_NONE;
-            if (GST_CLOCK_TIME_IS_VALID(GST_BUFFER_PTS(outbuf)))
-                output_times(self, GST_BUFFER_PTS(outbuf), running, stream);
+            // The views' own running time, not the output slot's: a live source that started
+            // late, or a pad that is behind, gives the slot older views, and the pose must be
+            // the one they were taken at.
+            const GstClockTime running = input_running_time(packed_pad ? packed_pad : left_pad,
+                                                            packed_pad ? packed : left);
+            GST_LOG_OBJECT(self, "views at running time %" GST_TIME_FORMAT " for output %" GST_TIME_FORMAT,
+                           GST_TIME_ARGS(running), GST_TIME_ARGS(GST_BUFFER_PTS(outbuf)));
             at = e.head->begin_frame(gc::gst::capture_time(GST_ELEMENT(self), running));
         }
         try {
@@ -560,8 +581,19 @@ static GstFlowReturn gst_hand_tracker_aggregate_frames(GstVideoAggregator* vagg,
         }
     }
     const gc::FrameResult& result = e.tracker->last();
-    if (tracked && e.head)
+    if (tracked && e.head) {
         e.head->end_frame(result);  // never waits: the command goes to the link's thread
+        // Once per episode: the views come too late to steer from, so the head holds.
+        const bool stale = settings.steer != gc::SteerMode::Off && e.head->last_view_stale();
+        if (stale && !e.warned_stale_views)
+            GST_ELEMENT_WARNING(self, STREAM, FAILED,
+                                ("Views reach the tracker %.0f ms after capture: the head is not steered from "
+                                 "them until the pipeline keeps up.",
+                                 e.head->last_view_age_ms()),
+                                ("The machine may be too slow for this frame rate, or an element upstream "
+                                 "queues frames."));
+        e.warned_stale_views = stale;
+    }
 
     // Compose the output view.
     GstVideoFrame out;

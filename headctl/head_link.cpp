@@ -81,6 +81,7 @@ void HeadLinkConfig::validate() const
         throw std::invalid_argument("head link: point release angle must be finite and >= 0");
     if (point_settle_frames < 1) throw std::invalid_argument("head link: point settle frames must be >= 1");
     if (reconnect_max.count() <= 0) throw std::invalid_argument("head link: reconnect interval must be > 0");
+    if (max_view_age.count() <= 0) throw std::invalid_argument("head link: maximum view age must be > 0");
     fixate.validate();
 }
 
@@ -96,6 +97,8 @@ struct HeadLink::Impl {
     std::optional<HeadPose> capture_pose;
     // Steering's previous step.
     std::optional<headctl::Timestamp> steer_time;
+    double view_age_ms = 0.0;  // of the last frame steered from, at end_frame
+    bool view_stale = false;
 
     // Where the hand was last seen, per eye, and its depth along each optical axis.
     std::optional<cv::Point2d> hand_px[2];
@@ -279,7 +282,10 @@ struct HeadLink::Impl {
     void end_frame(const FrameResult& r)
     {
         remember_hand(r);
-        if (config.steer == SteerMode::Off || !capture_time) return;
+        if (!capture_time) return;
+        view_age_ms = std::chrono::duration<double, std::milli>(client->now() - *capture_time).count();
+        view_stale = view_age_ms > double(config.max_view_age.count());
+        if (config.steer == SteerMode::Off) return;
         const std::optional<headctl::Timestamp> previous = steer_time;
         steer_time = capture_time;
         if (client->state() != headctl::ConnectionState::Connected || !capture_pose) {
@@ -288,6 +294,10 @@ struct HeadLink::Impl {
         }
         refresh_limits();
         if (config.steer == SteerMode::Point) {
+            if (view_stale) {
+                pointing_run = 0;
+                return;
+            }
             steer_point(r);
             return;
         }
@@ -298,7 +308,7 @@ struct HeadLink::Impl {
             return;
         }
         const std::optional<headctl::StateSample> latest = client->latest();
-        steer_fixate(r, *capture_pose, latest ? latest->state.pose : *capture_pose, dt);
+        steer_fixate(view_stale ? FrameResult{} : r, *capture_pose, latest ? latest->state.pose : *capture_pose, dt);
     }
 };
 
@@ -349,6 +359,9 @@ void HeadLink::set_steering(SteerMode mode, double target_distance_mm)
     if (s.client->state() == headctl::ConnectionState::Connected)
         s.submit(HeadCommand{CommandKind::Stop, {}});
 }
+
+bool HeadLink::last_view_stale() const { return impl_->view_stale; }
+double HeadLink::last_view_age_ms() const { return impl_->view_age_ms; }
 
 headctl::ConnectionState HeadLink::state() const { return impl_->client->state(); }
 const headctl::HeadClient& HeadLink::client() const { return *impl_->client; }

@@ -39,6 +39,11 @@ struct HeadLinkConfig {
     int point_settle_frames = 5;          // ...and the pointing held valid this many frames
                                           // with the head at rest
     std::chrono::milliseconds reconnect_max{500};  // longest wait between connection attempts
+    // Views that reach the tracker later than this after their capture do not steer the
+    // head (fixate brakes as on a loss): a loop closed over old views turns too far and
+    // oscillates. A pipeline that cannot keep up with its cameras would otherwise swing
+    // the head from side to side.
+    std::chrono::milliseconds max_view_age{250};
     // The clock capture times are on; steady_clock when empty.
     std::function<headctl::Timestamp()> clock;
     // Called on the head client's thread at each connection change; must not block.
@@ -72,6 +77,10 @@ public:
     // connection stays); a new mode starts from rest: the fixate law's memory and the
     // last aim are forgotten. Throws std::invalid_argument for a distance that is not > 0.
     void set_steering(SteerMode mode, double target_distance_mm);
+    // Whether the last frame passed to end_frame was too old to steer from (max_view_age),
+    // and how old it was (ms; 0 before any frame).
+    bool last_view_stale() const;
+    double last_view_age_ms() const;
 
     headctl::ConnectionState state() const;
     const headctl::HeadClient& client() const;

@@ -90,6 +90,32 @@ TEST(HeadLink, FixateTurnsTheHeadTowardsAHandRightOfCentre)
     EXPECT_GT(link.client().stats().commands_sent, 5u);
 }
 
+// Views that reach the link later than max_view_age after capture do not steer: the same
+// off-centre hand that turns the head when fresh leaves it at rest when 400 ms old.
+TEST(HeadLink, ViewsTooOldToSteerFromLeaveTheHeadAtRest)
+{
+    RunningHead head(loopback_head());
+    HeadLink link(link_config(head.uri(), SteerMode::Fixate), calibration());
+    ASSERT_TRUE(eventually([&] { return link.client().latest().has_value(); }, 2000ms));
+    const double dx = calibration().M1(0, 0) * std::tan(10.0 * std::numbers::pi / 180.0);
+    const FrameResult off_centre = left_hand_at(calibration().M1(0, 2) + dx, calibration().M1(1, 2));
+    const auto end = std::chrono::steady_clock::now() + 600ms;
+    while (std::chrono::steady_clock::now() < end) {
+        link.begin_frame(link.now() - std::chrono::milliseconds(400));
+        link.end_frame(off_centre);
+        EXPECT_TRUE(link.last_view_stale());
+        EXPECT_GE(link.last_view_age_ms(), 400.0);
+        std::this_thread::sleep_for(33ms);
+    }
+    std::this_thread::sleep_for(100ms);
+    EXPECT_LT(std::abs(latest_pose(link).pan_deg), 0.01);
+
+    run_frames(link, 300ms, [&](const HeadAtCapture&) { return off_centre; });
+    EXPECT_FALSE(link.last_view_stale());
+    EXPECT_LT(link.last_view_age_ms(), 250.0);
+    EXPECT_GT(latest_pose(link).pan_deg, 0.5);
+}
+
 TEST(HeadLink, FixateVergesOnTheHandsDepth)
 {
     RunningHead head(loopback_head());
@@ -241,6 +267,9 @@ TEST(HeadLink, RejectsBadConfiguration)
     } catch (const std::invalid_argument& e) {
         EXPECT_NE(std::string(e.what()).find("target distance"), std::string::npos) << e.what();
     }
+    c = link_config("tcp://127.0.0.1:1", SteerMode::Fixate);
+    c.max_view_age = 0ms;
+    EXPECT_THROW(HeadLink(c, calibration()), std::invalid_argument);
     EXPECT_EQ(steer_mode_from_string("fixate"), SteerMode::Fixate);
     EXPECT_EQ(steer_mode_from_string("point"), SteerMode::Point);
     EXPECT_EQ(steer_mode_from_string("off"), SteerMode::Off);

