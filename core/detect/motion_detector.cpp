@@ -8,12 +8,21 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace gc {
 
 namespace {
 
 constexpr int kHistBins = 64;  // per normalised channel, for the moving pixels' colours
+// Half width of the brightness band around the mode of the moving skin-coloured pixels, as
+// a fraction of it: wide enough for the shading across a hand (sd 6-13 % of the mean).
+constexpr double kModeBandFraction = 0.3;
+// The largest brightness standard deviation, as a fraction of the mean, that shading
+// across one hand gives: hands measure 0.06-0.13; the moving pixels of heavy seeds 1 and
+// 15, which include a static box of the hand's chromaticity but not its brightness, 0.26
+// and 0.31. Clean scenes (hand edges mixed with a dark background) stay below 0.25.
+constexpr double kMaxShadingSpread = 0.25;
 
 void check_frame(const cv::Mat& bgr) {
     if (bgr.empty()) throw std::invalid_argument("MotionDetector: empty frame");
@@ -22,9 +31,46 @@ void check_frame(const cv::Mat& bgr) {
                                     std::to_string(bgr.channels()) + " channel(s)");
 }
 
+// Normalised colour cannot tell the hand from a static object of its skin tone, and
+// moving pixels include some of such an object (where the arm or hand uncovers it); its
+// brightness mostly differs. Keeps the `pixels` (non-zero) whose brightness R + G + B lies
+// near the mode of theirs, so the hand's band is learnt from the hand.
+void keep_brightness_mode(const cv::Mat& bgr, cv::Mat1b& pixels) {
+    constexpr int kBinWidth = 8;
+    constexpr int kBins = 766 / kBinWidth + 1;
+    std::vector<double> hist(kBins, 0.0);
+    for (int y = 0; y < bgr.rows; ++y) {
+        const auto* p = bgr.ptr<cv::Vec3b>(y);
+        const auto* m = pixels.ptr<std::uint8_t>(y);
+        for (int x = 0; x < bgr.cols; ++x)
+            if (m[x]) hist[(p[x][0] + p[x][1] + p[x][2]) / kBinWidth] += 1.0;
+    }
+    // Smoothed by a [1 2 3 2 1] kernel so the mode is not a noise spike.
+    int mode = 0;
+    double best = -1.0;
+    for (int i = 0; i < kBins; ++i) {
+        double v = 0.0;
+        for (int k = -2; k <= 2; ++k)
+            if (i + k >= 0 && i + k < kBins) v += (3 - std::abs(k)) * hist[i + k];
+        if (v > best) {
+            best = v;
+            mode = i;
+        }
+    }
+    const double centre = (mode + 0.5) * kBinWidth;
+    const double half_width = std::max(kModeBandFraction * centre, 2.0 * kBinWidth);
+    for (int y = 0; y < bgr.rows; ++y) {
+        const auto* p = bgr.ptr<cv::Vec3b>(y);
+        auto* m = pixels.ptr<std::uint8_t>(y);
+        for (int x = 0; x < bgr.cols; ++x)
+            if (m[x] && std::abs(p[x][0] + p[x][1] + p[x][2] - centre) > half_width) m[x] = 0;
+    }
+}
+
 // The skin colour of the moving pixels: the mode of their normalised-colour histogram
 // (within a gate around the prior, weighted by it), then a Gaussian fitted to the pixels near the
-// mode, refitted once on the pixels it accepts.
+// mode (near the mode of their brightness too, when their brightness is spread wider than
+// a hand's shading), refitted once on the pixels it accepts.
 std::optional<SkinModel> learn_skin(const cv::Mat& bgr, const cv::Mat1b& moving,
                                     const SkinModel& prior, double gate_sigma) {
     const double gate2 = gate_sigma * gate_sigma;
@@ -67,9 +113,17 @@ std::optional<SkinModel> learn_skin(const cv::Mat& bgr, const cv::Mat1b& moving,
     }
     try {
         SkinModel model = SkinModel::fit(bgr, near, prior.dark_threshold());
+        // A brightness spread wider than shading gives: the moving pixels mix the hand with
+        // a static object of its chromaticity. Learn from the hand's brightness mode only.
+        const bool mixed = model.brightness_sd() > kMaxShadingSpread * model.brightness_mean();
+        if (mixed) {
+            keep_brightness_mode(bgr, near);
+            model = SkinModel::fit(bgr, near, prior.dark_threshold());
+        }
         cv::Mat1b accepted;
         model.segment(bgr, accepted);
         cv::bitwise_and(accepted, candidates, accepted);
+        if (mixed) keep_brightness_mode(bgr, accepted);
         return SkinModel::fit(bgr, accepted, prior.dark_threshold());
     } catch (const std::invalid_argument&) {
         return std::nullopt;  // too few consistent pixels: not a hand
@@ -193,6 +247,12 @@ std::optional<Detection> segment_hand(const cv::Mat& bgr, const cv::Mat1b& movin
     } catch (const std::invalid_argument&) {
     }
     return d;
+}
+
+CaptureQuality capture_quality(const Detection& d) {
+    if (!hand_proportions(d.mask).pointing()) return CaptureQuality::Unsure;
+    return !d.cut && d.motion_support >= kCleanSupport ? CaptureQuality::Clean
+                                                       : CaptureQuality::Pointing;
 }
 
 MotionDetector::MotionDetector(const DetectionParams& params) : p_(params) {

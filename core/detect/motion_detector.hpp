@@ -36,6 +36,15 @@ struct Detection {
     bool cut = false;   // the component was cut to the neighbourhood of recent motion
 };
 
+// How sure a detection is to be the hand alone, worst first. Clean: nothing was cut off
+// and nearly all of the skin component (kCleanSupport) lay near recent motion, so it is
+// the moving hand alone; Pointing: shaped like a pointing hand but cut, or partly far from
+// the motion (it may keep a remnant of a static skin-coloured thing the hand touched);
+// Unsure: not even shaped like a pointing hand (hand_proportions).
+enum class CaptureQuality { Unsure, Pointing, Clean };
+inline constexpr double kCleanSupport = 0.9;
+CaptureQuality capture_quality(const Detection& d);
+
 class MotionDetector {
 public:
     // Throws std::invalid_argument on invalid parameters.

@@ -32,11 +32,6 @@ constexpr double kAdaptConfidence = 0.8;  // skin mean adapts only from a truste
 constexpr double kAdaptRate = 0.05;
 constexpr int kMinFrameSide = 32;
 constexpr double kRimSkinFraction = 0.85;  // inner rim this much skin: the hand is there
-// A capture is clean when nearly all of its skin component lay near recent motion and
-// nothing had to be cut off: then it is the moving hand alone. Otherwise it may include
-// a static skin-coloured thing the hand touched, and a cleaner capture replaces it when
-// one appears while tracking.
-constexpr double kCleanSupport = 0.9;
 constexpr int kLostSearchEvery = 3;
 constexpr int kRecapturePeriod = 16;  // while the capture is unsure, look again this often
 constexpr int kRecaptureFrames = 7;   // ... over this many frames (history_frames + 1)
@@ -97,7 +92,7 @@ struct HandTracker::Impl {
     bool awaiting_p_init = false;
     int low_frames = 0;
     HandState previous;            // the last reported (refined) state
-    bool provisional = false;      // the template's capture was not clean (kCleanSupport)
+    CaptureQuality template_quality = CaptureQuality::Unsure;  // of the template's capture
     int tracked_frames = 0;        // since the last start_tracking
     int lost_search = 0;           // frames searched since the hand was lost
     cv::Rect recapture_roi;        // the window the detector watches while tracking
@@ -131,7 +126,7 @@ struct HandTracker::Impl {
         p_init = 0.0;
         awaiting_p_init = false;
         low_frames = 0;
-        provisional = false;
+        template_quality = CaptureQuality::Unsure;
         tracked_frames = 0;
         lost_search = 0;
         recapture_roi = {};
@@ -182,14 +177,10 @@ struct HandTracker::Impl {
         // The hand seen before is kept when it fits the detection: a new capture could
         // include skin-coloured things the hand touches at this moment. Unless the known
         // template was itself unsure and this capture is clean.
-        const bool clean = is_clean(*found);
-        if (shape && skin && !(provisional && clean) && refit_known_shape(*found, memb)) return;
+        const bool cleaner = template_quality != CaptureQuality::Clean &&
+                             capture_quality(*found) == CaptureQuality::Clean;
+        if (shape && skin && !cleaner && refit_known_shape(*found, memb)) return;
         capture(*found, memb);
-    }
-
-    static bool is_sane(const cv::Mat1b& mask) { return hand_proportions(mask).pointing(); }
-    static bool is_clean(const Detection& d) {
-        return !d.cut && d.motion_support >= kCleanSupport && is_sane(d.mask);
     }
 
     // A new template from a detection; false (nothing changed) if the blob has no finger.
@@ -206,16 +197,17 @@ struct HandTracker::Impl {
         for (const auto& p : shape->outline)
             template_radius = std::max(template_radius, double(std::hypot(p.x, p.y)));
         start_tracking(HandState{shape->origin_px.x, shape->origin_px.y, 0.0, 1.0});
-        provisional = !is_clean(found);
+        template_quality = capture_quality(found);
         report(HandState{shape->origin_px.x, shape->origin_px.y, 0.0, 1.0});
         return true;
     }
 
-    // While the template is unsure, the detector looks again now and then: every
+    // While the template is not clean, the detector looks again now and then: every
     // kRecapturePeriod frames it watches kRecaptureFrames consecutive frames of a window
     // around the tracked hand (three times its box: a fraction of the frame's cost) and
-    // segments the last one. A clean capture of a hand wholly inside the window, overlapping
-    // the tracked one, replaces the template.
+    // segments the last one. A capture of better quality (clean over pointing-shaped over
+    // neither) of a hand wholly inside the window, overlapping the tracked one, replaces the
+    // template.
     bool recapture(const cv::Mat& bgr) {
         const int phase = tracked_frames % kRecapturePeriod;
         const int first = kRecapturePeriod - kRecaptureFrames;
@@ -230,7 +222,7 @@ struct HandTracker::Impl {
         const bool last = phase == kRecapturePeriod - 1;
         const auto found = detector.process(bgr(recapture_roi), *skin, last);
         if (last) detector.reset();
-        if (!found || !is_clean(*found)) return false;
+        if (!found || capture_quality(*found) <= template_quality) return false;
         const cv::Rect local = cv::boundingRect(found->mask);
         if (local.x <= 1 || local.y <= 1 || local.br().x >= recapture_roi.width - 1 ||
             local.br().y >= recapture_roi.height - 1)
@@ -241,7 +233,14 @@ struct HandTracker::Impl {
         found->mask.copyTo(whole.mask(recapture_roi));
         cv::Mat1b memb(bgr.size(), uchar(0));
         found->skin.membership(bgr, recapture_roi, memb);
-        return capture(whole, memb);
+        const double reference = p_init;
+        if (!capture(whole, memb)) return false;
+        // The template changed, the hand did not: the new lock is judged against the
+        // likelihood tracking had, not re-measured on a template that may fit its edges
+        // worse (a cut one), which would let it follow clutter with full confidence.
+        p_init = reference;
+        awaiting_p_init = false;
+        return true;
     }
 
     // Places the known template on a detected blob (palm to palm, finger direction to
@@ -449,7 +448,7 @@ struct HandTracker::Impl {
         report(out);
         if (params.adapt_skin && estimate.confidence >= kAdaptConfidence) adapt_skin(bgr);
         ++tracked_frames;
-        if (provisional) recapture(bgr);
+        if (template_quality != CaptureQuality::Clean) recapture(bgr);
     }
 
     // Fraction of points just inside the contour (2.5 px in along the normals) where the

@@ -101,6 +101,55 @@ TEST(MotionDetector, LeavesOutAStaticSkinObjectTheHandTouches) {
     EXPECT_GT(iou(found->mask, truth), 0.7);
 }
 
+TEST(MotionDetector, LearnsTheHandsBrightnessBesideADarkerObjectOfItsTone) {
+    cv::setRNGSeed(11);
+    DrawnScene scene(9);
+    // A board of the hand's chromaticity at 45 % of its brightness behind the lower palm:
+    // the waving hand uncovers it, so moving skin-chromaticity pixels are of both.
+    const cv::Rect board_box(95, 135, 90, 80);
+    const cv::Vec3b dark(cv::saturate_cast<uchar>(0.45 * scene.skin[0]),
+                         cv::saturate_cast<uchar>(0.45 * scene.skin[1]),
+                         cv::saturate_cast<uchar>(0.45 * scene.skin[2]));
+    cv::rectangle(scene.background, board_box, cv::Scalar(dark), cv::FILLED);
+    gc::MotionDetector det;
+    cv::Mat3b frame;
+    cv::Mat1b truth;
+    std::optional<gc::Detection> found;
+    for (int i = 0; i < 12 && !found; ++i) {
+        scene.render({150.0 + 4.0 * (i % 2 ? 1 : -1), 140.0 + 2.0 * (i % 3)}, 35.0, frame, truth);
+        found = det.process(frame);
+    }
+    ASSERT_TRUE(found);
+    const double hand_brightness = scene.skin[0] + scene.skin[1] + scene.skin[2];
+    EXPECT_NEAR(found->skin.brightness_mean(), hand_brightness, 0.1 * hand_brightness);
+    cv::Mat1b board(frame.size(), uchar(0)), on_board;
+    board(board_box).setTo(255);
+    cv::bitwise_and(found->mask, board, on_board);
+    cv::bitwise_and(on_board, ~truth, on_board);
+    EXPECT_LT(cv::countNonZero(on_board), 0.1 * board_box.area());
+    EXPECT_GT(iou(found->mask, truth), 0.8);
+}
+
+TEST(MotionDetector, RanksCapturesCleanOverPointingOverUnsure) {
+    // A pointing hand: palm radius 22, a finger 10 px wide reaching 2.5 palm radii.
+    cv::Mat1b hand(240, 320, uchar(0));
+    cv::circle(hand, {150, 130}, 22, 255, cv::FILLED);
+    cv::rectangle(hand, cv::Rect(145, 75, 10, 50), 255, cv::FILLED);
+    gc::Detection d{hand, cv::Rect(), gc::SkinModel::generic()};
+    EXPECT_EQ(gc::capture_quality(d), gc::CaptureQuality::Clean);
+    d.motion_support = 0.8;  // part of the component lay far from the motion
+    EXPECT_EQ(gc::capture_quality(d), gc::CaptureQuality::Pointing);
+    d.motion_support = 1.0;
+    d.cut = true;
+    EXPECT_EQ(gc::capture_quality(d), gc::CaptureQuality::Pointing);
+    // A touching board merged into the blob: no longer shaped like a pointing hand.
+    cv::rectangle(d.mask, cv::Rect(155, 40, 70, 60), 255, cv::FILLED);
+    d.cut = false;
+    EXPECT_EQ(gc::capture_quality(d), gc::CaptureQuality::Unsure);
+    EXPECT_LT(gc::CaptureQuality::Unsure, gc::CaptureQuality::Pointing);
+    EXPECT_LT(gc::CaptureQuality::Pointing, gc::CaptureQuality::Clean);
+}
+
 TEST(MotionDetector, StaticSceneOrNonSkinMotionGivesNothing) {
     cv::setRNGSeed(4);
     DrawnScene scene(6);
