@@ -129,9 +129,15 @@ TEST(HeadProperties, AnOutageIsReportedOnceNamingTheHead)
     EXPECT_TRUE(run.bus.eos) << run.bus.error;
     // Live: a slow machine (or a sanitizer build) may skip late pairs, but tracking goes on.
     EXPECT_GT(run.json.size(), 10u);
-    ASSERT_EQ(run.bus.warnings.size(), 1u);
-    EXPECT_EQ(run.bus.warnings[0].rfind("t: ", 0), 0u) << run.bus.warnings[0];
-    EXPECT_NE(run.bus.warnings[0].find(silent.uri()), std::string::npos) << run.bus.warnings[0];
+    std::vector<std::string> outage;
+    for (const std::string& w : run.bus.warnings) {
+        if (w.find(silent.uri()) != std::string::npos)
+            outage.push_back(w);
+        else  // a slow build is also told once that its views come too late to steer from
+            EXPECT_NE(w.find("after capture"), std::string::npos) << w;
+    }
+    ASSERT_EQ(outage.size(), 1u);
+    EXPECT_EQ(outage[0].rfind("t: ", 0), 0u) << outage[0];
     EXPECT_GE(silent.accepted(), 2);  // it kept trying
     const auto changes = run.bus.named("head-connection", "t");
     ASSERT_EQ(changes.size(), 1u);
