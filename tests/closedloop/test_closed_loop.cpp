@@ -307,6 +307,7 @@ PointFigures run_point(sim::Preset preset, std::uint64_t seed, double max_second
     PointFigures f;
     cv::Mat left, right;
     std::optional<Pointing3D> last_pointing;
+    std::vector<cv::Vec3d> targets;  // the tracker's targets once the link steers
     const int still_from = static_cast<int>(std::ceil(sim::MotionScript::kWaveSeconds * sc.fps)) + 3;
     const int last_frame = static_cast<int>(max_seconds * sc.fps);
     std::optional<HeadPose> previous;
@@ -323,7 +324,10 @@ PointFigures run_point(sim::Preset preset, std::uint64_t seed, double max_second
         const FrameResult& r = tracker.process_stereo(left, right, -1, at.pose, at.left_motion, at.right_motion);
         if (i >= still_from) link.end_frame(r);
         if (f.first_tracked < 0 && r.left.valid()) f.first_tracked = i;
-        if (r.pointing.valid && i >= still_from) last_pointing = r.pointing;
+        if (r.pointing.valid && i >= still_from) {
+            last_pointing = r.pointing;
+            targets.push_back(r.pointing.fingertip_head_mm + lc.target_distance_mm * r.pointing.direction_head);
+        }
         if (previous) {
             const bool still = std::abs(pose.pan_deg - previous->pan_deg) < 1e-3 &&
                                std::abs(pose.tilt_deg - previous->tilt_deg) < 1e-3 &&
@@ -354,12 +358,19 @@ PointFigures run_point(sim::Preset preset, std::uint64_t seed, double max_second
         const RigidTransform to_left = camera_to_head(cal.head, f.pose, Eye::Left).inverse();
         const cv::Vec3d a = to_left.apply(estimate), b = to_left.apply(target);
         f.estimate_error_deg = std::acos(std::clamp(a.dot(b) / (cv::norm(a) * cv::norm(b)), -1.0, 1.0)) * kRadToDeg;
-        f.eye_to_estimate_deg = off_axis_deg(cal, f.pose, Eye::Left, estimate);
+    }
+    if (!targets.empty()) {
+        // What the link steers on: the target over the last half second of pointings
+        // (single frames jitter).
+        const std::size_t n = std::min<std::size_t>(targets.size(), static_cast<std::size_t>(sc.fps / 2));
+        cv::Vec3d mean(0, 0, 0);
+        for (std::size_t k = targets.size() - n; k < targets.size(); ++k) mean += targets[k];
+        f.eye_to_estimate_deg = off_axis_deg(cal, f.pose, Eye::Left, mean * (1.0 / double(n)));
     }
     std::printf("steer=point, %s Static seed %d: acquired at frame %d, head stopped %.2f s after the link began to "
                 "steer, at pan %.2f tilt %.2f verge %.2f/%.2f deg for a true target at pan %.2f tilt %.2f; eyes off the "
                 "true target by %.2f (left) and %.2f (right) deg; the tracker's last target is %.2f deg off the true "
-                "one and %.2f deg off the left eye's axis\n",
+                "one; its mean target over the last half second is %.2f deg off the left eye's axis\n",
                 std::string(sim::to_string(preset)).c_str(), int(seed), f.first_tracked, f.settled_s, f.pose.pan_deg,
                 f.pose.tilt_deg, f.pose.verge_left_deg, f.pose.verge_right_deg, f.aim_pan_deg, f.aim_tilt_deg,
                 f.eye_error_deg[0], f.eye_error_deg[1], f.estimate_error_deg, f.eye_to_estimate_deg);
@@ -380,7 +391,8 @@ TEST_F(ClosedLoop, PointModeLooksWhereTheHandPoints)
         EXPECT_LE(f.eye_error_deg[0], 3.0) << seed;
         EXPECT_LE(f.eye_error_deg[1], 3.0) << seed;
         // The link's own share: the head rests on an aim within the 2 deg re-aim threshold of
-        // the tracker's latest target (measured up to 1.7 deg).
+        // the tracker's mean target over the last half second (a single frame's target
+        // jitters: the last one was once 3.3 deg off while the eyes were 0.9 deg off the truth).
         EXPECT_LE(f.eye_to_estimate_deg, 2.5) << seed;
     }
 }
