@@ -98,7 +98,7 @@ HandLandmarks find_hand_landmarks(const cv::Mat& mask) {
 }
 
 HandTemplate HandTemplate::from_mask(const cv::Mat& mask, const cv::Mat1b& membership,
-                                     const TemplateOptions& options) {
+                                     const TemplateOptions& options, const cv::Mat& bgr) {
     if (options.measurement_normals < 8 || options.outline_points < 16 ||
         options.palm_points < 8 || !(options.finger_density >= 1.0) ||
         !(options.finger_weight > 0.0) || !(options.snap_range >= 0.0))
@@ -148,7 +148,7 @@ HandTemplate HandTemplate::from_mask(const cv::Mat& mask, const cv::Mat1b& membe
             const cv::Point2d nrm = rough.outward_normal(double(i));
             double off = 0.0;
             if (find_skin_edge_precise(membership, through[i], nrm, options.snap_range, 0.25, off))
-                through[i] += off * nrm;
+                through[i] += colour_edge_offset(bgr, through[i], nrm, off) * nrm;
         }
         for (std::size_t i = 0; i + 1 < through.size();) {  // snapping may merge neighbours
             if (norm(through[i + 1] - through[i]) < 0.3) through.erase(through.begin() + i + 1);

@@ -11,7 +11,7 @@
 namespace gc {
 
 FitResult refine_fit(const cv::Mat1b& membership, const HandTemplate& shape,
-                     const HandState& start, const FitParams& params) {
+                     const HandState& start, const FitParams& params, const cv::Mat& bgr) {
     FitResult result;
     result.state = start;
     HandState s = start;
@@ -29,6 +29,7 @@ FitResult refine_fit(const cv::Mat1b& membership, const HandTemplate& shape,
             double d = 0.0;
             if (!find_skin_edge_precise(membership, p, nrm, params.half_window, params.step, d))
                 continue;
+            if (!bgr.empty()) d = colour_edge_offset(bgr, p, nrm, d);
             const double w = shape.outline_weights[i] /
                              (1.0 + (d / params.robust_scale) * (d / params.robust_scale));
             found_weight += shape.outline_weights[i];

@@ -26,7 +26,10 @@ struct FitResult {
     bool converged = false;       // false: too few edges, the input state is returned
 };
 
+// With `bgr` (the frame the membership map was computed from), each edge found is moved
+// to where the colour is halfway between skin and background (colour_edge_offset).
 FitResult refine_fit(const cv::Mat1b& membership, const HandTemplate& shape,
-                     const HandState& start, const FitParams& params = {});
+                     const HandState& start, const FitParams& params = {},
+                     const cv::Mat& bgr = {});
 
 }  // namespace gc

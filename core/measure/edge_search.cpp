@@ -1,6 +1,46 @@
 #include "measure/edge_search.hpp"
 
+#include <algorithm>
+
 namespace gc {
+
+namespace {
+
+// Bilinear sample of a BGR image, clamped to its border.
+cv::Vec3d sample_colour(const cv::Mat& bgr, double x, double y) {
+    x = std::clamp(x, 0.0, bgr.cols - 1.0);
+    y = std::clamp(y, 0.0, bgr.rows - 1.0);
+    const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
+    const int x1 = std::min(x0 + 1, bgr.cols - 1), y1 = std::min(y0 + 1, bgr.rows - 1);
+    const double fx = x - x0, fy = y - y0;
+    const auto at = [&](int xx, int yy) { return cv::Vec3d(bgr.at<cv::Vec3b>(yy, xx)); };
+    return (at(x0, y0) * (1.0 - fx) + at(x1, y0) * fx) * (1.0 - fy) +
+           (at(x0, y1) * (1.0 - fx) + at(x1, y1) * fx) * fy;
+}
+
+}  // namespace
+
+double colour_edge_offset(const cv::Mat& bgr, cv::Point2d p, cv::Point2d n, double offset,
+                          double reach) {
+    // Below this squared colour distance (about 20 grey levels) inside and outside are too
+    // alike for their mixing ratio to be measured through sensor noise.
+    constexpr double kMinContrast2 = 400.0;
+    constexpr double kStep = 0.25;
+    if (bgr.empty() || bgr.type() != CV_8UC3 || !(reach > 0.0)) return offset;
+    const auto at = [&](double t) { return sample_colour(bgr, p.x + t * n.x, p.y + t * n.y); };
+    const cv::Vec3d inside = at(offset - reach), outside = at(offset + reach);
+    const cv::Vec3d span = outside - inside;
+    const double contrast2 = span.dot(span);
+    if (contrast2 < kMinContrast2) return offset;
+    double prev = -1.0;
+    for (double t = offset - reach; t <= offset + reach + 1e-9; t += kStep) {
+        const double mix = (at(t) - inside).dot(span) / contrast2;  // 0 skin .. 1 background
+        if (prev >= 0.0 && prev < 0.5 && mix >= 0.5)
+            return t - kStep + kStep * (0.5 - prev) / (mix - prev);
+        prev = std::max(mix, 0.0);
+    }
+    return offset;
+}
 
 double sample_bilinear(const cv::Mat1b& map, double x, double y) {
     const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));

@@ -47,6 +47,16 @@ inline bool find_skin_edge_fast(const cv::Mat1b& map, float px, float py, float 
 bool find_skin_edge_precise(const cv::Mat1b& map, cv::Point2d p, cv::Point2d n, double half,
                             double step, double& offset);
 
+// Moves a skin edge found at `offset` along p + t * n to where the colour of `bgr` (CV_8UC3)
+// is halfway between the skin `reach` pixels inside it and the background `reach` pixels
+// outside: optics and sensors mix the two linearly across the boundary, so that is where
+// the hand covers half a pixel, whereas the membership level crossing moves with the
+// background's colour (a light grey wall pulls it inward, a dark one much less). Returns
+// `offset` unchanged where the two colours are too alike to tell or no crossing is found
+// within reach of it.
+double colour_edge_offset(const cv::Mat& bgr, cv::Point2d p, cv::Point2d n, double offset,
+                          double reach = 3.0);
+
 // Bilinear sample of a CV_8U map, 0 outside.
 double sample_bilinear(const cv::Mat1b& map, double x, double y);
 

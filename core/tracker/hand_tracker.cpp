@@ -180,14 +180,14 @@ struct HandTracker::Impl {
         const bool cleaner = template_quality != CaptureQuality::Clean &&
                              capture_quality(*found) == CaptureQuality::Clean;
         if (shape && skin && !cleaner && refit_known_shape(*found, memb)) return;
-        capture(*found, memb);
+        capture(*found, memb, bgr);
     }
 
     // A new template from a detection; false (nothing changed) if the blob has no finger.
-    bool capture(const Detection& found, const cv::Mat1b& memb) {
+    bool capture(const Detection& found, const cv::Mat1b& memb, const cv::Mat& bgr) {
         std::optional<HandTemplate> captured;
         try {
-            captured = HandTemplate::from_mask(found.mask, memb);
+            captured = HandTemplate::from_mask(found.mask, memb, TemplateOptions{}, bgr);
         } catch (const std::invalid_argument&) {
             return false;  // a moving blob without a finger: keep waiting
         }
@@ -234,7 +234,7 @@ struct HandTracker::Impl {
         cv::Mat1b memb(bgr.size(), uchar(0));
         found->skin.membership(bgr, recapture_roi, memb);
         const double reference = p_init;
-        if (!capture(whole, memb)) return false;
+        if (!capture(whole, memb, bgr)) return false;
         // The template changed, the hand did not: the new lock is judged against the
         // likelihood tracking had, not re-measured on a template that may fit its edges
         // worse (a cut one), which would let it follow clutter with full confidence.
@@ -439,7 +439,7 @@ struct HandTracker::Impl {
         // Refine from the better of mean and best; report that.
         const double mean_misfit = measurement.misfit(membership, *shape, mean);
         const HandState start = mean_misfit <= best_misfit ? mean : b;
-        const FitResult fit = refine_fit(membership, *shape, start);
+        const FitResult fit = refine_fit(membership, *shape, start, FitParams{}, bgr);
         const HandState out = fit.converged ? fit.state : start;
         noise.update({out.x - previous.x - motion.dx, out.y - previous.y - motion.dy,
                       wrap_angle(out.rotation - previous.rotation - motion.drotation),

@@ -61,6 +61,47 @@ TEST(EdgeSearch, NoEdgeInsideOrOutsideOrOffTheImage) {
     EXPECT_FALSE(gc::find_skin_edge_fast(m, -100.0f, -100.0f, 1.0f, 0.0f, 5, off));
 }
 
+// A vertical boundary at x = edge between `skin` (left) and `wall` (right), each pixel the
+// area-weighted mix of the two, then blurred like a lens.
+cv::Mat3b colour_step(double edge, cv::Vec3b skin, cv::Vec3b wall) {
+    cv::Mat3b m(20, 60);
+    for (int y = 0; y < m.rows; ++y)
+        for (int x = 0; x < m.cols; ++x) {
+            const double cover = std::clamp(edge - x + 0.5, 0.0, 1.0);
+            m(y, x) = cv::Vec3b(cv::Vec3d(skin) * cover + cv::Vec3d(wall) * (1.0 - cover));
+        }
+    cv::GaussianBlur(m, m, cv::Size(5, 5), 0.8);
+    return m;
+}
+
+TEST(EdgeSearch, ColourEdgeIsWhereTheHandCoversHalfAPixel) {
+    const cv::Vec3b skin(90, 120, 190), wall(200, 205, 210);  // BGR: a light grey wall
+    for (double edge : {30.0, 30.3, 30.6}) {
+        const auto img = colour_step(edge, skin, wall);
+        // A membership edge found 1.2 px inside the true one (as a skin model does against
+        // a light background) is moved back to the boundary.
+        const double found = edge - 1.2 - 28.0;
+        const double off = gc::colour_edge_offset(img, {28.0, 10.0}, {1.0, 0.0}, found);
+        EXPECT_NEAR(28.0 + off, edge, 0.1) << edge;
+        // Searching leftward from the wall side (normal pointing into the wall, reversed
+        // roles) finds the same boundary.
+        const auto mirrored = colour_step(edge, wall, skin);
+        const double off2 = gc::colour_edge_offset(mirrored, {28.0, 10.0}, {-1.0, 0.0}, 28.0 - edge - 1.0);
+        EXPECT_NEAR(28.0 - off2, edge, 0.1) << edge;
+    }
+}
+
+TEST(EdgeSearch, ColourEdgeKeepsTheOffsetWithoutContrastOrImage) {
+    const cv::Vec3b skin(90, 120, 190);
+    const auto flat = colour_step(30.0, skin, cv::Vec3b(95, 124, 193));  // skin on skin
+    EXPECT_DOUBLE_EQ(gc::colour_edge_offset(flat, {28.0, 10.0}, {1.0, 0.0}, 1.0), 1.0);
+    EXPECT_DOUBLE_EQ(gc::colour_edge_offset(cv::Mat(), {28.0, 10.0}, {1.0, 0.0}, 1.0), 1.0);
+    // Near and beyond the image border the samples are clamped, never read outside.
+    const auto img = colour_step(30.0, skin, cv::Vec3b(200, 205, 210));
+    EXPECT_TRUE(std::isfinite(gc::colour_edge_offset(img, {59.5, 19.5}, {1.0, 0.0}, 2.0)));
+    EXPECT_TRUE(std::isfinite(gc::colour_edge_offset(img, {-5.0, -5.0}, {-1.0, 0.0}, 0.0)));
+}
+
 cv::Mat1b drawn_hand(cv::Size size, cv::Point2d palm, double finger_deg, double s) {
     cv::Mat1b m(size, uchar(0));
     cv::circle(m, palm, cvRound(22 * s), 255, cv::FILLED, cv::LINE_8);
