@@ -20,7 +20,7 @@ FitResult refine_fit(const cv::Mat1b& membership, const HandTemplate& shape,
         const double c = std::cos(s.rotation), sn = std::sin(s.rotation);
         Eigen::Matrix4d ata = Eigen::Matrix4d::Zero();
         Eigen::Vector4d atb = Eigen::Vector4d::Zero();
-        double wsum = 0.0, wd2 = 0.0, found_weight = 0.0;
+        double wsum = 0.0, wd2 = 0.0, found_weight = 0.0, agreeing_weight = 0.0;
         for (std::size_t i = 0; i < n; ++i) {
             const cv::Point2f& u = shape.outline[i];
             const cv::Point2f& un = shape.outline_normals[i];
@@ -33,6 +33,7 @@ FitResult refine_fit(const cv::Mat1b& membership, const HandTemplate& shape,
             const double w = shape.outline_weights[i] /
                              (1.0 + (d / params.robust_scale) * (d / params.robust_scale));
             found_weight += shape.outline_weights[i];
+            if (std::abs(d) <= kAgreementPx) agreeing_weight += shape.outline_weights[i];
             // n . (A u + t) = n . q with q = p + d n, linear in (a, b, tx, ty).
             const Eigen::Vector4d row(nrm.x * u.x + nrm.y * u.y, nrm.y * u.x - nrm.x * u.y,
                                       nrm.x, nrm.y);
@@ -43,6 +44,7 @@ FitResult refine_fit(const cv::Mat1b& membership, const HandTemplate& shape,
             wd2 += w * d * d;
         }
         result.found_fraction = found_weight;
+        result.agreement = agreeing_weight;
         if (found_weight < params.min_found || wsum <= 0.0) return result;
         result.rms_px = std::sqrt(wd2 / wsum);
         const Eigen::Vector4d sol = ata.ldlt().solve(atb);

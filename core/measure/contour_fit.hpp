@@ -11,6 +11,8 @@
 
 namespace gc {
 
+inline constexpr double kAgreementPx = 1.5;
+
 struct FitParams {
     int iterations = 4;
     double half_window = 5.0;   // pixels searched either side of the current contour
@@ -23,6 +25,9 @@ struct FitResult {
     HandState state;
     double found_fraction = 0.0;  // of the last iteration
     double rms_px = 0.0;          // weighted RMS distance to the edges found, last iteration
+    // Fraction (outline weights) of the normals whose edge lies within kAgreementPx of the
+    // contour at the last iteration: how much of the template's outline the image shows.
+    double agreement = 0.0;
     bool converged = false;       // false: too few edges, the input state is returned
 };
 

@@ -9,6 +9,7 @@
 #include "measure/contour_measurement.hpp"
 #include "measure/edge_search.hpp"
 #include "skin/skin_model.hpp"
+#include "tracker/template_trial.hpp"
 
 #include <opencv2/imgproc.hpp>
 
@@ -33,9 +34,8 @@ constexpr double kAdaptRate = 0.05;
 constexpr int kMinFrameSide = 32;
 constexpr double kRimSkinFraction = 0.85;  // inner rim this much skin: the hand is there
 constexpr int kLostSearchEvery = 3;
-constexpr int kRecapturePeriod = 16;  // while the capture is unsure, look again this often
+constexpr int kRecapturePeriod = 8;   // while the capture is unsure, look again this often
 constexpr int kRecaptureFrames = 7;   // ... over this many frames (history_frames + 1)
-
 void check_frame(const cv::Mat& bgr) {
     if (bgr.empty()) throw std::invalid_argument("HandTracker: empty frame");
     if (bgr.type() != CV_8UC3)
@@ -97,6 +97,8 @@ struct HandTracker::Impl {
     int lost_search = 0;           // frames searched since the hand was lost
     cv::Rect recapture_roi;        // the window the detector watches while tracking
 
+    std::optional<TemplateTrial> trial;  // a re-capture of the template's quality, on trial
+
     explicit Impl(const TrackerParams& p)
         : params(p), sampler(4, p.seed ^ 0x5EEDULL), rng(p.seed) {
         check_params(p);
@@ -130,6 +132,7 @@ struct HandTracker::Impl {
         tracked_frames = 0;
         lost_search = 0;
         recapture_roi = {};
+        trial.reset();
         for (auto& p : particles) p = Particle{};
     }
 
@@ -185,21 +188,31 @@ struct HandTracker::Impl {
 
     // A new template from a detection; false (nothing changed) if the blob has no finger.
     bool capture(const Detection& found, const cv::Mat1b& memb, const cv::Mat& bgr) {
-        std::optional<HandTemplate> captured;
+        auto captured = template_from(found, memb, bgr);
+        if (!captured) return false;
+        adopt(std::move(*captured), found.skin, capture_quality(found),
+              HandState{captured->origin_px.x, captured->origin_px.y, 0.0, 1.0});
+        return true;
+    }
+
+    static std::optional<HandTemplate> template_from(const Detection& found, const cv::Mat1b& memb,
+                                                     const cv::Mat& bgr) {
         try {
-            captured = HandTemplate::from_mask(found.mask, memb, TemplateOptions{}, bgr);
+            return HandTemplate::from_mask(found.mask, memb, TemplateOptions{}, bgr);
         } catch (const std::invalid_argument&) {
-            return false;  // a moving blob without a finger: keep waiting
+            return std::nullopt;  // a moving blob without a finger: keep waiting
         }
-        shape = std::move(captured);
-        skin = found.skin;
+    }
+
+    void adopt(HandTemplate&& t, const SkinModel& model, CaptureQuality quality, const HandState& at) {
+        shape = std::move(t);
+        skin = model;
         template_radius = 0.0;
         for (const auto& p : shape->outline)
             template_radius = std::max(template_radius, double(std::hypot(p.x, p.y)));
-        start_tracking(HandState{shape->origin_px.x, shape->origin_px.y, 0.0, 1.0});
-        template_quality = capture_quality(found);
-        report(HandState{shape->origin_px.x, shape->origin_px.y, 0.0, 1.0});
-        return true;
+        start_tracking(at);
+        template_quality = quality;
+        report(at);
     }
 
     // While the template is not clean, the detector looks again now and then: every
@@ -222,7 +235,9 @@ struct HandTracker::Impl {
         const bool last = phase == kRecapturePeriod - 1;
         const auto found = detector.process(bgr(recapture_roi), *skin, last);
         if (last) detector.reset();
-        if (!found || capture_quality(*found) <= template_quality) return false;
+        if (!found || capture_quality(*found) < template_quality) return false;
+        const bool equal = capture_quality(*found) == template_quality;
+        if (equal && trial) return false;
         const cv::Rect local = cv::boundingRect(found->mask);
         if (local.x <= 1 || local.y <= 1 || local.br().x >= recapture_roi.width - 1 ||
             local.br().y >= recapture_roi.height - 1)
@@ -233,6 +248,13 @@ struct HandTracker::Impl {
         found->mask.copyTo(whole.mask(recapture_roi));
         cv::Mat1b memb(bgr.size(), uchar(0));
         found->skin.membership(bgr, recapture_roi, memb);
+        if (equal) {
+            auto candidate = template_from(whole, memb, bgr);
+            if (!candidate) return false;
+            const HandState at{candidate->origin_px.x, candidate->origin_px.y, 0.0, 1.0};
+            trial.emplace(std::move(*candidate), whole.skin, at);
+            return false;
+        }
         const double reference = p_init;
         if (!capture(whole, memb, bgr)) return false;
         // The template changed, the hand did not: the new lock is judged against the
@@ -294,6 +316,7 @@ struct HandTracker::Impl {
         awaiting_p_init = true;
         low_frames = 0;
         tracked_frames = 0;
+        trial.reset();
         detector.reset();
     }
 
@@ -441,6 +464,7 @@ struct HandTracker::Impl {
         const HandState start = mean_misfit <= best_misfit ? mean : b;
         const FitResult fit = refine_fit(membership, *shape, start, FitParams{}, bgr);
         const HandState out = fit.converged ? fit.state : start;
+        if (trial && try_template(bgr, out, fit.converged ? fit.agreement : 0.0)) return;
         noise.update({out.x - previous.x - motion.dx, out.y - previous.y - motion.dy,
                       wrap_angle(out.rotation - previous.rotation - motion.drotation),
                       std::log(out.scale / (previous.scale * motion.scale_factor))});
@@ -449,6 +473,23 @@ struct HandTracker::Impl {
         if (params.adapt_skin && estimate.confidence >= kAdaptConfidence) adapt_skin(bgr);
         ++tracked_frames;
         if (template_quality != CaptureQuality::Clean) recapture(bgr);
+    }
+
+    // One frame of the trial; true if the candidate won and tracking restarted on it,
+    // judged against the same P_init (the hand did not change).
+    bool try_template(const cv::Mat& bgr, const HandState& out, double current) {
+        const auto verdict = trial->step(membership, bgr, previous, out, current);
+        if (verdict == TemplateTrial::Verdict::Running) return false;
+        if (verdict == TemplateTrial::Verdict::Kept) {
+            trial.reset();
+            return false;
+        }
+        const double reference = p_init;
+        TemplateTrial won = std::move(*trial);
+        adopt(std::move(won.candidate()), won.skin(), template_quality, won.state());
+        p_init = reference;
+        awaiting_p_init = false;
+        return true;
     }
 
     // Fraction of points just inside the contour (2.5 px in along the normals) where the

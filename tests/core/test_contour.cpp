@@ -1,6 +1,8 @@
 #include "contour/closed_bspline.hpp"
 #include "contour/hand_template.hpp"
 
+#include "drawn_hand.hpp"
+
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
@@ -12,23 +14,7 @@
 
 namespace {
 
-// A pointing hand drawn as a palm disc, an index finger and a short thumb.
-cv::Mat1b drawn_hand_mask(cv::Size size, cv::Point2d palm, double finger_deg, double s) {
-    cv::Mat1b m(size, uchar(0));
-    cv::circle(m, palm, cvRound(22 * s), 255, cv::FILLED, cv::LINE_8);
-    const double a = finger_deg * std::numbers::pi / 180.0;
-    const cv::Point2d dir(std::cos(a), -std::sin(a));
-    const cv::Point2d side(-dir.y, dir.x);
-    const cv::Point2d base = palm + dir * (15 * s);
-    const cv::Point2d tip = palm + dir * (62 * s);
-    std::vector<cv::Point> finger{base + side * (5 * s), tip + side * (5 * s), tip - side * (5 * s),
-                                  base - side * (5 * s)};
-    cv::fillConvexPoly(m, finger, 255);
-    cv::circle(m, tip, cvRound(5 * s), 255, cv::FILLED);
-    const cv::Point2d thumb = palm + side * (26 * s) + dir * (6 * s);
-    cv::circle(m, thumb, cvRound(7 * s), 255, cv::FILLED);
-    return m;
-}
+using gc_test::drawn_hand;
 
 TEST(ClosedBSpline, InterpolatesItsPoints) {
     std::vector<cv::Point2d> pts;
@@ -84,7 +70,7 @@ TEST(ClosedBSpline, RejectsDegenerateInput) {
 TEST(HandTemplate, FindsPalmAndFingertipFromTheShape) {
     for (double angle : {0.0, 70.0, 160.0, 250.0}) {
         const cv::Point2d palm(160, 120);
-        const auto mask = drawn_hand_mask({320, 240}, palm, angle, 1.0);
+        const auto mask = drawn_hand({320, 240}, palm, angle, 1.0);
         const auto lm = gc::find_hand_landmarks(mask);
         EXPECT_LT(std::hypot(lm.palm.x - palm.x, lm.palm.y - palm.y), 4.0) << angle;
         const double a = angle * std::numbers::pi / 180.0;
@@ -96,7 +82,7 @@ TEST(HandTemplate, FindsPalmAndFingertipFromTheShape) {
 
 TEST(HandTemplate, OutlineIsFaithfulAndDenserOnTheFinger) {
     const cv::Point2d palm(160, 120);
-    const auto mask = drawn_hand_mask({320, 240}, palm, 30.0, 1.2);
+    const auto mask = drawn_hand({320, 240}, palm, 30.0, 1.2);
     const auto t = gc::HandTemplate::from_mask(mask);
     ASSERT_EQ(t.outline.size(), 128u);
     ASSERT_EQ(t.points.size(), 48u);
@@ -138,7 +124,7 @@ TEST(HandTemplate, OutlineIsFaithfulAndDenserOnTheFinger) {
 // fingertip makes the finger thick, a box beside the palm moves the palm into it.
 TEST(HandProportions, FlagAHandMergedWithATouchingObject) {
     const cv::Size size(320, 240);
-    const cv::Mat1b hand = drawn_hand_mask(size, {150, 140}, 60.0, 1.0);
+    const cv::Mat1b hand = drawn_hand(size, {150, 140}, 60.0, 1.0);
     const gc::HandProportions plain = gc::hand_proportions(hand);
     ASSERT_TRUE(plain.valid);
     EXPECT_LT(plain.finger_width, 0.33);

@@ -3,6 +3,8 @@
 #include "measure/contour_measurement.hpp"
 #include "measure/edge_search.hpp"
 
+#include "drawn_hand.hpp"
+
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
@@ -102,20 +104,7 @@ TEST(EdgeSearch, ColourEdgeKeepsTheOffsetWithoutContrastOrImage) {
     EXPECT_TRUE(std::isfinite(gc::colour_edge_offset(img, {-5.0, -5.0}, {-1.0, 0.0}, 0.0)));
 }
 
-cv::Mat1b drawn_hand(cv::Size size, cv::Point2d palm, double finger_deg, double s) {
-    cv::Mat1b m(size, uchar(0));
-    cv::circle(m, palm, cvRound(22 * s), 255, cv::FILLED, cv::LINE_8);
-    const double a = finger_deg * std::numbers::pi / 180.0;
-    const cv::Point2d dir(std::cos(a), -std::sin(a));
-    const cv::Point2d side(-dir.y, dir.x);
-    const cv::Point2d base = palm + dir * (15 * s), tip = palm + dir * (62 * s);
-    std::vector<cv::Point> finger{base + side * (5 * s), tip + side * (5 * s), tip - side * (5 * s),
-                                  base - side * (5 * s)};
-    cv::fillConvexPoly(m, finger, 255);
-    cv::circle(m, tip, cvRound(5 * s), 255, cv::FILLED);
-    cv::circle(m, palm + side * (26 * s) + dir * (6 * s), cvRound(7 * s), 255, cv::FILLED);
-    return m;
-}
+using gc_test::drawn_hand;
 
 TEST(ContourMeasurement, MisfitIsLowestAtTheTrueState) {
     const auto mask = drawn_hand({320, 240}, {150, 130}, 20.0, 1.0);
@@ -150,10 +139,28 @@ TEST(ContourFit, RecoversAPerturbedState) {
     EXPECT_NEAR(fit.state.x, lm.palm.x, 2.5);
     EXPECT_NEAR(fit.state.y, lm.palm.y, 2.5);
     EXPECT_LT(fit.rms_px, 1.0);
+    EXPECT_GT(fit.agreement, 0.9);
     // Nothing to fit: the start comes back, flagged.
     const auto none = gc::refine_fit(cv::Mat1b(mask.size(), uchar(0)), t, start);
     EXPECT_FALSE(none.converged);
     EXPECT_EQ(none.state.x, start.x);
+}
+
+TEST(ContourFit, AgreementFallsWhereTheTemplateHasNoEdgeInTheImage) {
+    // A template captured with a skin-coloured box merged into its palm, fitted to an image
+    // where the hand has moved off the box: the box's side of the outline finds no edge.
+    const auto hand = drawn_hand({320, 240}, {150, 130}, 20.0, 1.0);
+    cv::Mat1b merged = hand.clone();
+    cv::rectangle(merged, cv::Rect(110, 140, 45, 45), 255, cv::FILLED);
+    const auto clean = gc::HandTemplate::from_mask(hand, hand);
+    const auto with_box = gc::HandTemplate::from_mask(merged, merged);
+    const gc::HandState at_clean{clean.origin_px.x, clean.origin_px.y, 0.0, 1.0};
+    const gc::HandState at_box{with_box.origin_px.x, with_box.origin_px.y, 0.0, 1.0};
+    const auto good = gc::refine_fit(hand, clean, at_clean);
+    const auto bad = gc::refine_fit(hand, with_box, at_box);
+    ASSERT_TRUE(good.converged);
+    EXPECT_GT(good.agreement, 0.9);
+    EXPECT_LT(bad.agreement, good.agreement - 0.15);
 }
 
 }  // namespace
