@@ -34,7 +34,8 @@ constexpr double kAdaptRate = 0.05;
 constexpr int kMinFrameSide = 32;
 constexpr double kRimSkinFraction = 0.85;  // inner rim this much skin: the hand is there
 constexpr int kLostSearchEvery = 3;
-constexpr int kRecapturePeriod = 8;   // while the capture is unsure, look again this often
+constexpr int kRecapturePeriod = 16;  // while the template is provisional, look again this often
+constexpr int kUnsureRecapturePeriod = 8;  // ... and this often while it is not even pointing-shaped
 constexpr int kRecaptureFrames = 7;   // ... over this many frames (history_frames + 1)
 void check_frame(const cv::Mat& bgr) {
     if (bgr.empty()) throw std::invalid_argument("HandTracker: empty frame");
@@ -222,8 +223,10 @@ struct HandTracker::Impl {
     // neither) of a hand wholly inside the window, overlapping the tracked one, replaces the
     // template.
     bool recapture(const cv::Mat& bgr) {
-        const int phase = tracked_frames % kRecapturePeriod;
-        const int first = kRecapturePeriod - kRecaptureFrames;
+        const int period =
+            template_quality == CaptureQuality::Unsure ? kUnsureRecapturePeriod : kRecapturePeriod;
+        const int phase = tracked_frames % period;
+        const int first = period - kRecaptureFrames;
         if (phase < first) return false;
         if (phase == first) {
             const cv::Rect b = estimate.bbox;
@@ -232,7 +235,7 @@ struct HandTracker::Impl {
             detector.reset();
         }
         if (recapture_roi.width < 32 || recapture_roi.height < 32) return false;
-        const bool last = phase == kRecapturePeriod - 1;
+        const bool last = phase == period - 1;
         const auto found = detector.process(bgr(recapture_roi), *skin, last);
         if (last) detector.reset();
         if (!found || capture_quality(*found) < template_quality) return false;
