@@ -36,9 +36,10 @@ struct HandTemplate {
 
     // Builds the template from a binary hand mask (CV_8UC1, non-zero = hand). When
     // `membership` (SkinModel::membership of the same frame) is given, outline points are
-    // moved to the sub-pixel skin edge, and with `bgr` too (the frame itself) on to where the
-    // colour is halfway between skin and background (colour_edge_offset). Throws std::invalid_argument on a wrong type, an
-    // empty mask, or a shape too small to carry a finger and a palm.
+    // moved to the sub-pixel skin edge, and with `bgr` too (the frame itself) on to where
+    // the colour is halfway between skin and background (colour_edge_offset). Throws
+    // std::invalid_argument on a wrong type, an empty mask, or a shape too small to carry a
+    // finger and a palm.
     static HandTemplate from_mask(const cv::Mat& mask, const cv::Mat1b& membership = {},
                                   const TemplateOptions& options = {}, const cv::Mat& bgr = {});
 };

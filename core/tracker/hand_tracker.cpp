@@ -37,6 +37,7 @@ constexpr int kLostSearchEvery = 3;
 constexpr int kRecapturePeriod = 16;  // while the template is provisional, look again this often
 constexpr int kUnsureRecapturePeriod = 8;  // ... and this often while it is not even pointing-shaped
 constexpr int kRecaptureFrames = 7;   // ... over this many frames (history_frames + 1)
+
 void check_frame(const cv::Mat& bgr) {
     if (bgr.empty()) throw std::invalid_argument("HandTracker: empty frame");
     if (bgr.type() != CV_8UC3)
@@ -191,9 +192,14 @@ struct HandTracker::Impl {
     bool capture(const Detection& found, const cv::Mat1b& memb, const cv::Mat& bgr) {
         auto captured = template_from(found, memb, bgr);
         if (!captured) return false;
-        adopt(std::move(*captured), found.skin, capture_quality(found),
-              HandState{captured->origin_px.x, captured->origin_px.y, 0.0, 1.0});
+        const HandState at = as_captured(*captured);
+        adopt(std::move(*captured), found.skin, capture_quality(found), at);
         return true;
+    }
+
+    // A template's state in the frame it was captured from.
+    static HandState as_captured(const HandTemplate& t) {
+        return HandState{t.origin_px.x, t.origin_px.y, 0.0, 1.0};
     }
 
     static std::optional<HandTemplate> template_from(const Detection& found, const cv::Mat1b& memb,
@@ -254,7 +260,7 @@ struct HandTracker::Impl {
         if (equal) {
             auto candidate = template_from(whole, memb, bgr);
             if (!candidate) return false;
-            const HandState at{candidate->origin_px.x, candidate->origin_px.y, 0.0, 1.0};
+            const HandState at = as_captured(*candidate);
             trial.emplace(std::move(*candidate), whole.skin, at);
             return false;
         }
