@@ -38,33 +38,26 @@ void check_frame(const cv::Mat& bgr) {
 void keep_brightness_mode(const cv::Mat& bgr, cv::Mat1b& pixels) {
     constexpr int kBinWidth = 8;
     constexpr int kBins = 766 / kBinWidth + 1;
-    std::vector<double> hist(kBins, 0.0);
-    for (int y = 0; y < bgr.rows; ++y) {
-        const auto* p = bgr.ptr<cv::Vec3b>(y);
-        const auto* m = pixels.ptr<std::uint8_t>(y);
-        for (int x = 0; x < bgr.cols; ++x)
-            if (m[x]) hist[(p[x][0] + p[x][1] + p[x][2]) / kBinWidth] += 1.0;
-    }
+    cv::Mat wide, brightness;  // brightness: R + G + B, 16-bit (it reaches 765)
+    bgr.convertTo(wide, CV_16U);
+    cv::transform(wide, brightness, cv::Matx13f(1.0f, 1.0f, 1.0f));
+    const int channels[] = {0};
+    const int bins[] = {kBins};
+    const float range[] = {0.0f, float(kBins * kBinWidth)};
+    const float* ranges[] = {range};
+    cv::Mat hist;
+    cv::calcHist(&brightness, 1, channels, pixels, hist, 1, bins, ranges);
     // Smoothed by a [1 2 3 2 1] kernel so the mode is not a noise spike.
-    int mode = 0;
-    double best = -1.0;
-    for (int i = 0; i < kBins; ++i) {
-        double v = 0.0;
-        for (int k = -2; k <= 2; ++k)
-            if (i + k >= 0 && i + k < kBins) v += (3 - std::abs(k)) * hist[i + k];
-        if (v > best) {
-            best = v;
-            mode = i;
-        }
-    }
-    const double centre = (mode + 0.5) * kBinWidth;
+    const cv::Matx<float, 5, 1> kernel(1, 2, 3, 2, 1);
+    cv::filter2D(hist, hist, -1, kernel, cv::Point(-1, -1), 0.0, cv::BORDER_CONSTANT);
+    cv::Point mode;
+    cv::minMaxLoc(hist, nullptr, nullptr, nullptr, &mode);
+    const double centre = (mode.y + 0.5) * kBinWidth;
     const double half_width = std::max(kModeBandFraction * centre, 2.0 * kBinWidth);
-    for (int y = 0; y < bgr.rows; ++y) {
-        const auto* p = bgr.ptr<cv::Vec3b>(y);
-        auto* m = pixels.ptr<std::uint8_t>(y);
-        for (int x = 0; x < bgr.cols; ++x)
-            if (m[x] && std::abs(p[x][0] + p[x][1] + p[x][2] - centre) > half_width) m[x] = 0;
-    }
+    cv::Mat1b in_band;
+    cv::inRange(brightness, cv::Scalar(std::ceil(centre - half_width)),
+                cv::Scalar(std::floor(centre + half_width)), in_band);
+    cv::bitwise_and(pixels, in_band, pixels);
 }
 
 // The skin colour of the moving pixels: the mode of their normalised-colour histogram

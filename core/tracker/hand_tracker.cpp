@@ -264,12 +264,10 @@ struct HandTracker::Impl {
             trial.emplace(std::move(*candidate), whole.skin, at);
             return false;
         }
-        const double reference = p_init;
         if (!capture(whole, memb, bgr)) return false;
         // The template changed, the hand did not: the new lock is judged against the
-        // likelihood tracking had, not re-measured on a template that may fit its edges
-        // worse (a cut one), which would let it follow clutter with full confidence.
-        p_init = reference;
+        // likelihood tracking had (P_init kept), not re-measured on a template that may fit
+        // its edges worse (a cut one), which would let it follow clutter with full confidence.
         awaiting_p_init = false;
         return true;
     }
@@ -493,10 +491,8 @@ struct HandTracker::Impl {
             trial.reset();
             return false;
         }
-        const double reference = p_init;
         TemplateTrial won = std::move(*trial);
         adopt(std::move(won.candidate()), won.skin(), template_quality, won.state());
-        p_init = reference;
         awaiting_p_init = false;
         return true;
     }
