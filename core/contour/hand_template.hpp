@@ -15,7 +15,7 @@ namespace gc {
 struct TemplateOptions {
     int measurement_normals = 48;  // M, spread uniformly in the spline parameter
     int outline_points = 128;      // the reported polygon
-    int palm_points = 36;          // outline points per perimeter away from the finger
+    int palm_points = 96;          // outline points per perimeter away from the finger
     double finger_density = 2.5;   // how many times denser the finger is sampled
     double finger_weight = 2.0;    // measurement weight of a finger normal vs a palm normal
     double snap_range = 2.5;       // sub-pixel snapping of outline points to the skin edge
