@@ -120,6 +120,34 @@ TEST(HandTemplate, OutlineIsFaithfulAndDenserOnTheFinger) {
     EXPECT_GE(finger_n, 7);  // ~40 px of outline within 20 px of the tip: 48 normals would give ~4 if even
 }
 
+// Curled fingers make knuckle bumps a few pixels apart along the palm: the template's
+// spline must follow them, not cut across them (points ~10 px apart cut up to 2 px off).
+TEST(HandTemplate, OutlineFollowsTheKnuckles) {
+    const cv::Point2d palm(160, 120);
+    cv::Mat1b mask = drawn_hand({320, 240}, palm, 30.0, 1.2);
+    const double a = 30.0 * std::numbers::pi / 180.0;
+    for (int k = 0; k < 4; ++k) {  // four knuckles below the finger, on the palm's rim
+        const double b = a - std::numbers::pi / 2 - 0.35 * k;
+        cv::circle(mask, palm + 26.0 * cv::Point2d(std::cos(b), -std::sin(b)), 5, 255, cv::FILLED);
+    }
+    const auto t = gc::HandTemplate::from_mask(mask);
+    std::vector<cv::Point2f> outline;
+    for (const auto& p : t.outline) outline.emplace_back(p + cv::Point2f(t.origin_px));
+    std::vector<std::vector<cv::Point>> raster;
+    cv::findContours(mask.clone(), raster, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
+    ASSERT_EQ(raster.size(), 1u);
+    double worst = 0.0, sum = 0.0;
+    for (const cv::Point& q : raster[0]) {
+        const double d = std::abs(cv::pointPolygonTest(outline, cv::Point2f(q), true));
+        worst = std::max(worst, d);
+        sum += d;
+    }
+    // The raster chain runs through the boundary pixels' centres, half a pixel inside the
+    // outline of the shape they cover.
+    EXPECT_LT(sum / raster[0].size(), 0.5);
+    EXPECT_LT(worst, 1.6);
+}
+
 // The proportions tell a pointing hand from one merged with a touching object: a box at the
 // fingertip makes the finger thick, a box beside the palm moves the palm into it.
 TEST(HandProportions, FlagAHandMergedWithATouchingObject) {
