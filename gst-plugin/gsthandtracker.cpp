@@ -620,10 +620,9 @@ static GstFlowReturn gst_hand_tracker_aggregate_frames(GstVideoAggregator* vagg,
             cv::Mat base = source;
             if (settings.draw) {
                 source.copyTo(e.canvas);
-                const bool show_particles = result.stereo && complete;
                 std::span<const gc::Particle> particles;
-                if (show_particles)
-                    particles = e.tracker->trackers().eye(shown == 1 ? gc::Eye::Right : gc::Eye::Left).particles();
+                if (complete)
+                    particles = e.tracker->particles(shown == 1 ? gc::Eye::Right : gc::Eye::Left);
                 e.overlay.draw(e.canvas, eye, particles, result.pointing.valid ? &result.pointing : nullptr);
                 base = e.canvas;
             }

@@ -177,6 +177,20 @@ const FrameResult& PointingTracker::last() const { return impl_->result; }
 
 const StereoHandTracker& PointingTracker::trackers() const { return impl_->stereo; }
 
+std::span<const Particle> PointingTracker::particles(Eye eye) const
+{
+    const Impl& d = *impl_;
+    switch (d.mode) {
+    case Impl::Mode::Mono:
+        return eye == Eye::Left && d.mono ? d.mono->particles() : std::span<const Particle>{};
+    case Impl::Mode::Stereo:
+        return d.stereo.eye(eye).particles();
+    case Impl::Mode::Unset:
+        break;
+    }
+    return {};
+}
+
 // ---------------------------------------------------------------------------------------
 // JSON. Numbers are written with std::to_chars (locale-independent, shortest exact digits of
 // the rounded value); non-finite values become null so every line stays valid JSON.

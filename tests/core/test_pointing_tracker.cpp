@@ -224,6 +224,23 @@ TEST(PointingTracker, ModeAndSizeAreFixedUntilReset)
     EXPECT_EQ(tracker.last().pts_ns, -1);
 }
 
+TEST(PointingTracker, ExposesTheHypothesesOfTheEyesItTracks)
+{
+    gc::TrackerParams params;
+    params.particles = 50;
+    gc::PointingTracker tracker(params);
+    EXPECT_TRUE(tracker.particles(gc::Eye::Left).empty());  // no frame yet
+    const cv::Mat3b frame(240, 320, cv::Vec3b(40, 40, 40));
+    tracker.process_mono(frame);
+    EXPECT_EQ(tracker.particles(gc::Eye::Left).size(), 50u);
+    EXPECT_TRUE(tracker.particles(gc::Eye::Right).empty());
+    tracker.reset();
+    EXPECT_TRUE(tracker.particles(gc::Eye::Left).empty());
+    tracker.process_stereo(frame, frame);
+    EXPECT_EQ(tracker.particles(gc::Eye::Left).size(), 50u);
+    EXPECT_EQ(tracker.particles(gc::Eye::Right).size(), 50u);
+}
+
 // Renders the synthetic stereo scene and runs the pipeline over it.
 class PipelineOnScene : public ::testing::Test {
 protected:

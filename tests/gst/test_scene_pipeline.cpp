@@ -196,4 +196,43 @@ TEST(ScenePipeline, SideBySideFramesTrackLikeTwoViews)
         ASSERT_EQ(actual[i], expected[i]) << "frame " << i;
 }
 
+// Pixels of the overlay's marginal colour (BGR 255, 160, 0) in the bottom and right bands of
+// the last output frame of a mono pipeline (only sink_left linked).
+int marginal_pixels_in_mono_output(bool draw)
+{
+    gc::test::ElementPtr pipeline = gc::test::parse_pipeline(
+        "handscenesrc eye=left scene=clean motion=translate seed=3 truth-messages=false num-buffers=40 ! "
+        "t.sink_left handtracker name=t message-updates=none draw=" + std::string(draw ? "true" : "false") +
+        " ! video/x-raw,format=BGR,width=640,height=480 ! appsink name=out sync=false wait-on-eos=false");
+    if (!pipeline)
+        return -1;
+    std::vector<gc::test::SamplePtr> samples;
+    const gc::test::RunResult r =
+        gc::test::run_pipeline(pipeline.get(), 60 * GST_SECOND, [&] { samples = gc::test::drain(pipeline.get(), "out"); });
+    EXPECT_TRUE(r.eos) << r.error;
+    if (samples.empty())
+        return -1;
+    GstBuffer* last = gst_sample_get_buffer(samples.back().get());
+    GstMapInfo m;
+    if (!gst_buffer_map(last, &m, GST_MAP_READ))
+        return -1;
+    int count = 0;
+    for (int y = 0; y < 480; ++y)
+        for (int x = 0; x < 640; ++x) {
+            if (y < 400 && x < 560)
+                continue;
+            const guint8* p = m.data + (y * 640 + x) * 3;
+            count += p[0] == 255 && p[1] == 160 && p[2] == 0;
+        }
+    gst_buffer_unmap(last, &m);
+    return count;
+}
+
+TEST(ScenePipeline, MonoInputDrawsTheParticleMarginals)
+{
+    gc::test::init_gstreamer();
+    EXPECT_EQ(marginal_pixels_in_mono_output(false), 0);
+    EXPECT_GT(marginal_pixels_in_mono_output(true), 50);
+}
+
 }  // namespace
