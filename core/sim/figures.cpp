@@ -102,7 +102,10 @@ Billboard build_person(const cv::Vec3d& face_centre_mm, const cv::Vec3f& skin, R
     const cv::Scalar iris = to_scalar(non_skin_colour(rng, 0.1, 0.35, 0.5));
     const cv::Scalar lips(skin[0] * 0.75, skin[1] * 0.6, std::min(255.0f, skin[2] * 0.95f));
 
-    auto add = [&](std::vector<cv::Point2d> p, cv::Scalar c) { b.layers.push_back({std::move(p), c}); };
+    auto add = [&](std::vector<cv::Point2d> p, cv::Scalar c) {
+        const bool is_skin = c == face || c == shade;
+        b.layers.push_back({std::move(p), c, is_skin});
+    };
     add(ellipse_points({0, 330}, 230, 190), shirt);            // shoulders
     add(rect_points(-52, 60, 52, 200), shade);                  // neck
     add(ellipse_points({0, -30}, 86, 112), hair);               // back of the hair
@@ -120,12 +123,20 @@ Billboard build_person(const cv::Vec3d& face_centre_mm, const cv::Vec3f& skin, R
     return b;
 }
 
-void draw_billboard(cv::Mat& bgr, const EyeCamera& cam, const Billboard& person)
+void draw_billboard(cv::Mat& bgr, const EyeCamera& cam, const Billboard& person,
+                    cv::Mat1b* skin_mask)
 {
+    if (skin_mask) {
+        skin_mask->create(bgr.size());
+        skin_mask->setTo(0);
+    }
     std::vector<cv::Point> pts;
     for (const auto& layer : person.layers)
-        if (project_polygon(cam, person.centre_mm, {1, 0, 0}, {0, 1, 0}, layer.polygon, pts))
+        if (project_polygon(cam, person.centre_mm, {1, 0, 0}, {0, 1, 0}, layer.polygon, pts)) {
             cv::fillConvexPoly(bgr, pts, layer.colour, cv::LINE_AA, kDrawShift);
+            if (skin_mask)
+                cv::fillConvexPoly(*skin_mask, pts, cv::Scalar(layer.skin ? 255 : 0), cv::LINE_8, kDrawShift);
+        }
 }
 
 }  // namespace gc::sim

@@ -38,11 +38,14 @@ struct Billboard {
     struct Layer {
         std::vector<cv::Point2d> polygon;
         cv::Scalar colour;
+        bool skin = false;  // face, ears, neck, nose
     };
     std::vector<Layer> layers;
 };
 
 Billboard build_person(const cv::Vec3d& face_centre_mm, const cv::Vec3f& skin_bgr, Rng& rng);
-void draw_billboard(cv::Mat& bgr, const EyeCamera& cam, const Billboard& person);
+// With `skin_mask`, also draws where the person's skin shows (255) into it, at bgr's size.
+void draw_billboard(cv::Mat& bgr, const EyeCamera& cam, const Billboard& person,
+                    cv::Mat1b* skin_mask = nullptr);
 
 }  // namespace gc::sim

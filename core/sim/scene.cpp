@@ -362,7 +362,8 @@ void Scene::render_pose(const HandPose& pose, int frame, Eye eye, const HeadPose
     const cv::Matx33d H = cam.plane_homography({w.origin_mm.x, w.origin_mm.y, w.distance_mm},
                                                {w.texel_mm, 0, 0}, {0, w.texel_mm, 0});
     cv::warpPerspective(w.image, bgr, H, size, cv::INTER_LINEAR, cv::BORDER_REFLECT_101);
-    if (s.person) draw_billboard(bgr, cam, *s.person);
+    if (s.person) draw_billboard(bgr, cam, *s.person, truth ? &truth->face : nullptr);
+    else if (truth) truth->face.release();
 
     const HandFrame f = hand_frame(pose);
     s.draw_arm(bgr, cam, pose, f);

@@ -77,6 +77,7 @@ struct EyeTruth {
     cv::Point2d fingertip_px;
     double pointing_deg = 0.0;  // palm -> fingertip, 0 = +x, counter-clockwise, y up
     cv::Rect bbox;              // of the mask
+    cv::Mat1b face;             // face_pass: 255 where the person's skin is (behind the hand); else empty
 };
 
 class Scene {

@@ -33,6 +33,21 @@ cv::Point2d project(const cv::Matx33d& K, const cv::Vec3d& X)
 
 double distance(cv::Point2d a, cv::Point2d b) { return std::hypot(a.x - b.x, a.y - b.y); }
 
+// The skin-coloured pixels that face_pass adds to the light preset of the same seed (same
+// room, noise and hand): the person. `a` gets face_pass's frame and `t` its truth.
+cv::Mat1b added_skin(const Scene& face, const Scene& light, int frame, cv::Mat& a, EyeTruth& t)
+{
+    cv::Mat b, diff;
+    face.render(frame, Eye::Left, {}, a, &t);
+    light.render(frame, Eye::Left, {}, b);
+    cv::absdiff(a, b, diff);
+    cv::Mat1b person;
+    cv::cvtColor(diff, person, cv::COLOR_BGR2GRAY);
+    cv::threshold(person, person, 0, 255, cv::THRESH_BINARY);
+    cv::bitwise_and(person, gc::SkinModel::fit(a, t.mask).segment(a), person);
+    return person;
+}
+
 // The farthest mask pixel from `from` along `dir` (image coordinates).
 cv::Point2d extreme_point(const cv::Mat1b& mask, cv::Point2d from, cv::Point2d dir)
 {
@@ -294,19 +309,9 @@ TEST(SimScene, FacePassStartsBesideTheFaceAndCrossesIt)
     for (std::uint64_t seed : {1, 2, 3}) {
         const Scene face(config(Preset::FacePass, Motion::Mixed, seed));
         const Scene light(config(Preset::Light, Motion::Mixed, seed));
-        cv::Mat a, b, diff;
+        cv::Mat a;
         EyeTruth t;
-        auto face_skin = [&](int frame) {
-            face.render(frame, Eye::Left, {}, a, &t);
-            light.render(frame, Eye::Left, {}, b);
-            cv::absdiff(a, b, diff);
-            cv::Mat1b person;
-            cv::cvtColor(diff, person, cv::COLOR_BGR2GRAY);
-            cv::threshold(person, person, 0, 255, cv::THRESH_BINARY);
-            cv::Mat1b skin = gc::SkinModel::fit(a, t.mask).segment(a);
-            cv::bitwise_and(person, skin, person);
-            return person;
-        };
+        auto face_skin = [&](int frame) { return added_skin(face, light, frame, a, t); };
         const cv::Mat1b face_at_rest = face_skin(0);
         const int face_area = cv::countNonZero(face_at_rest);
         ASSERT_GT(face_area, 500) << "seed " << seed;
@@ -325,6 +330,31 @@ TEST(SimScene, FacePassStartsBesideTheFaceAndCrossesIt)
             most = std::max(most, double(cv::countNonZero(over)) / face_area);
         }
         EXPECT_GT(most, 0.3) << "seed " << seed;
+    }
+}
+
+// The truth carries the face's skin (face, ears, neck, nose) for face_pass, and nothing for
+// the other presets: it must match the skin-coloured pixels the person adds to the room.
+TEST(SimScene, FacePassTruthHoldsTheFacesSkin)
+{
+    for (std::uint64_t seed : {1, 4}) {
+        const Scene face(config(Preset::FacePass, Motion::Mixed, seed));
+        const Scene light(config(Preset::Light, Motion::Mixed, seed));
+        cv::Mat a, b;
+        EyeTruth t, u;
+        light.render(0, Eye::Left, {}, b, &u);
+        EXPECT_TRUE(u.face.empty());
+        cv::Mat1b added = added_skin(face, light, 0, a, t);
+        ASSERT_EQ(t.face.size(), a.size());
+        cv::Mat1b hand;  // the hand and its soft edge are drawn over both scenes alike
+        cv::dilate(t.mask, hand, cv::getStructuringElement(cv::MORPH_ELLIPSE, {7, 7}));
+        cv::Mat1b truth_face = t.face.clone();
+        added.setTo(0, hand);
+        truth_face.setTo(0, hand);
+        const double inter = cv::countNonZero(added & truth_face);
+        const double uni = cv::countNonZero(added | truth_face);
+        ASSERT_GT(uni, 500.0) << "seed " << seed;
+        EXPECT_GT(inter / uni, 0.9) << "seed " << seed;
     }
 }
 

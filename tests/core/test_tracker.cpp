@@ -15,6 +15,21 @@
 
 namespace {
 
+gc::sim::SceneConfig mixed_scene(gc::sim::Preset preset, std::uint64_t seed) {
+    gc::sim::SceneConfig cfg;
+    cfg.preset = preset;
+    cfg.motion = gc::sim::Motion::Mixed;
+    cfg.seed = seed;
+    return cfg;
+}
+
+gc::TrackerParams seeded_params(int particles, std::uint64_t seed) {
+    gc::TrackerParams params;
+    params.particles = particles;
+    params.seed = seed;
+    return params;
+}
+
 // A drawn pointing hand (palm disc, index finger, thumb) over a background with non-skin
 // clutter and a few small skin-coloured patches, with sensor noise from OpenCV's RNG.
 struct DrawnScene {
@@ -114,15 +129,8 @@ TEST(HandTracker, AcquiresAndFollowsAMovingHand) {
 
 TEST(HandTracker, FollowsARenderedSceneAcrossSeeds) {
     for (std::uint64_t seed : {1u, 2u}) {
-        gc::sim::SceneConfig cfg;
-        cfg.preset = gc::sim::Preset::Clean;
-        cfg.motion = gc::sim::Motion::Mixed;
-        cfg.seed = seed;
-        const gc::sim::Scene scene(cfg);
-        gc::TrackerParams params;
-        params.particles = 300;
-        params.seed = seed;
-        gc::HandTracker tracker(params);
+        const gc::sim::Scene scene(mixed_scene(gc::sim::Preset::Clean, seed));
+        gc::HandTracker tracker(seeded_params(300, seed));
         cv::Mat bgr;
         gc::sim::EyeTruth truth;
         int first = -1;
@@ -143,6 +151,31 @@ TEST(HandTracker, FollowsARenderedSceneAcrossSeeds) {
         EXPECT_LE(first, 10) << "acquired during the wave, seed " << seed;
         EXPECT_GT(worst, 0.8) << "seed " << seed;
         EXPECT_GT(snr.snr_db(), 13.0) << "seed " << seed;
+    }
+}
+
+// face_pass: the hand passes in front of a face of its own skin colour, where its edges
+// vanish. On every frame where the hand covers the face (>= 5 % of the hand over the face's
+// skin) the tracker must stay on the hand (tracking, IoU >= 0.5): the thesis lost it there.
+TEST(HandTracker, KeepsTheHandWhileItCrossesAFace) {
+    for (std::uint64_t seed : {1u, 2u, 3u, 4u, 5u, 6u, 12u, 21u, 23u, 25u}) {
+        const gc::sim::Scene scene(mixed_scene(gc::sim::Preset::FacePass, seed));
+        gc::HandTracker tracker(seeded_params(1000, seed));
+        cv::Mat bgr;
+        gc::sim::EyeTruth truth;
+        int crossing = 0, off = 0;
+        for (int f = 0; f < 200; ++f) {
+            scene.render(f, gc::Eye::Left, {}, bgr, &truth);
+            const auto& e = tracker.process(bgr);
+            ASSERT_EQ(truth.face.size(), bgr.size());
+            const int hand = cv::countNonZero(truth.mask);
+            if (hand == 0 || cv::countNonZero(truth.mask & truth.face) < 0.05 * hand) continue;
+            ++crossing;
+            off += !(e.valid() && gc::mask_iou(truth.mask, gc::contour_mask(e.contour, bgr.size())) >= 0.5);
+        }
+        EXPECT_GT(crossing, 10) << "seed " << seed << ": the hand must cross the face";
+        EXPECT_EQ(off, 0) << "seed " << seed << ": lost or off the hand in " << off << " of "
+                          << crossing << " crossing frames";
     }
 }
 
