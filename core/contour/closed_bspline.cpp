@@ -46,7 +46,8 @@ ClosedBSpline ClosedBSpline::interpolate(std::span<const cv::Point2d> through) {
                                         std::to_string((i + 1) % n) + " coincide");
     }
     // At a knot the curve is (P[i-1] + 4 P[i] + P[i+1]) / 6: a cyclic, strictly diagonally
-    // dominant system, so a dense LU is exact and, for the ~120 points of a hand, takes well under a millisecond.
+    // dominant system, so a dense LU is exact and, for the ~120 points of a hand, takes well
+    // under a millisecond.
     Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n, n);
     Eigen::MatrixXd b(n, 2);
     for (int i = 0; i < n; ++i) {

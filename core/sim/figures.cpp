@@ -102,23 +102,22 @@ Billboard build_person(const cv::Vec3d& face_centre_mm, const cv::Vec3f& skin, R
     const cv::Scalar iris = to_scalar(non_skin_colour(rng, 0.1, 0.35, 0.5));
     const cv::Scalar lips(skin[0] * 0.75, skin[1] * 0.6, std::min(255.0f, skin[2] * 0.95f));
 
-    auto add = [&](std::vector<cv::Point2d> p, cv::Scalar c) {
-        const bool is_skin = c == face || c == shade;
-        b.layers.push_back({std::move(p), c, is_skin});
+    auto add = [&](std::vector<cv::Point2d> p, cv::Scalar c, bool skin_layer = false) {
+        b.layers.push_back({std::move(p), c, skin_layer});
     };
     add(ellipse_points({0, 330}, 230, 190), shirt);            // shoulders
-    add(rect_points(-52, 60, 52, 200), shade);                  // neck
+    add(rect_points(-52, 60, 52, 200), shade, true);            // neck
     add(ellipse_points({0, -30}, 86, 112), hair);               // back of the hair
-    add(ellipse_points({-72, 12}, 13, 24), shade);              // ears
-    add(ellipse_points({72, 12}, 13, 24), shade);
-    add(ellipse_points({0, 10}, 72, 100), face);
+    add(ellipse_points({-72, 12}, 13, 24), shade, true);        // ears
+    add(ellipse_points({72, 12}, 13, 24), shade, true);
+    add(ellipse_points({0, 10}, 72, 100), face, true);
     add(ellipse_points({0, -78}, 70, 30), hair);                // fringe
     for (double s : {-1.0, 1.0}) {
         add(ellipse_points({s * 28, -4}, 12, 5.5), white);
         add(ellipse_points({s * 28, -4}, 4.5, 4.5), iris);
         add(rect_points(s * 28 - 15, -22, s * 28 + 15, -17), hair);  // brows
     }
-    add({{-3, 0}, {3, 0}, {9, 34}, {-9, 34}}, shade);            // nose
+    add({{-3, 0}, {3, 0}, {9, 34}, {-9, 34}}, shade, true);      // nose
     add(ellipse_points({0, 55}, 22, 7), lips);
     return b;
 }

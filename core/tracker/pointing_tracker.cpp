@@ -175,8 +175,6 @@ void PointingTracker::reset()
 
 const FrameResult& PointingTracker::last() const { return impl_->result; }
 
-const StereoHandTracker& PointingTracker::trackers() const { return impl_->stereo; }
-
 std::span<const Particle> PointingTracker::particles(Eye eye) const
 {
     const Impl& d = *impl_;

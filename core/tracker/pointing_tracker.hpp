@@ -44,7 +44,6 @@ public:
                                     const ImageMotion& motion = {});
     void reset();
     const FrameResult& last() const;
-    const StereoHandTracker& trackers() const;
     // The hypotheses behind `eye` in the last frame (for drawing their marginals): the mono
     // tracker's for Left in mono mode, none for Right there; both eyes' in stereo mode.
     std::span<const Particle> particles(Eye eye) const;
