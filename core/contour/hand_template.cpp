@@ -118,7 +118,7 @@ HandTemplate HandTemplate::from_mask(const cv::Mat& mask, const cv::Mat1b& membe
     for (int i = 0; i < n; ++i) perimeter += norm(ring[(i + 1) % n] - ring[i]);
     const double palm_step = std::max(2.0, perimeter / options.palm_points);
     const double finger_step = std::max(1.5, palm_step / options.finger_density);
-    const double finger_zone = 0.6 * reach;  // around the tip: the index finger
+    const double finger_zone = kFingerZone * reach;  // around the tip: the index finger
     auto on_finger = [&](const cv::Point2d& p) { return norm(p - lm.fingertip) < finger_zone; };
 
     std::vector<cv::Point2d> through;

@@ -21,6 +21,10 @@ struct TemplateOptions {
     double snap_range = 2.5;       // sub-pixel snapping of outline points to the skin edge
 };
 
+// Outline points within this share of the palm -> fingertip distance from the fingertip
+// are on the index finger: sampled densely and weighted up.
+inline constexpr double kFingerZone = 0.6;
+
 struct HandTemplate {
     // All geometry relative to the origin (the palm centre), in pixels at scale 1.
     ClosedBSpline spline;
@@ -33,6 +37,12 @@ struct HandTemplate {
     cv::Point2f fingertip;              // index fingertip
     double palm_radius = 0.0;           // largest inscribed circle of the palm
     cv::Point2d origin_px;              // where the origin was in the capture image
+
+    // Whether a template point (relative to the origin) lies on the index finger.
+    bool on_finger(const cv::Point2f& u) const {
+        const cv::Point2f d = u - fingertip;
+        return d.dot(d) < kFingerZone * kFingerZone * fingertip.dot(fingertip);
+    }
 
     // Builds the template from a binary hand mask (CV_8UC1, non-zero = hand). When
     // `membership` (SkinModel::membership of the same frame) is given, outline points are

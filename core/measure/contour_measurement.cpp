@@ -23,31 +23,65 @@ double ContourMeasurement::normal_likelihood(double misfit) const {
     return std::exp(-mu2 * misfit / (2.0 * p_.sigma * p_.sigma));
 }
 
-double ContourMeasurement::misfit(const cv::Mat1b& membership, const HandTemplate& shape,
-                                  const HandState& state, double give_up) const {
+namespace {
+
+// Calls visit(i, px, py, nx, ny) for each measurement normal placed by `state` (contour
+// point and unit outward normal in image pixels) until it returns false.
+template <typename Visit>
+void for_each_normal(const HandTemplate& shape, const HandState& state, Visit&& visit) {
     const float c = static_cast<float>(std::cos(state.rotation));
     const float s = static_cast<float>(std::sin(state.rotation));
     const float k = static_cast<float>(state.scale);
     const float tx = static_cast<float>(state.x), ty = static_cast<float>(state.y);
     const float cs = c * k, ss = s * k;
     const std::size_t m = shape.points.size();
-    const float limit = static_cast<float>(std::min(give_up, 2.0)) * cap2_;
-    float total = 0.0f;
     for (std::size_t i = 0; i < m; ++i) {
         const cv::Point2f& u = shape.points[i];
         const cv::Point2f& n = shape.normals[i];
-        const float px = tx + cs * u.x - ss * u.y;
-        const float py = ty + ss * u.x + cs * u.y;
-        const float nx = c * n.x - s * n.y;
-        const float ny = s * n.x + c * n.y;
+        if (!visit(i, tx + cs * u.x - ss * u.y, ty + ss * u.x + cs * u.y, c * n.x - s * n.y,
+                   s * n.x + c * n.y))
+            return;
+    }
+}
+
+bool is_skin_at(const cv::Mat1b& map, float x, float y) {
+    const int ix = cvRound(x), iy = cvRound(y);
+    return ix >= 0 && iy >= 0 && ix < map.cols && iy < map.rows && map(iy, ix) >= kSkinEdgeLevel;
+}
+
+}  // namespace
+
+double ContourMeasurement::misfit(const cv::Mat1b& membership, const HandTemplate& shape,
+                                  const HandState& state, double give_up) const {
+    const float limit = static_cast<float>(std::min(give_up, 2.0)) * cap2_;
+    float total = 0.0f;
+    for_each_normal(shape, state, [&](std::size_t i, float px, float py, float nx, float ny) {
         float d = 0.0f;
         const float d2 = find_skin_edge_fast(membership, px, py, nx, ny, p_.half_window, d)
                              ? std::min(d * d, cap2_)
                              : cap2_;
         total += shape.weights[i] * d2;
-        if (total > limit) break;
-    }
+        return total <= limit;
+    });
     return std::clamp(total / cap2_, 0.0f, 1.0f);
+}
+
+double ContourMeasurement::judged_misfit(const cv::Mat1b& membership, const HandTemplate& shape,
+                                         const HandState& state, double& judged) const {
+    double total = 0.0, weight = 0.0;
+    for_each_normal(shape, state, [&](std::size_t i, float px, float py, float nx, float ny) {
+        float d = 0.0f;
+        double d2 = cap2_;
+        if (find_skin_edge_fast(membership, px, py, nx, ny, p_.half_window, d))
+            d2 = std::min(double(d) * d, double(cap2_));
+        else if (is_skin_at(membership, px, py))
+            return true;  // skin on both sides: no evidence either way
+        total += shape.weights[i] * d2;
+        weight += shape.weights[i];
+        return true;
+    });
+    judged = weight;
+    return weight > 0.0 ? std::clamp(total / (weight * cap2_), 0.0, 1.0) : 1.0;
 }
 
 }  // namespace gc

@@ -37,6 +37,14 @@ public:
     double misfit(const cv::Mat1b& membership, const HandTemplate& shape,
                   const HandState& state, double give_up = 2.0) const;
 
+    // q(X) over the normals that can judge the hypothesis: a normal whose contour point and
+    // everything outward along it are skin (no fall in the window) is skin against skin,
+    // the hand in front of a face or a skin-coloured object, and says nothing about where
+    // the hand's edge is. Weights renormalised over the judging normals; `judged` gets
+    // their share of the weight (0 when none judges, then the misfit is 1).
+    double judged_misfit(const cv::Mat1b& membership, const HandTemplate& shape,
+                         const HandState& state, double& judged) const;
+
     // The misfit margin over the best hypothesis beyond which a weight is below e^-12 of
     // the best one: a safe give_up bound for weighting.
     double negligible_margin() const { return 12.0 / log_scale_; }

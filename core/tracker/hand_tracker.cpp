@@ -32,7 +32,10 @@ constexpr double kMaxScale = 2.0;
 constexpr double kAdaptConfidence = 0.8;  // skin mean adapts only from a trusted contour
 constexpr double kAdaptRate = 0.05;
 constexpr int kMinFrameSide = 32;
-constexpr double kRimSkinFraction = 0.85;  // inner rim this much skin: the hand is there
+constexpr double kRimSkinFraction = 0.85;       // inner rim this much skin: the hand is there;
+constexpr double kLooseRimSkinFraction = 0.75;  // ... or this much, with the finger's at 0.85
+constexpr double kMinJudgedWeight = 0.3;   // share of the normals that must see an edge to judge
+constexpr double kMaxCaptureGrowth = 1.15;  // area ratio: a capture this much larger adds something
 constexpr int kLostSearchEvery = 3;
 constexpr int kRecapturePeriod = 16;  // while the template is provisional, look again this often
 constexpr int kUnsureRecapturePeriod = 8;  // ... and this often while it is not even pointing-shaped
@@ -96,6 +99,7 @@ struct HandTracker::Impl {
     HandState previous;            // the last reported (refined) state
     CaptureQuality template_quality = CaptureQuality::Unsure;  // of the template's capture
     int tracked_frames = 0;        // since the last start_tracking
+    double firm_area = 0.0;        // of the contour, on the last frame whose edges fitted
     int lost_search = 0;           // frames searched since the hand was lost
     cv::Rect recapture_roi;        // the window the detector watches while tracking
 
@@ -132,6 +136,7 @@ struct HandTracker::Impl {
         low_frames = 0;
         template_quality = CaptureQuality::Unsure;
         tracked_frames = 0;
+        firm_area = 0.0;
         lost_search = 0;
         recapture_roi = {};
         trial.reset();
@@ -227,8 +232,8 @@ struct HandTracker::Impl {
     // around the tracked hand (three times its box: a fraction of the frame's cost) and
     // segments the last one. A capture of better quality (clean over pointing-shaped over
     // neither) of a hand wholly inside the window, overlapping the tracked one, replaces the
-    // template.
-    bool recapture(const cv::Mat& bgr) {
+    // template; while the edges are weak (`weak_edges`), only one no larger than the hand.
+    bool recapture(const cv::Mat& bgr, bool weak_edges) {
         const int period =
             template_quality == CaptureQuality::Unsure ? kUnsureRecapturePeriod : kRecapturePeriod;
         const int phase = tracked_frames % period;
@@ -245,6 +250,7 @@ struct HandTracker::Impl {
         const auto found = detector.process(bgr(recapture_roi), *skin, last);
         if (last) detector.reset();
         if (!found || capture_quality(*found) < template_quality) return false;
+        if (weak_edges && grows_hand(found->area)) return false;
         const bool equal = capture_quality(*found) == template_quality;
         if (equal && trial) return false;
         const cv::Rect local = cv::boundingRect(found->mask);
@@ -323,6 +329,7 @@ struct HandTracker::Impl {
         awaiting_p_init = true;
         low_frames = 0;
         tracked_frames = 0;
+        firm_area = std::abs(cv::contourArea(shape->outline)) * x0.scale * x0.scale;
         trial.reset();
         detector.reset();
     }
@@ -453,11 +460,13 @@ struct HandTracker::Impl {
             awaiting_p_init = false;
         }
         estimate.confidence = p_init > 0.0 ? std::clamp(best_like / p_init, 0.0, 1.0) : 0.0;
+        const bool weak_edges = best_like < params.lost_ratio * p_init;
         // Lost when the edges no longer fit (thesis: every likelihood < lost_ratio x P_init)
         // and the contour's inner rim is no longer skin. Edges also vanish where the hand
         // passes in front of a face or a skin-coloured object; there the hand is still
-        // under the contour and tracking goes on.
-        if (best_like < params.lost_ratio * p_init && inner_rim_skin(b) < kRimSkinFraction) {
+        // under the contour, and tracking goes on while the rim is skin or while the edges
+        // that can still be seen (not skin against skin) fit as well as tracking did.
+        if (weak_edges && !rim_is_skin(b) && !visible_edges_fit(b)) {
             if (++low_frames >= params.lost_frames) {
                 lose();
                 return;
@@ -471,23 +480,34 @@ struct HandTracker::Impl {
         const HandState start = mean_misfit <= best_misfit ? mean : b;
         const FitResult fit = refine_fit(membership, *shape, start, FitParams{}, bgr);
         const HandState out = fit.converged ? fit.state : start;
-        if (trial && try_template(bgr, out, fit.converged ? fit.agreement : 0.0)) return;
+        // While the edges are weak the hand may be touching a face or a skin-coloured
+        // object, and a capture now could merge it: a candidate larger than the tracked
+        // hand waits for a frame where the hand stands apart. A smaller one may still
+        // drop what a merged template holds, but not by a verdict taken on such a frame,
+        // where part of either outline may be unseen.
+        if (weak_edges && trial &&
+            grows_hand(cv::contourArea(trial->candidate().outline) * trial->state().scale *
+                       trial->state().scale))
+            trial.reset();
+        if (trial && try_template(bgr, out, fit.converged ? fit.agreement : 0.0, !weak_edges))
+            return;
         noise.update({out.x - previous.x - motion.dx, out.y - previous.y - motion.dy,
                       wrap_angle(out.rotation - previous.rotation - motion.drotation),
                       std::log(out.scale / (previous.scale * motion.scale_factor))});
         previous = out;
         report(out);
+        if (!weak_edges) firm_area = std::abs(cv::contourArea(estimate.contour));
         if (params.adapt_skin && estimate.confidence >= kAdaptConfidence) adapt_skin(bgr);
         ++tracked_frames;
-        if (template_quality != CaptureQuality::Clean) recapture(bgr);
+        if (template_quality != CaptureQuality::Clean) recapture(bgr, weak_edges);
     }
 
-    // One frame of the trial; true if the candidate won and tracking restarted on it,
-    // judged against the same P_init (the hand did not change).
-    bool try_template(const cv::Mat& bgr, const HandState& out, double current) {
+    // One frame of the trial; true if the candidate won (and `may_replace`) and tracking
+    // restarted on it, judged against the same P_init (the hand did not change).
+    bool try_template(const cv::Mat& bgr, const HandState& out, double current, bool may_replace) {
         const auto verdict = trial->step(membership, bgr, previous, out, current);
         if (verdict == TemplateTrial::Verdict::Running) return false;
-        if (verdict == TemplateTrial::Verdict::Kept) {
+        if (verdict == TemplateTrial::Verdict::Kept || !may_replace) {
             trial.reset();
             return false;
         }
@@ -497,21 +517,48 @@ struct HandTracker::Impl {
         return true;
     }
 
-    // Fraction of points just inside the contour (2.5 px in along the normals) where the
-    // skin membership is above the boundary level.
-    double inner_rim_skin(const HandState& s) const {
+    // True when a capture of `area` pixels is clearly larger than the hand was when its
+    // edges last fitted (the contour reported since may have shrunk or slid off it).
+    bool grows_hand(double area) const { return area > kMaxCaptureGrowth * firm_area; }
+
+    // True when the normals that are not skin against skin carry enough of the weight and
+    // fit them as well as tracking did (lost_ratio x P_init).
+    bool visible_edges_fit(const HandState& s) const {
+        double judged = 0.0;
+        const double q = measurement.judged_misfit(membership, *shape, s, judged);
+        return judged >= kMinJudgedWeight &&
+               measurement.normal_likelihood(q) >= params.lost_ratio * p_init;
+    }
+
+    // Whether the skin just inside the contour (2.5 px in along the normals) says the hand
+    // is under it: nearly all of the rim above the boundary level, or most of it with
+    // nearly all of the finger's. The hand's own rim falls short mostly along the creases
+    // of the curled fingers; a contour turned or slid off the hand keeps most of the palm's
+    // rim but not the finger's, and the finger carries the direction. A contour cut by the
+    // image border is held to the first rule: there the rim is missing for want of image,
+    // and a hand pushed to the border by the head's turn is better found again whole.
+    bool rim_is_skin(const HandState& s) const {
         const double c = std::cos(s.rotation), sn = std::sin(s.rotation);
-        int skin_points = 0;
+        int skin_points = 0, finger_points = 0, finger_skin = 0;
+        bool in_view = true;
         for (std::size_t i = 0; i < shape->outline.size(); ++i) {
             const cv::Point2d p = place(s, shape->outline[i]);
             const cv::Point2f& n = shape->outline_normals[i];
             const int x = cvRound(p.x - 2.5 * (c * n.x - sn * n.y));
             const int y = cvRound(p.y - 2.5 * (sn * n.x + c * n.y));
-            if (x >= 0 && y >= 0 && x < membership.cols && y < membership.rows &&
-                membership(y, x) >= kSkinEdgeLevel)
-                ++skin_points;
+            const bool inside = x >= 0 && y >= 0 && x < membership.cols && y < membership.rows;
+            in_view = in_view && inside;
+            const bool skin = inside && membership(y, x) >= kSkinEdgeLevel;
+            skin_points += skin;
+            if (shape->on_finger(shape->outline[i])) {
+                ++finger_points;
+                finger_skin += skin;
+            }
         }
-        return double(skin_points) / double(shape->outline.size());
+        const double all = double(skin_points) / double(shape->outline.size());
+        const double finger = finger_points > 0 ? double(finger_skin) / finger_points : 0.0;
+        return all >= kRimSkinFraction ||
+               (in_view && all >= kLooseRimSkinFraction && finger >= kRimSkinFraction);
     }
 
     void lose() {

@@ -80,6 +80,23 @@ TEST(HandTemplate, FindsPalmAndFingertipFromTheShape) {
     }
 }
 
+// on_finger marks the outline along the index finger: the fingertip and the finger's sides,
+// not the palm's far side or the thumb.
+TEST(HandTemplate, KnowsWhichOutlinePointsAreOnTheFinger) {
+    const auto mask = drawn_hand({320, 240}, {160, 120}, 0.0, 1.0);  // finger to +x
+    const auto t = gc::HandTemplate::from_mask(mask);
+    EXPECT_TRUE(t.on_finger(t.fingertip));
+    int finger = 0;
+    for (const auto& u : t.outline) {
+        if (!t.on_finger(u)) continue;
+        ++finger;
+        EXPECT_GT(u.x, 20.0) << "beyond the palm disc, towards the tip";
+        EXPECT_LT(std::abs(u.y), 12.0) << "within the finger's width";
+    }
+    EXPECT_GT(finger, 20);
+    EXPECT_FALSE(t.on_finger({-22.0f, 0.0f}));  // the palm's far side
+}
+
 TEST(HandTemplate, OutlineIsFaithfulAndDenserOnTheFinger) {
     const cv::Point2d palm(160, 120);
     const auto mask = drawn_hand({320, 240}, palm, 30.0, 1.2);

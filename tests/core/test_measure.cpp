@@ -125,6 +125,35 @@ TEST(ContourMeasurement, MisfitIsLowestAtTheTrueState) {
     EXPECT_THROW(gc::ContourMeasurement(gc::ObservationParams{0, 2.0, 10.0}), std::invalid_argument);
 }
 
+// The hand in front of a skin-coloured patch that covers its right half: the plain misfit
+// pays the cap where the edge vanishes, the judged misfit leaves those normals out and still
+// tells the true state from a displaced one.
+TEST(ContourMeasurement, JudgedMisfitLeavesOutSkinAgainstSkin) {
+    const auto mask = drawn_hand({320, 240}, {150, 130}, 20.0, 1.0);
+    const auto t = gc::HandTemplate::from_mask(mask, mask);
+    const gc::ContourMeasurement meas;
+    const gc::HandState truth{t.origin_px.x, t.origin_px.y, 0.0, 1.0};
+    double judged = 0.0;
+    EXPECT_NEAR(meas.judged_misfit(mask, t, truth, judged), meas.misfit(mask, t, truth), 1e-4);
+    EXPECT_NEAR(judged, 1.0, 1e-4);  // nothing is skin against skin
+
+    cv::Mat1b covered = mask.clone();
+    covered(cv::Rect(int(truth.x), 0, 320 - int(truth.x), 240)).setTo(255);
+    const double plain = meas.misfit(covered, t, truth);
+    const double at_truth = meas.judged_misfit(covered, t, truth, judged);
+    EXPECT_GT(plain, 0.25);
+    EXPECT_LT(at_truth, 0.05);
+    EXPECT_GT(judged, 0.1);  // the palm's left half; the finger (weighted up) is covered
+    EXPECT_LT(judged, 0.5);
+    double judged_off = 0.0;
+    EXPECT_GT(meas.judged_misfit(covered, t, {truth.x, truth.y - 5, 0, 1}, judged_off), at_truth + 0.1);
+    EXPECT_GT(judged_off, 0.0);
+
+    // All skin: nothing judges.
+    EXPECT_NEAR(meas.judged_misfit(cv::Mat1b(mask.size(), uchar(255)), t, truth, judged), 1.0, 1e-12);
+    EXPECT_EQ(judged, 0.0);
+}
+
 TEST(ContourFit, RecoversAPerturbedState) {
     const auto mask = drawn_hand({320, 240}, {150, 130}, 20.0, 1.0);
     const auto t = gc::HandTemplate::from_mask(mask, mask);

@@ -157,8 +157,11 @@ TEST(HandTracker, FollowsARenderedSceneAcrossSeeds) {
 // face_pass: the hand passes in front of a face of its own skin colour, where its edges
 // vanish. On every frame where the hand covers the face (>= 5 % of the hand over the face's
 // skin) the tracker must stay on the hand (tracking, IoU >= 0.5): the thesis lost it there.
+// Seeds 10, 17, 30 and 73 are crossings where the hand's own rim is cut by the creases of
+// the curled fingers, or where a capture during the crossing merged the face; each failed
+// before the finger-aware rim and the weak-edge capture rule (docs/tracker.md).
 TEST(HandTracker, KeepsTheHandWhileItCrossesAFace) {
-    for (std::uint64_t seed : {1u, 2u, 3u, 4u, 5u, 6u, 12u, 21u, 23u, 25u}) {
+    for (std::uint64_t seed : {1u, 2u, 3u, 4u, 5u, 6u, 12u, 21u, 23u, 25u, 10u, 17u, 30u, 73u}) {
         const gc::sim::Scene scene(mixed_scene(gc::sim::Preset::FacePass, seed));
         gc::HandTracker tracker(seeded_params(1000, seed));
         cv::Mat bgr;
