@@ -461,12 +461,20 @@ struct HandTracker::Impl {
         }
         estimate.confidence = p_init > 0.0 ? std::clamp(best_like / p_init, 0.0, 1.0) : 0.0;
         const bool weak_edges = best_like < params.lost_ratio * p_init;
-        // Lost when the edges no longer fit (thesis: every likelihood < lost_ratio x P_init)
-        // and the contour's inner rim is no longer skin. Edges also vanish where the hand
-        // passes in front of a face or a skin-coloured object; there the hand is still
-        // under the contour, and tracking goes on while the rim is skin or while the edges
-        // that can still be seen (not skin against skin) fit as well as tracking did.
-        if (weak_edges && !rim_is_skin(b) && !visible_edges_fit(b)) {
+
+        // Refine from the better of mean and best; report that.
+        const double mean_misfit = measurement.misfit(membership, *shape, mean);
+        const HandState start = mean_misfit <= best_misfit ? mean : b;
+        const FitResult fit = refine_fit(membership, *shape, start, FitParams{}, bgr);
+        const HandState out = fit.converged ? fit.state : start;
+
+        // Lost when the edges no longer fit (thesis: every likelihood < lost_ratio x P_init),
+        // not even the refined contour's, and the contour's inner rim is no longer skin.
+        // Edges also vanish where the hand passes in front of a face or a skin-coloured
+        // object; there the hand is still under the contour, and tracking goes on while the
+        // rim is skin or while the edges that can still be seen (not skin against skin) fit
+        // as well as tracking did. The refined contour is the best placed one to judge.
+        if (weak_edges && !hand_still_there(out)) {
             if (++low_frames >= params.lost_frames) {
                 lose();
                 return;
@@ -475,11 +483,6 @@ struct HandTracker::Impl {
             low_frames = 0;
         }
 
-        // Refine from the better of mean and best; report that.
-        const double mean_misfit = measurement.misfit(membership, *shape, mean);
-        const HandState start = mean_misfit <= best_misfit ? mean : b;
-        const FitResult fit = refine_fit(membership, *shape, start, FitParams{}, bgr);
-        const HandState out = fit.converged ? fit.state : start;
         // While the edges are weak the hand may be touching a face or a skin-coloured
         // object, and a capture now could merge it: a candidate larger than the tracked
         // hand waits for a frame where the hand stands apart. A smaller one may still
@@ -520,6 +523,12 @@ struct HandTracker::Impl {
     // True when a capture of `area` pixels is clearly larger than the hand was when its
     // edges last fitted (the contour reported since may have shrunk or slid off it).
     bool grows_hand(double area) const { return area > kMaxCaptureGrowth * firm_area; }
+
+    // On a weak-edge frame: whether the contour at `s` still holds the hand (see track()).
+    bool hand_still_there(const HandState& s) const {
+        const double like = measurement.normal_likelihood(measurement.misfit(membership, *shape, s));
+        return like >= params.lost_ratio * p_init || rim_is_skin(s) || visible_edges_fit(s);
+    }
 
     // True when the normals that are not skin against skin carry enough of the weight and
     // fit them as well as tracking did (lost_ratio x P_init).
