@@ -162,7 +162,6 @@ HandTemplate HandTemplate::from_mask(const cv::Mat& mask, const cv::Mat1b& membe
     for (auto& p : through) p -= lm.palm;
     t.spline = ClosedBSpline::interpolate(through);
     t.fingertip = cv::Point2f(lm.fingertip - lm.palm);
-    const cv::Point2d tip_rel = lm.fingertip - lm.palm;
 
     const int knots = t.spline.size();
     auto sample = [&](int count, std::vector<cv::Point2f>& pts, std::vector<cv::Point2f>& nrms,
@@ -176,7 +175,7 @@ HandTemplate HandTemplate::from_mask(const cv::Mat& mask, const cv::Mat1b& membe
             const cv::Point2d p = t.spline.point(u);
             pts[k] = cv::Point2f(p);
             nrms[k] = cv::Point2f(t.spline.outward_normal(u));
-            wts[k] = static_cast<float>(norm(p - tip_rel) < finger_zone ? options.finger_weight : 1.0);
+            wts[k] = static_cast<float>(t.on_finger(pts[k]) ? options.finger_weight : 1.0);
             total += wts[k];
         }
         for (float& w : wts) w = static_cast<float>(w / total);
