@@ -10,9 +10,10 @@ namespace gc {
 
 ContourMeasurement::ContourMeasurement(const ObservationParams& params) : p_(params) {
     if (p_.half_window < 2 || p_.half_window > 64 || !(p_.sigma > 0.0) ||
-        !(p_.effective_normals > 0.0))
+        !(p_.effective_normals > 0.0) || p_.min_grey_step < 0 || p_.min_grey_step > 255)
         throw std::invalid_argument("ContourMeasurement: need 2 <= half_window <= 64, "
-                                    "sigma > 0 and effective_normals > 0");
+                                    "sigma > 0, effective_normals > 0 and "
+                                    "0 <= min_grey_step <= 255");
     const double mu2 = double(p_.half_window) * p_.half_window;
     log_scale_ = p_.effective_normals * mu2 / (2.0 * p_.sigma * p_.sigma);
     cap2_ = static_cast<float>(mu2);
@@ -53,13 +54,23 @@ bool is_skin_at(const cv::Mat1b& map, float x, float y) {
 
 double ContourMeasurement::misfit(const cv::Mat1b& membership, const HandTemplate& shape,
                                   const HandState& state, double give_up) const {
+    return misfit(membership, cv::Mat1b(), shape, state, give_up);
+}
+
+double ContourMeasurement::misfit(const cv::Mat1b& membership, const cv::Mat1b& grey,
+                                  const HandTemplate& shape, const HandState& state,
+                                  double give_up) const {
     const float limit = static_cast<float>(std::min(give_up, 2.0)) * cap2_;
+    const bool use_grey = p_.min_grey_step > 0 && !grey.empty() && grey.size() == membership.size();
     float total = 0.0f;
     for_each_normal(shape, state, [&](std::size_t i, float px, float py, float nx, float ny) {
         float d = 0.0f;
-        const float d2 = find_skin_edge_fast(membership, px, py, nx, ny, p_.half_window, d)
-                             ? std::min(d * d, cap2_)
-                             : cap2_;
+        bool skin_beyond = false;
+        float d2 = cap2_;
+        if (find_skin_edge_fast(membership, px, py, nx, ny, p_.half_window, d, &skin_beyond) ||
+            (use_grey && skin_beyond &&
+             find_grey_step_fast(grey, px, py, nx, ny, p_.half_window, p_.min_grey_step, d)))
+            d2 = std::min(d * d, cap2_);
         total += shape.weights[i] * d2;
         return total <= limit;
     });

@@ -7,7 +7,9 @@
 //
 // mu is the half window (no edge found costs as much as an edge at the window's end) and
 // M_eff the number of effectively independent normals (neighbouring normals see the same
-// blur and shading, so they are not M independent measurements). See docs/tracker.md.
+// blur and shading, so they are not M independent measurements). Where a normal runs from
+// skin into skin (the hand in front of a face) and a grey map is given, d_m is the offset
+// of the strongest grey-level step instead. See docs/tracker.md.
 #pragma once
 
 #include "common/types.hpp"
@@ -21,6 +23,9 @@ struct ObservationParams {
     int half_window = 8;              // mu, pixels: the search runs over [-mu, +mu]
     double sigma = 2.0;               // pixels: expected edge localisation error
     double effective_normals = 12.0;  // M_eff
+    // Grey levels between the samples either side of a skin-against-skin edge: about 5
+    // sigma of the difference of two pixels' sensor noise. 0: skin edges only.
+    int min_grey_step = 16;
 };
 
 class ContourMeasurement {
@@ -35,6 +40,11 @@ public:
     // `give_up` (then some value > give_up is returned): a hypothesis that much worse than
     // the best one so far has a negligible weight anyway.
     double misfit(const cv::Mat1b& membership, const HandTemplate& shape,
+                  const HandState& state, double give_up = 2.0) const;
+    // The same with the grey map of the frame (CV_8UC1, the membership map's size, valid
+    // wherever the membership is): normals from skin into skin are measured on it. An
+    // empty or differently sized `grey` is not used.
+    double misfit(const cv::Mat1b& membership, const cv::Mat1b& grey, const HandTemplate& shape,
                   const HandState& state, double give_up = 2.0) const;
 
     // q(X) over the normals that can judge the hypothesis: a normal whose contour point and

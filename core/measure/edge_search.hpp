@@ -17,9 +17,11 @@ inline constexpr int kSkinEdgeLevel = 128;
 // Nearest-pixel search, for scoring many hypotheses: samples at t = -half .. +half (pixel
 // steps) along p + t * n (n unit, pointing outward); pixels outside `map` count as
 // non-skin. On success stores the signed sub-pixel offset of the crossing in `offset` and
-// returns true; false when no high-to-low crossing lies in the window.
+// returns true; false when no high-to-low crossing lies in the window. Then, if given,
+// `skin_beyond` tells whether the window's outer end is skin: with no fall before it, the
+// normal runs from skin into skin (the hand in front of a face).
 inline bool find_skin_edge_fast(const cv::Mat1b& map, float px, float py, float nx, float ny,
-                                int half, float& offset) {
+                                int half, float& offset, bool* skin_beyond = nullptr) {
     const int w = map.cols, h = map.rows;
     const std::uint8_t* data = map.data;
     const std::size_t step = map.step[0];
@@ -39,7 +41,45 @@ inline bool find_skin_edge_fast(const cv::Mat1b& map, float px, float py, float 
         }
         prev = v;
     }
+    if (skin_beyond) *skin_beyond = prev >= kSkinEdgeLevel;
     return false;
+}
+
+// Where skin meets skin the membership map has no edge, but the grey levels usually do
+// (the hand's own shading darkens towards its silhouette; a face is lit differently).
+// Nearest-pixel search along p + t * n for the strongest step |g(t + 1) - g(t - 1)|,
+// t = -half .. +half, in a grey map; true, with its offset in `offset`, when that step
+// reaches `min_step` grey levels. Samples outside the map are not compared.
+inline bool find_grey_step_fast(const cv::Mat1b& grey, float px, float py, float nx, float ny,
+                                int half, int min_step, float& offset) {
+    const int w = grey.cols, h = grey.rows;
+    const std::uint8_t* data = grey.data;
+    const std::size_t step = grey.step[0];
+    const auto sample = [&](int k) {
+        const int x = cvRound(px + k * nx);
+        const int y = cvRound(py + k * ny);
+        return static_cast<unsigned>(x) < static_cast<unsigned>(w) &&
+                       static_cast<unsigned>(y) < static_cast<unsigned>(h)
+                   ? int(data[y * step + x])
+                   : -1;
+    };
+    int before = sample(-half - 1), here = sample(-half);
+    int best = min_step - 1, at = 0;
+    for (int k = -half; k <= half; ++k) {
+        const int after = sample(k + 1);
+        if (before >= 0 && after >= 0) {
+            const int d = after > before ? after - before : before - after;
+            if (d > best) {
+                best = d;
+                at = k;
+            }
+        }
+        before = here;
+        here = after;
+    }
+    if (best < min_step) return false;
+    offset = static_cast<float>(at);
+    return true;
 }
 
 // Bilinear search at a finer step, for the few contours that are refined each frame.

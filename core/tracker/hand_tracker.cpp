@@ -88,6 +88,9 @@ struct HandTracker::Impl {
     std::vector<std::uint32_t> ancestors;
     cv::Mat1b membership;
     cv::Rect membership_roi;
+    cv::Mat1b grey;  // the frame's grey levels, where the membership map was computed
+    const cv::Mat1b no_grey;
+    bool edges_were_weak = false;  // on the last tracked frame (best_like < lost_ratio P_init)
     cv::Mat1b contour_fill;
     std::vector<cv::Point> fill_points;
 
@@ -131,6 +134,8 @@ struct HandTracker::Impl {
         estimate = EyeEstimate{};
         frame_size = {};
         membership.release();
+        grey.release();
+        edges_were_weak = false;
         p_init = 0.0;
         awaiting_p_init = false;
         low_frames = 0;
@@ -189,7 +194,7 @@ struct HandTracker::Impl {
         // template was itself unsure and this capture is clean.
         const bool cleaner = template_quality != CaptureQuality::Clean &&
                              capture_quality(*found) == CaptureQuality::Clean;
-        if (shape && skin && !cleaner && refit_known_shape(*found, memb)) return;
+        if (shape && skin && !cleaner && refit_known_shape(*found, memb, bgr)) return;
         capture(*found, memb, bgr);
     }
 
@@ -281,7 +286,7 @@ struct HandTracker::Impl {
     // Places the known template on a detected blob (palm to palm, finger direction to
     // finger direction), refines, and resumes tracking if it measures as well as tracking
     // did (lost_ratio x P_init).
-    bool refit_known_shape(const Detection& found, const cv::Mat1b& memb) {
+    bool refit_known_shape(const Detection& found, const cv::Mat1b& memb, const cv::Mat& bgr) {
         HandLandmarks lm;
         try {
             lm = find_hand_landmarks(found.mask);
@@ -298,7 +303,9 @@ struct HandTracker::Impl {
             std::clamp(found_reach / reach, kMinScale, kMaxScale)};
         const FitResult fit = refine_fit(memb, *shape, guess, FitParams{8, 8.0, 0.5, 2.0, 0.5});
         if (!fit.converged) return false;
-        const double like = measurement.normal_likelihood(measurement.misfit(memb, *shape, fit.state));
+        update_grey(bgr, cv::Rect(0, 0, bgr.cols, bgr.rows));
+        const double like =
+            measurement.normal_likelihood(measurement.misfit(memb, grey, *shape, fit.state));
         if (like < params.lost_ratio * p_init) return false;
         skin = found.skin;
         start_tracking(fit.state);
@@ -328,6 +335,7 @@ struct HandTracker::Impl {
         previous = x0;
         awaiting_p_init = true;
         low_frames = 0;
+        edges_were_weak = false;
         tracked_frames = 0;
         firm_area = std::abs(cv::contourArea(shape->outline)) * x0.scale * x0.scale;
         trial.reset();
@@ -349,6 +357,7 @@ struct HandTracker::Impl {
         const double scale = estimate.mean.scale;
         skin->membership(bgr, cv::Rect(0, 0, bgr.cols, bgr.rows), membership);
         membership_roi = cv::Rect(0, 0, bgr.cols, bgr.rows);
+        update_grey(bgr, membership_roi);
         double best_like = 0.0;
         HandState best_state;
         for (int i = 1; i < count; ++i) {
@@ -369,7 +378,7 @@ struct HandTracker::Impl {
             const FitResult fit = refine_fit(membership, *shape, guess, FitParams{8, 8.0, 0.5, 2.0, 0.5});
             if (!fit.converged) continue;
             const double like = measurement.normal_likelihood(
-                measurement.misfit(membership, *shape, fit.state));
+                measurement.misfit(membership, grey, *shape, fit.state));
             if (like > best_like) {
                 best_like = like;
                 best_state = fit.state;
@@ -421,6 +430,15 @@ struct HandTracker::Impl {
         if (membership_roi.area() > 0) membership(membership_roi).setTo(0);
         skin->membership(bgr, roi, membership);
         membership_roi = roi;
+        // While the edges are weak the hand is likely in front of skin (a face, a
+        // skin-coloured object), and the normals from skin into skin are measured on the
+        // grey levels. Elsewhere such normals are few and the skin edges decide alone,
+        // which spares the grey map's cost on most frames. Not with a template that is not
+        // even pointing-shaped: its outline is not the hand's silhouette, and inside a face
+        // grey steps (eyes, brows, mouth) are everywhere for it to settle on.
+        const bool use_steps = edges_were_weak && template_quality != CaptureQuality::Unsure;
+        const cv::Mat1b& steps = use_steps ? grey : no_grey;
+        if (use_steps) update_grey(bgr, roi);
 
         // Weight by the observation density.
         std::size_t best = 0;
@@ -428,7 +446,7 @@ struct HandTracker::Impl {
         const double margin = measurement.negligible_margin();
         for (std::size_t i = 0; i < n; ++i) {
             const double q =
-                measurement.misfit(membership, *shape, particles[i].state, best_misfit + margin);
+                measurement.misfit(membership, steps, *shape, particles[i].state, best_misfit + margin);
             log_weights[i] = measurement.log_likelihood(q);
             if (q < best_misfit) {
                 best_misfit = q;
@@ -461,9 +479,10 @@ struct HandTracker::Impl {
         }
         estimate.confidence = p_init > 0.0 ? std::clamp(best_like / p_init, 0.0, 1.0) : 0.0;
         const bool weak_edges = best_like < params.lost_ratio * p_init;
+        edges_were_weak = weak_edges;
 
         // Refine from the better of mean and best; report that.
-        const double mean_misfit = measurement.misfit(membership, *shape, mean);
+        const double mean_misfit = measurement.misfit(membership, steps, *shape, mean);
         const HandState start = mean_misfit <= best_misfit ? mean : b;
         const FitResult fit = refine_fit(membership, *shape, start, FitParams{}, bgr);
         const HandState out = fit.converged ? fit.state : start;
@@ -474,7 +493,7 @@ struct HandTracker::Impl {
         // object; there the hand is still under the contour, and tracking goes on while the
         // rim is skin or while the edges that can still be seen (not skin against skin) fit
         // as well as tracking did. The refined contour is the best placed one to judge.
-        if (weak_edges && !hand_still_there(out)) {
+        if (weak_edges && !hand_still_there(out, steps)) {
             if (++low_frames >= params.lost_frames) {
                 lose();
                 return;
@@ -525,8 +544,9 @@ struct HandTracker::Impl {
     bool grows_hand(double area) const { return area > kMaxCaptureGrowth * firm_area; }
 
     // On a weak-edge frame: whether the contour at `s` still holds the hand (see track()).
-    bool hand_still_there(const HandState& s) const {
-        const double like = measurement.normal_likelihood(measurement.misfit(membership, *shape, s));
+    bool hand_still_there(const HandState& s, const cv::Mat1b& steps) const {
+        const double like =
+            measurement.normal_likelihood(measurement.misfit(membership, steps, *shape, s));
         return like >= params.lost_ratio * p_init || rim_is_skin(s) || visible_edges_fit(s);
     }
 
@@ -578,6 +598,13 @@ struct HandTracker::Impl {
         low_frames = 0;
         lost_search = 0;
         detector.reset();
+    }
+
+    // The grey map over `roi`, for the normals that run from skin into skin.
+    void update_grey(const cv::Mat& bgr, const cv::Rect& roi) {
+        if (grey.size() != bgr.size()) grey = cv::Mat1b(bgr.size(), uchar(0));
+        cv::Mat part = grey(roi);
+        cv::cvtColor(bgr(roi), part, cv::COLOR_BGR2GRAY);
     }
 
     // --- reporting ---------------------------------------------------------------------

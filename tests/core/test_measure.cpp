@@ -63,6 +63,44 @@ TEST(EdgeSearch, NoEdgeInsideOrOutsideOrOffTheImage) {
     EXPECT_FALSE(gc::find_skin_edge_fast(m, -100.0f, -100.0f, 1.0f, 0.0f, 5, off));
 }
 
+TEST(EdgeSearch, TellsSkinRunningIntoSkinFromNoSkin) {
+    const auto m = step_map(30.0);
+    float off = 0;
+    bool beyond = false;
+    EXPECT_FALSE(gc::find_skin_edge_fast(m, 10.0f, 10.0f, 1.0f, 0.0f, 5, off, &beyond));
+    EXPECT_TRUE(beyond);  // skin into skin
+    EXPECT_FALSE(gc::find_skin_edge_fast(m, 50.0f, 10.0f, 1.0f, 0.0f, 5, off, &beyond));
+    EXPECT_FALSE(beyond);  // no skin at all
+}
+
+// Grey levels `inside` for x < edge and `outside` beyond, blurred like a lens.
+cv::Mat1b grey_step(int edge, int inside, int outside) {
+    cv::Mat1b g(20, 60, uchar(outside));
+    g.colRange(0, edge).setTo(inside);
+    cv::GaussianBlur(g, g, cv::Size(5, 5), 0.8);
+    return g;
+}
+
+TEST(EdgeSearch, FindsTheStrongestGreyStepAndIgnoresWeakOnes) {
+    float off = 0;
+    // A darker hand rim (140) against a face (170): the step lies between x = 29 and 30.
+    const auto g = grey_step(30, 140, 170);
+    ASSERT_TRUE(gc::find_grey_step_fast(g, 27.0f, 10.0f, 1.0f, 0.0f, 8, 16, off));
+    EXPECT_NEAR(27.0 + off, 29.5, 0.6);
+    // Either sign, from the other side.
+    ASSERT_TRUE(gc::find_grey_step_fast(g, 33.0f, 10.0f, -1.0f, 0.0f, 8, 16, off));
+    EXPECT_NEAR(33.0 - off, 29.5, 0.6);
+    // A second, weaker step nearer the start does not win.
+    cv::Mat1b two = g.clone();
+    two.colRange(0, 25).setTo(125);
+    ASSERT_TRUE(gc::find_grey_step_fast(two, 25.0f, 10.0f, 1.0f, 0.0f, 8, 16, off));
+    EXPECT_NEAR(25.0 + off, 29.5, 0.6);
+    // Below min_step (sensor noise, shading), or out of the window: nothing.
+    EXPECT_FALSE(gc::find_grey_step_fast(grey_step(30, 160, 170), 27.0f, 10.0f, 1.0f, 0.0f, 8, 16, off));
+    EXPECT_FALSE(gc::find_grey_step_fast(g, 45.0f, 10.0f, 1.0f, 0.0f, 8, 16, off));
+    EXPECT_FALSE(gc::find_grey_step_fast(g, -100.0f, -100.0f, 1.0f, 0.0f, 8, 16, off));
+}
+
 // A vertical boundary at x = edge between `skin` (left) and `wall` (right), each pixel the
 // area-weighted mix of the two, then blurred like a lens.
 cv::Mat3b colour_step(double edge, cv::Vec3b skin, cv::Vec3b wall) {
@@ -152,6 +190,41 @@ TEST(ContourMeasurement, JudgedMisfitLeavesOutSkinAgainstSkin) {
     // All skin: nothing judges.
     EXPECT_NEAR(meas.judged_misfit(cv::Mat1b(mask.size(), uchar(255)), t, truth, judged), 1.0, 1e-12);
     EXPECT_EQ(judged, 0.0);
+}
+
+// The hand in front of a face that covers its right half, the hand's grey levels darker
+// than the face's: with the grey map the covered normals measure the hand's outline again,
+// so the true state scores as if nothing covered it and a displaced state scores worse.
+TEST(ContourMeasurement, GreyStepsMeasureTheHandInFrontOfSkin) {
+    const auto mask = drawn_hand({320, 240}, {150, 130}, 20.0, 1.0);
+    const auto t = gc::HandTemplate::from_mask(mask, mask);
+    const gc::ContourMeasurement meas;
+    const gc::HandState truth{t.origin_px.x, t.origin_px.y, 0.0, 1.0};
+    cv::Mat1b covered = mask.clone();
+    covered(cv::Rect(int(truth.x), 0, 320 - int(truth.x), 240)).setTo(255);
+    cv::Mat1b grey(mask.size(), uchar(190));
+    grey.setTo(150, mask);
+    cv::GaussianBlur(grey, grey, cv::Size(5, 5), 0.8);
+
+    const double plain = meas.misfit(covered, t, truth);
+    const double at_truth = meas.misfit(covered, grey, t, truth);
+    EXPECT_GT(plain, 0.25);
+    EXPECT_LT(at_truth, 0.05);
+    for (const gc::HandState off : {gc::HandState{truth.x + 4, truth.y, 0, 1},
+                                    gc::HandState{truth.x, truth.y - 4, 0, 1},
+                                    gc::HandState{truth.x, truth.y, 0.15, 1}})
+        EXPECT_GT(meas.misfit(covered, grey, t, off), at_truth + 0.03);
+    // Where the skin edge is seen the grey map changes nothing.
+    EXPECT_NEAR(meas.misfit(mask, grey, t, truth), meas.misfit(mask, t, truth), 1e-6);
+    // A face of the hand's own grey level: no step, the plain misfit.
+    EXPECT_NEAR(meas.misfit(covered, cv::Mat1b(mask.size(), uchar(150)), t, truth), plain, 1e-6);
+    // Switched off, or a map of another size: not used.
+    gc::ObservationParams off_params;
+    off_params.min_grey_step = 0;
+    EXPECT_NEAR(gc::ContourMeasurement(off_params).misfit(covered, grey, t, truth), plain, 1e-6);
+    EXPECT_NEAR(meas.misfit(covered, cv::Mat1b(10, 10, uchar(0)), t, truth), plain, 1e-6);
+    off_params.min_grey_step = 256;
+    EXPECT_THROW(gc::ContourMeasurement{off_params}, std::invalid_argument);
 }
 
 TEST(ContourFit, RecoversAPerturbedState) {
