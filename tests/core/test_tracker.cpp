@@ -1,3 +1,4 @@
+#include "face_crossing.hpp"
 #include "metrics/metrics.hpp"
 #include "sim/scene.hpp"
 #include "tracker/hand_tracker.hpp"
@@ -174,10 +175,9 @@ TEST(HandTracker, KeepsTheHandWhileItCrossesAFace) {
             scene.render(f, gc::Eye::Left, {}, bgr, &truth);
             const auto& e = tracker.process(bgr);
             ASSERT_EQ(truth.face.size(), bgr.size());
-            const int hand = cv::countNonZero(truth.mask);
-            if (hand == 0 || cv::countNonZero(truth.mask & truth.face) < 0.05 * hand) continue;
+            if (!gc_test::hand_crosses_face(truth)) continue;
             ++crossing;
-            off += !(e.valid() && gc::mask_iou(truth.mask, gc::contour_mask(e.contour, bgr.size())) >= 0.5);
+            off += !gc_test::on_the_hand(e, truth, gc::contour_mask(e.contour, bgr.size()));
         }
         EXPECT_GT(crossing, 10) << "seed " << seed << ": the hand must cross the face";
         EXPECT_EQ(off, 0) << "seed " << seed << ": lost or off the hand in " << off << " of "

@@ -5,6 +5,7 @@
 // HandTracker.KeepsTheHandWhileItCrossesAFace.
 //
 //   tracking_study PRESET FIRST_SEED LAST_SEED [PARTICLES]
+#include "face_crossing.hpp"
 #include "metrics/metrics.hpp"
 #include "sim/scene.hpp"
 #include "tracker/hand_tracker.hpp"
@@ -49,12 +50,9 @@ int main(int argc, char** argv) {
             const cv::Mat1b tracked = e.valid() ? gc::contour_mask(e.contour, bgr.size())
                                                 : cv::Mat1b(bgr.size(), uchar(0));
             snr.add(truth.mask, tracked);
-            const int hand = cv::countNonZero(truth.mask);
-            if (truth.face.empty() || hand == 0 ||
-                cv::countNonZero(truth.mask & truth.face) < 0.05 * hand)
-                continue;
+            if (!gc_test::hand_crosses_face(truth)) continue;
             ++crossing;
-            off += !(e.valid() && gc::mask_iou(truth.mask, tracked) >= 0.5);
+            off += !gc_test::on_the_hand(e, truth, tracked);
         }
         snr_sum += snr.snr_db();
         ++seeds;
