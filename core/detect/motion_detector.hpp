@@ -61,6 +61,10 @@ public:
 
     void reset();
 
+    // Non-zero where the image changed in the last history_frames frames (the frames'
+    // size; empty before the first frame).
+    const cv::Mat1b& recent_motion() const { return history_; }
+
 private:
     DetectionParams p_;
     cv::Mat1b previous_, grey_, changed_;

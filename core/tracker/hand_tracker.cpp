@@ -40,6 +40,7 @@ constexpr int kLostSearchEvery = 3;
 constexpr int kRecapturePeriod = 16;  // while the template is provisional, look again this often
 constexpr int kUnsureRecapturePeriod = 8;  // ... and this often while it is not even pointing-shaped
 constexpr int kRecaptureFrames = 7;   // ... over this many frames (history_frames + 1)
+constexpr double kStillMotion = 0.02;  // moved share of the contour below which it held still
 
 void check_frame(const cv::Mat& bgr) {
     if (bgr.empty()) throw std::invalid_argument("HandTracker: empty frame");
@@ -105,6 +106,7 @@ struct HandTracker::Impl {
     double firm_area = 0.0;        // of the contour, on the last frame whose edges fitted
     int lost_search = 0;           // frames searched since the hand was lost
     cv::Rect recapture_roi;        // the window the detector watches while tracking
+    bool watch_everywhere = false; // the last watch saw the tracked contour hold still
 
     std::optional<TemplateTrial> trial;  // a re-capture of the template's quality, on trial
 
@@ -144,6 +146,7 @@ struct HandTracker::Impl {
         firm_area = 0.0;
         lost_search = 0;
         recapture_roi = {};
+        watch_everywhere = false;
         trial.reset();
         for (auto& p : particles) p = Particle{};
     }
@@ -238,22 +241,32 @@ struct HandTracker::Impl {
     // segments the last one. A capture of better quality (clean over pointing-shaped over
     // neither) of a hand wholly inside the window, overlapping the tracked one, replaces the
     // template; while the edges are weak (`weak_edges`), only one no larger than the hand.
+    // The hand is what waved: a watch that saw (nearly) nothing change under the tracked
+    // contour says it may hold a static skin-coloured object instead (a template merged
+    // with one at capture, left on it as the hand moved off). The next watch then covers
+    // the whole frame, and there a capture need not overlap the tracked contour.
     bool recapture(const cv::Mat& bgr, bool weak_edges) {
         const int period =
             template_quality == CaptureQuality::Unsure ? kUnsureRecapturePeriod : kRecapturePeriod;
         const int phase = tracked_frames % period;
         const int first = period - kRecaptureFrames;
         if (phase < first) return false;
+        const cv::Rect frame(0, 0, bgr.cols, bgr.rows);
         if (phase == first) {
             const cv::Rect b = estimate.bbox;
-            recapture_roi = cv::Rect(b.x - b.width, b.y - b.height, 3 * b.width, 3 * b.height) &
-                            cv::Rect(0, 0, bgr.cols, bgr.rows);
+            recapture_roi = watch_everywhere
+                                ? frame
+                                : cv::Rect(b.x - b.width, b.y - b.height, 3 * b.width, 3 * b.height) & frame;
             detector.reset();
         }
         if (recapture_roi.width < 32 || recapture_roi.height < 32) return false;
         const bool last = phase == period - 1;
         const auto found = detector.process(bgr(recapture_roi), *skin, last);
-        if (last) detector.reset();
+        const bool everywhere = recapture_roi == frame && watch_everywhere;
+        if (last) {
+            watch_everywhere = contour_held_still(detector.recent_motion(), recapture_roi);
+            detector.reset();
+        }
         if (!found || capture_quality(*found) < template_quality) return false;
         if (weak_edges && grows_hand(found->area)) return false;
         const bool equal = capture_quality(*found) == template_quality;
@@ -262,7 +275,7 @@ struct HandTracker::Impl {
         if (local.x <= 1 || local.y <= 1 || local.br().x >= recapture_roi.width - 1 ||
             local.br().y >= recapture_roi.height - 1)
             return false;  // cut by the window (or the frame): not the whole hand
-        if (((local + recapture_roi.tl()) & estimate.bbox).area() == 0) return false;
+        if (!everywhere && ((local + recapture_roi.tl()) & estimate.bbox).area() == 0) return false;
         Detection whole = *found;
         whole.mask = cv::Mat1b(bgr.size(), uchar(0));
         found->mask.copyTo(whole.mask(recapture_roi));
@@ -337,6 +350,7 @@ struct HandTracker::Impl {
         low_frames = 0;
         edges_were_weak = false;
         tracked_frames = 0;
+        watch_everywhere = false;
         firm_area = std::abs(cv::contourArea(shape->outline)) * x0.scale * x0.scale;
         trial.reset();
         detector.reset();
@@ -539,6 +553,25 @@ struct HandTracker::Impl {
         return true;
     }
 
+    // Whether the reported contour lies inside the watched `window` and less than
+    // kStillMotion of it changed during the watch (`moved`: the window's recent motion).
+    bool contour_held_still(const cv::Mat1b& moved, const cv::Rect& window) {
+        const cv::Rect box = estimate.bbox & window;
+        if (moved.size() != window.size() || box != estimate.bbox || box.area() == 0) return false;
+        fill_contour(box);
+        const cv::Mat1b under = moved(box - window.tl());
+        int inside = 0, changed = 0;
+        for (int y = 0; y < box.height; ++y) {
+            const uchar* f = contour_fill.ptr<uchar>(y);
+            const uchar* m = under.ptr<uchar>(y);
+            for (int x = 0; x < box.width; ++x) {
+                inside += f[x] != 0;
+                changed += f[x] != 0 && m[x] != 0;
+            }
+        }
+        return inside > 0 && changed < kStillMotion * inside;
+    }
+
     // True when a capture of `area` pixels is clearly larger than the hand was when its
     // edges last fitted (the contour reported since may have shrunk or slid off it).
     bool grows_hand(double area) const { return area > kMaxCaptureGrowth * firm_area; }
@@ -628,6 +661,13 @@ struct HandTracker::Impl {
     void adapt_skin(const cv::Mat& bgr) {
         const cv::Rect box = estimate.bbox & cv::Rect(0, 0, bgr.cols, bgr.rows);
         if (box.width < 8 || box.height < 8) return;
+        fill_contour(box);
+        cv::erode(contour_fill, contour_fill, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(5, 5)));
+        skin->update_mean(bgr(box), contour_fill, kAdaptRate);
+    }
+
+    // contour_fill: the reported contour filled, over `box` (in image pixels).
+    void fill_contour(const cv::Rect& box) {
         contour_fill.create(box.size());
         contour_fill.setTo(0);
         fill_points.resize(estimate.contour.size());
@@ -637,8 +677,6 @@ struct HandTracker::Impl {
         const cv::Point* poly = fill_points.data();
         const int count = static_cast<int>(fill_points.size());
         cv::fillPoly(contour_fill, &poly, &count, 1, 255);
-        cv::erode(contour_fill, contour_fill, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(5, 5)));
-        skin->update_mean(bgr(box), contour_fill, kAdaptRate);
     }
 };
 

@@ -169,6 +169,33 @@ TEST(MotionDetector, StaticSceneOrNonSkinMotionGivesNothing) {
     }
 }
 
+TEST(MotionDetector, RemembersWhereTheImageChangedForItsHistory) {
+    cv::setRNGSeed(6);
+    DrawnScene scene(8);
+    gc::DetectionParams params;
+    gc::MotionDetector det(params);
+    cv::Mat3b frame;
+    cv::Mat1b truth;
+    EXPECT_TRUE(det.recent_motion().empty());
+    scene.render({150.0, 130.0}, 35.0, frame, truth);
+    det.process(frame, gc::SkinModel::generic(), false);
+    // One step of the hand: its edges changed, the far corner did not.
+    scene.render({156.0, 130.0}, 35.0, frame, truth);
+    det.process(frame, gc::SkinModel::generic(), false);
+    ASSERT_EQ(det.recent_motion().size(), frame.size());
+    EXPECT_GT(det.recent_motion()(130, 156 + 22), 0);  // the palm's leading edge
+    EXPECT_EQ(cv::countNonZero(det.recent_motion()(cv::Rect(0, 200, 60, 40))), 0);
+    // Held still, the change is forgotten after history_frames frames.
+    for (int i = 0; i < params.history_frames - 1; ++i) {
+        det.process(frame, gc::SkinModel::generic(), false);
+        EXPECT_GT(det.recent_motion()(130, 156 + 22), 0) << "frame " << i;
+    }
+    det.process(frame, gc::SkinModel::generic(), false);
+    EXPECT_EQ(det.recent_motion()(130, 156 + 22), 0);
+    det.reset();
+    EXPECT_TRUE(det.recent_motion().empty());
+}
+
 TEST(MotionDetector, BadInputsThrow) {
     gc::MotionDetector det;
     EXPECT_THROW(det.process(cv::Mat()), std::invalid_argument);

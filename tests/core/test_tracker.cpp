@@ -162,10 +162,12 @@ TEST(HandTracker, FollowsARenderedSceneAcrossSeeds) {
 // the curled fingers, or where a capture during the crossing merged the face; each failed
 // before the finger-aware rim and the weak-edge capture rule (docs/tracker.md). Seeds 22
 // and 96 hold the hand over the face for 60-140 frames with few skin edges left; they
-// failed before the grey-level steps measured the normals from skin into skin.
+// failed before the grey-level steps measured the normals from skin into skin. On seed 75
+// the first template merged two boxes of the hand's colour and stayed on them as the hand
+// moved off; it failed before a watch that saw the contour hold still covered the frame.
 TEST(HandTracker, KeepsTheHandWhileItCrossesAFace) {
     for (std::uint64_t seed :
-         {1u, 2u, 3u, 4u, 5u, 6u, 12u, 21u, 23u, 25u, 10u, 17u, 30u, 73u, 22u, 96u}) {
+         {1u, 2u, 3u, 4u, 5u, 6u, 12u, 21u, 23u, 25u, 10u, 17u, 30u, 73u, 22u, 96u, 75u}) {
         const gc::sim::Scene scene(mixed_scene(gc::sim::Preset::FacePass, seed));
         gc::HandTracker tracker(seeded_params(1000, seed));
         cv::Mat bgr;
