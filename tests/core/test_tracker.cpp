@@ -61,6 +61,11 @@ struct DrawnScene {
         cv::fillConvexPoly(mask, finger, 255);
         cv::circle(mask, tip, cvRound(5 * s), 255, cv::FILLED);
         cv::circle(mask, palm + side * (26.0 * s) + dir * (6.0 * s), cvRound(7 * s), 255, cv::FILLED);
+        paint(mask, out);
+    }
+
+    // The background with skin where `mask` is, plus sensor noise.
+    void paint(const cv::Mat1b& mask, cv::Mat3b& out) const {
         background.copyTo(out);
         out.setTo(skin, mask);
         cv::Mat3s o;
@@ -184,6 +189,51 @@ TEST(HandTracker, KeepsTheHandWhileItCrossesAFace) {
         EXPECT_GT(crossing, 10) << "seed " << seed << ": the hand must cross the face";
         EXPECT_EQ(off, 0) << "seed " << seed << ": lost or off the hand in " << off << " of "
                           << crossing << " crossing frames";
+    }
+}
+
+// A pointing hand of the proportions capture_quality() ranks as pointing (palm radius 22,
+// a finger 10 px wide reaching 2.5 palm radii, pointing up), with sensor noise.
+void draw_upright_hand(const DrawnScene& scene, cv::Point palm, cv::Mat3b& out, cv::Mat1b& mask) {
+    mask = cv::Mat1b(scene.background.size(), uchar(0));
+    cv::circle(mask, palm, 22, 255, cv::FILLED);
+    cv::rectangle(mask, cv::Rect(palm.x - 5, palm.y - 55, 10, 50), 255, cv::FILLED);
+    scene.paint(mask, out);
+}
+
+// The hand waves with its fingertip against a board of its colour, so the capture is cut
+// (not clean); then it moves away and leaves a static likeness of itself where it was,
+// which the template fits perfectly. The tracker must notice that nothing moves under its
+// contour and go to the hand that does.
+TEST(HandTracker, LeavesAStaticLikenessForTheHandThatMoves) {
+    for (std::uint32_t background : {3u, 7u}) {
+        cv::setRNGSeed(12);
+        DrawnScene scene(background);
+        cv::rectangle(scene.background, cv::Rect(80, 55, 60, 42), cv::Scalar(scene.skin), cv::FILLED);
+        gc::TrackerParams params;
+        params.particles = 300;
+        gc::HandTracker tracker(params);
+        cv::Mat3b frame;
+        cv::Mat1b truth, likeness;
+        bool acquired = false;
+        int on_hand = 0;
+        for (int f = 0; f < 90; ++f) {
+            if (f == 12) {
+                cv::Mat3b unused;
+                draw_upright_hand(scene, {110, 150}, unused, likeness);
+                scene.background.setTo(cv::Scalar(scene.skin), likeness);
+            }
+            const cv::Point palm =
+                f < 12 ? cv::Point(110 + (f % 2 ? 3 : -3), 150)
+                       : cv::Point(cvRound(240 + 5 * std::sin(0.9 * f)), cvRound(170 + 3 * std::cos(0.7 * f)));
+            draw_upright_hand(scene, palm, frame, truth);
+            const auto& e = tracker.process(frame);
+            if (f == 11) acquired = e.valid() && iou(e.contour, truth) > 0.7;
+            if (f >= 60) on_hand += e.valid() && iou(e.contour, truth) >= 0.8;
+        }
+        EXPECT_TRUE(acquired) << "background " << background;
+        EXPECT_EQ(on_hand, 30) << "background " << background << ": on the moving hand in "
+                               << on_hand << " of the last 30 frames";
     }
 }
 
