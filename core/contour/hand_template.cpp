@@ -15,6 +15,8 @@ namespace gc {
 namespace {
 
 constexpr double kMinHandArea = 120.0;  // pixels; below this there is no finger to see
+// An outline point this close (pixels) to a recently changed pixel moved with the hand.
+constexpr int kTipMotionReach = 3;
 
 double norm(const cv::Point2d& p) { return std::hypot(p.x, p.y); }
 
@@ -50,10 +52,28 @@ cv::Mat1f inside_distance(const std::vector<cv::Point>& outline, const cv::Rect&
     return dist;
 }
 
+// Whether a pixel of the shape (`mask`) within kTipMotionReach of `p` changed recently
+// (`motion`). Changes outside the shape do not count: there a moving sleeve or arm may
+// pass the end of a static thing merged with the hand.
+bool moved_near(const cv::Mat& mask, const cv::Mat1b& motion, const cv::Point& p) {
+    const cv::Rect around(p.x - kTipMotionReach, p.y - kTipMotionReach, 2 * kTipMotionReach + 1,
+                          2 * kTipMotionReach + 1);
+    const cv::Rect r = around & cv::Rect(0, 0, motion.cols, motion.rows);
+    for (int y = r.y; y < r.br().y; ++y) {
+        const uchar* m = motion.ptr<uchar>(y);
+        const uchar* in = mask.ptr<uchar>(y);
+        for (int x = r.x; x < r.br().x; ++x)
+            if (m[x] && in[x]) return true;
+    }
+    return false;
+}
+
 }  // namespace
 
-HandLandmarks find_hand_landmarks(const cv::Mat& mask) {
+HandLandmarks find_hand_landmarks(const cv::Mat& mask, const cv::Mat1b& motion) {
     if (mask.empty()) throw std::invalid_argument("hand template: empty mask");
+    if (!motion.empty() && motion.size() != mask.size())
+        throw std::invalid_argument("hand template: motion map size differs from mask size");
     if (mask.type() != CV_8UC1)
         throw std::invalid_argument("hand template: mask must be CV_8UC1, got " +
                                     std::to_string(mask.channels()) + " channel(s)");
@@ -82,30 +102,58 @@ HandLandmarks find_hand_landmarks(const cv::Mat& mask) {
     lm.palm_radius = max_dist;
 
     // The index fingertip: the outline point farthest from the palm, skipping points that
-    // touch the image border (a forearm leaving the frame, or a hand cut off by it).
+    // touch the image border (a forearm leaving the frame, or a hand cut off by it). With a
+    // motion map, only points where the shape changed along most of the outline around
+    // them (a palm radius either way) count, if any: the waving finger sweeps, while a
+    // static skin-coloured thing merged with the hand does not (but for a few pixels where
+    // an arm passes it), and its far end would otherwise pass for the finger.
     const int w = mask.cols, h = mask.rows;
-    double best = -1.0;
-    for (const cv::Point& p : lm.outline) {
+    const int n = static_cast<int>(lm.outline.size());
+    std::vector<int> moved_before;  // moved_before[i]: moved points among outline[0, i)
+    if (!motion.empty()) {
+        moved_before.resize(n + 1, 0);
+        for (int i = 0; i < n; ++i)
+            moved_before[i + 1] = moved_before[i] + moved_near(mask, motion, lm.outline[i]);
+    }
+    const int half = std::clamp(static_cast<int>(lm.palm_radius), 1, std::max(1, (n - 1) / 2));
+    auto mostly_moved = [&](int i) {  // over outline[i - half, i + half], circularly
+        const int lo = i - half, hi = i + half + 1;
+        int moved = 0;
+        if (lo < 0) moved = moved_before[hi] + moved_before[n] - moved_before[n + lo];
+        else if (hi > n) moved = moved_before[n] - moved_before[lo] + moved_before[hi - n];
+        else moved = moved_before[hi] - moved_before[lo];
+        return 2 * moved > 2 * half + 1;
+    };
+    double best = -1.0, best_moving = -1.0;
+    cv::Point2d moving_tip;
+    for (int i = 0; i < n; ++i) {
+        const cv::Point& p = lm.outline[i];
         if (p.x <= 0 || p.y <= 0 || p.x >= w - 1 || p.y >= h - 1) continue;
         const double d = norm(cv::Point2d(p) - lm.palm);
         if (d > best) {
             best = d;
-            lm.fingertip = cv::Point2d(p);
+            lm.farthest = cv::Point2d(p);
+        }
+        if (!moved_before.empty() && d > best_moving && mostly_moved(i)) {
+            best_moving = d;
+            moving_tip = cv::Point2d(p);
         }
     }
     if (best < 0.0) throw std::invalid_argument("hand template: shape lies entirely on the image border");
+    lm.fingertip = best_moving >= 0.0 ? moving_tip : lm.farthest;
     return lm;
 }
 
 HandTemplate HandTemplate::from_mask(const cv::Mat& mask, const cv::Mat1b& membership,
-                                     const TemplateOptions& options, const cv::Mat& bgr) {
+                                     const TemplateOptions& options, const cv::Mat& bgr,
+                                     const cv::Mat1b& motion) {
     if (options.measurement_normals < 8 || options.outline_points < 16 ||
         options.palm_points < 8 || !(options.finger_density >= 1.0) ||
         !(options.finger_weight > 0.0) || !(options.snap_range >= 0.0))
         throw std::invalid_argument("hand template: invalid options");
     if (!membership.empty() && membership.size() != mask.size())
         throw std::invalid_argument("hand template: membership map size differs from mask size");
-    const HandLandmarks lm = find_hand_landmarks(mask);
+    const HandLandmarks lm = find_hand_landmarks(mask, motion);
     const double reach = norm(lm.fingertip - lm.palm);
     if (reach < 1.5 * lm.palm_radius || reach < 6.0)
         throw std::invalid_argument("hand template: no finger protrudes from the palm");
@@ -185,11 +233,11 @@ HandTemplate HandTemplate::from_mask(const cv::Mat& mask, const cv::Mat1b& membe
     return t;
 }
 
-HandProportions hand_proportions(const cv::Mat& mask) {
+HandProportions hand_proportions(const cv::Mat& mask, const cv::Mat1b& motion) {
     HandProportions out;
     HandLandmarks lm;
     try {
-        lm = find_hand_landmarks(mask);
+        lm = find_hand_landmarks(mask, motion);
     } catch (const std::invalid_argument&) {
         return out;
     }
@@ -205,6 +253,7 @@ HandProportions hand_proportions(const cv::Mat& mask) {
     const double r = std::max(1.0, lm.palm_radius);
     out.finger_width = widest / r;
     out.reach = norm(lm.fingertip - lm.palm) / r;
+    out.farthest_moved = norm(lm.farthest - lm.fingertip) <= r;
     out.valid = true;
     return out;
 }

@@ -47,34 +47,46 @@ struct HandTemplate {
     // Builds the template from a binary hand mask (CV_8UC1, non-zero = hand). When
     // `membership` (SkinModel::membership of the same frame) is given, outline points are
     // moved to the sub-pixel skin edge, and with `bgr` too (the frame itself) on to where
-    // the colour is halfway between skin and background (colour_edge_offset). Throws
-    // std::invalid_argument on a wrong type, an empty mask, or a shape too small to carry a
-    // finger and a palm.
+    // the colour is halfway between skin and background (colour_edge_offset). `motion`
+    // (optional, non-zero where the image changed recently) guides the fingertip
+    // (find_hand_landmarks). Throws std::invalid_argument on a wrong type, an empty mask,
+    // or a shape too small to carry a finger and a palm.
     static HandTemplate from_mask(const cv::Mat& mask, const cv::Mat1b& membership = {},
-                                  const TemplateOptions& options = {}, const cv::Mat& bgr = {});
+                                  const TemplateOptions& options = {}, const cv::Mat& bgr = {},
+                                  const cv::Mat1b& motion = {});
 };
 
 // The palm (centre of the largest inscribed circle) and the index fingertip (the outline
 // point farthest from it, ignoring points on the image border, where an arm or a cut-off
-// shape ends) of a binary hand mask, found from the shape alone.
+// shape ends) of a binary hand mask, found from the shape. Given `motion` (mask-sized,
+// non-zero where the image changed recently), the fingertip is the farthest of the outline
+// points that moved, when any did: what the hand is merged with stood still.
 struct HandLandmarks {
     cv::Point2d palm;
     double palm_radius = 0.0;
     cv::Point2d fingertip;
+    cv::Point2d farthest;            // the outline point farthest from the palm (the
+                                     // fingertip, unless motion placed it elsewhere)
     std::vector<cv::Point> outline;  // the largest outer contour, pixel chain
 };
-HandLandmarks find_hand_landmarks(const cv::Mat& mask);
+HandLandmarks find_hand_landmarks(const cv::Mat& mask, const cv::Mat1b& motion = {});
 
 // Proportions of a binary hand mask that tell a pointing hand from a blob merged with a
 // touching object: `finger_width`, the largest inscribed-circle radius 55-95 % of the way
 // from the palm centre to the fingertip, and `reach`, palm centre to fingertip, both in
-// palm radii. `pointing()` applies the bounds (see docs/tracker.md).
+// palm radii, with the fingertip of find_hand_landmarks(mask, motion). `farthest_moved`:
+// the shape's farthest point is (within a palm radius) that fingertip; false when it is
+// the static end of something merged with the hand. `pointing()` applies the bounds (see
+// docs/tracker.md) and requires it.
 struct HandProportions {
     double finger_width = 0.0;
     double reach = 0.0;
+    bool farthest_moved = true;
     bool valid = false;  // false: no landmarks could be found
-    bool pointing() const { return valid && finger_width <= 0.33 && reach >= 1.8 && reach <= 3.0; }
+    bool pointing() const {
+        return valid && farthest_moved && finger_width <= 0.33 && reach >= 1.8 && reach <= 3.0;
+    }
 };
-HandProportions hand_proportions(const cv::Mat& mask);
+HandProportions hand_proportions(const cv::Mat& mask, const cv::Mat1b& motion = {});
 
 }  // namespace gc

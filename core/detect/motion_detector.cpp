@@ -181,7 +181,9 @@ std::optional<Detection> segment_hand(const cv::Mat& bgr, const cv::Mat1b& movin
     int area = stats.at<int>(best, cv::CC_STAT_AREA);
     double support = 1.0;
     bool cut = false;
-    if (!recent_motion.empty() && recent_motion.size() == bgr.size()) {
+    const bool has_history = !recent_motion.empty() && recent_motion.size() == bgr.size();
+    const cv::Mat1b motion = has_history ? recent_motion : cv::Mat1b();
+    if (has_history) {
         cv::Mat1b near;
         const int k = 2 * params.history_reach + 1;
         cv::dilate(recent_motion, near, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(k, k)));
@@ -206,8 +208,7 @@ std::optional<Detection> segment_hand(const cv::Mat& bgr, const cv::Mat1b& movin
     // remnant next to the finger or the palm) is cut closer to the motion: the
     // neighbourhood shrinks until the shape is a pointing hand (holes filled, since the
     // middle of the palm may not have changed), else the wider cut stands.
-    if (!recent_motion.empty() && recent_motion.size() == bgr.size() && history_mature &&
-        !hand_proportions(blob).pointing()) {
+    if (has_history && history_mature && !hand_proportions(blob, motion).pointing()) {
         const cv::Mat1b component = labels == best;
         for (const int reach : {params.history_reach * 2 / 3, params.history_reach / 3}) {
             if (reach < 2) break;
@@ -223,7 +224,7 @@ std::optional<Detection> segment_hand(const cv::Mat& bgr, const cv::Mat1b& movin
             int keep_area = 0;
             cv::Mat1b candidate = largest_component(near, keep_area);
             if (keep_area == 0) break;
-            if (!hand_proportions(candidate).pointing()) continue;
+            if (!hand_proportions(candidate, motion).pointing()) continue;
             blob = candidate;
             area = keep_area;
             cut = true;
@@ -233,7 +234,8 @@ std::optional<Detection> segment_hand(const cv::Mat& bgr, const cv::Mat1b& movin
     if (area < params.min_hand_area ||
         area > params.max_hand_fraction * double(bgr.rows) * bgr.cols)
         return std::nullopt;
-    Detection d{blob, roi, *skin, double(area), support, cut};
+    // The history changes with the next frame; the detection keeps the present one.
+    Detection d{blob, roi, *skin, double(area), support, cut, motion.clone()};
     // Refit on the whole blob: the moving pixels were only part of the hand.
     try {
         d.skin = SkinModel::fit(bgr, d.mask, prior.dark_threshold());
@@ -243,7 +245,7 @@ std::optional<Detection> segment_hand(const cv::Mat& bgr, const cv::Mat1b& movin
 }
 
 CaptureQuality capture_quality(const Detection& d) {
-    if (!hand_proportions(d.mask).pointing()) return CaptureQuality::Unsure;
+    if (!hand_proportions(d.mask, d.motion).pointing()) return CaptureQuality::Unsure;
     return !d.cut && d.motion_support >= kCleanSupport ? CaptureQuality::Clean
                                                        : CaptureQuality::Pointing;
 }

@@ -34,6 +34,7 @@ struct Detection {
     // history), before any cut: how sure the capture is to be the moving hand alone.
     double motion_support = 1.0;
     bool cut = false;   // the component was cut to the neighbourhood of recent motion
+    cv::Mat1b motion = {};  // frame-sized, non-zero where the image changed recently (or empty)
 };
 
 // How sure a detection is to be the hand alone, worst first. Clean: nothing was cut off

@@ -83,6 +83,7 @@ struct HandTracker::Impl {
     std::optional<SkinModel> skin;
     std::optional<HandTemplate> shape;
     double template_radius = 0.0;  // largest |u| of the outline, at scale 1
+    int template_side = 0;         // larger side of the outline's box, at scale 1
 
     std::vector<Particle> particles, predicted;
     std::vector<double> log_weights, weights, deviates;
@@ -127,6 +128,7 @@ struct HandTracker::Impl {
         sampler = QuasiNormalSampler(4, params.seed ^ 0x5EEDULL);
         rng.seed(params.seed);
         template_radius = 0.0;
+        template_side = 0;
         previous = HandState{};
         membership_roi = {};
         detector.reset();
@@ -218,7 +220,7 @@ struct HandTracker::Impl {
     static std::optional<HandTemplate> template_from(const Detection& found, const cv::Mat1b& memb,
                                                      const cv::Mat& bgr) {
         try {
-            return HandTemplate::from_mask(found.mask, memb, TemplateOptions{}, bgr);
+            return HandTemplate::from_mask(found.mask, memb, TemplateOptions{}, bgr, found.motion);
         } catch (const std::invalid_argument&) {
             return std::nullopt;  // a moving blob without a finger: keep waiting
         }
@@ -230,6 +232,8 @@ struct HandTracker::Impl {
         template_radius = 0.0;
         for (const auto& p : shape->outline)
             template_radius = std::max(template_radius, double(std::hypot(p.x, p.y)));
+        const cv::Rect extent = cv::boundingRect(shape->outline);
+        template_side = std::max(extent.width, extent.height);
         start_tracking(at);
         template_quality = quality;
         report(at);
@@ -237,8 +241,10 @@ struct HandTracker::Impl {
 
     // While the template is not clean, the detector looks again now and then: every
     // kRecapturePeriod frames it watches kRecaptureFrames consecutive frames of a window
-    // around the tracked hand (three times its box: a fraction of the frame's cost) and
-    // segments the last one. A capture of better quality (clean over pointing-shaped over
+    // around the tracked hand (three times its box, the box at least as large as the
+    // template's larger side, so that a contour shrunk onto a sliver of the hand still
+    // watches a window the hand fits in: a fraction of the frame's cost) and segments the
+    // last one. A capture of better quality (clean over pointing-shaped over
     // neither) of a hand wholly inside the window, overlapping the tracked one, replaces the
     // template; while the edges are weak (`weak_edges`), only one no larger than the hand.
     // The hand is what waved: a watch that saw (nearly) nothing change under the tracked
@@ -246,14 +252,15 @@ struct HandTracker::Impl {
     // with one at capture, left on it as the hand moved off). The next watch then covers
     // the whole frame, and there a capture need not overlap the tracked contour.
     bool recapture(const cv::Mat& bgr, bool weak_edges) {
-        const int period =
-            template_quality == CaptureQuality::Unsure ? kUnsureRecapturePeriod : kRecapturePeriod;
+        const int period = template_quality == CaptureQuality::Unsure || watch_everywhere
+                               ? kUnsureRecapturePeriod
+                               : kRecapturePeriod;
         const int phase = tracked_frames % period;
         const int first = period - kRecaptureFrames;
         if (phase < first) return false;
         const cv::Rect frame(0, 0, bgr.cols, bgr.rows);
         if (phase == first) {
-            const cv::Rect b = estimate.bbox;
+            const cv::Rect b = at_least(estimate.bbox, template_side);
             recapture_roi = watch_everywhere
                                 ? frame
                                 : cv::Rect(b.x - b.width, b.y - b.height, 3 * b.width, 3 * b.height) & frame;
@@ -267,18 +274,25 @@ struct HandTracker::Impl {
             watch_everywhere = contour_held_still(detector.recent_motion(), recapture_roi);
             detector.reset();
         }
+        // Two watches in a row saw the contour hold still while this hand moved elsewhere:
+        // the contour is on something static, and a capture of its rank away from it
+        // replaces it without a trial (which would move it with the static contour).
+        const bool still_twice = everywhere && watch_everywhere;
         if (!found || capture_quality(*found) < template_quality) return false;
         if (weak_edges && grows_hand(found->area)) return false;
-        const bool equal = capture_quality(*found) == template_quality;
-        if (equal && trial) return false;
         const cv::Rect local = cv::boundingRect(found->mask);
+        const bool apart = ((local + recapture_roi.tl()) & estimate.bbox).area() == 0;
+        const bool equal = capture_quality(*found) == template_quality && !(still_twice && apart);
+        if (equal && trial) return false;
         if (local.x <= 1 || local.y <= 1 || local.br().x >= recapture_roi.width - 1 ||
             local.br().y >= recapture_roi.height - 1)
             return false;  // cut by the window (or the frame): not the whole hand
-        if (!everywhere && ((local + recapture_roi.tl()) & estimate.bbox).area() == 0) return false;
+        if (!everywhere && apart) return false;
         Detection whole = *found;
         whole.mask = cv::Mat1b(bgr.size(), uchar(0));
         found->mask.copyTo(whole.mask(recapture_roi));
+        whole.motion = cv::Mat1b(bgr.size(), uchar(0));
+        if (!found->motion.empty()) found->motion.copyTo(whole.motion(recapture_roi));
         cv::Mat1b memb(bgr.size(), uchar(0));
         found->skin.membership(bgr, recapture_roi, memb);
         if (equal) {
@@ -302,7 +316,7 @@ struct HandTracker::Impl {
     bool refit_known_shape(const Detection& found, const cv::Mat1b& memb, const cv::Mat& bgr) {
         HandLandmarks lm;
         try {
-            lm = find_hand_landmarks(found.mask);
+            lm = find_hand_landmarks(found.mask, found.motion);
         } catch (const std::invalid_argument&) {
             return false;
         }
@@ -570,6 +584,12 @@ struct HandTracker::Impl {
             }
         }
         return inside > 0 && changed < kStillMotion * inside;
+    }
+
+    // `box` grown about its centre to at least `side` x `side`.
+    static cv::Rect at_least(const cv::Rect& box, int side) {
+        const int w = std::max(box.width, side), h = std::max(box.height, side);
+        return {box.x - (w - box.width) / 2, box.y - (h - box.height) / 2, w, h};
     }
 
     // True when a capture of `area` pixels is clearly larger than the hand was when its

@@ -80,6 +80,43 @@ TEST(HandTemplate, FindsPalmAndFingertipFromTheShape) {
     }
 }
 
+// A hand merged with a static skin-coloured strip that reaches farther than its finger:
+// the shape alone puts the fingertip at the strip's end; the motion of the waving hand,
+// where the hand's own outline changed, puts it back on the finger, even with a few
+// changed pixels at the strip's end (where a moving sleeve passes it), and ranks the
+// shape as not pointing.
+TEST(HandTemplate, FindsTheFingertipWhereTheShapeMoved) {
+    const cv::Size size(320, 240);
+    const cv::Point2d palm(150, 100);
+    const cv::Mat1b hand = drawn_hand(size, palm, 0.0, 1.0);  // finger to +x, tip at x = 217
+    cv::Mat1b merged = hand.clone();
+    cv::line(merged, {150, 110}, {90, 200}, 255, 12);  // the strip: ~100 px from the palm
+    const auto still = gc::find_hand_landmarks(merged);
+    EXPECT_GT(still.fingertip.y, 180.0) << "the strip's end is the farthest point";
+
+    // The hand moved by (3, 2) px since a few frames: its outline's strips changed.
+    cv::Mat1b before = cv::Mat1b::zeros(size), motion;
+    hand(cv::Rect(3, 2, size.width - 3, size.height - 2))
+        .copyTo(before(cv::Rect(0, 0, size.width - 3, size.height - 2)));
+    cv::bitwise_xor(hand, before, motion);
+    motion(cv::Rect(86, 194, 8, 8)).setTo(255);  // a sleeve passing the strip's end
+    const auto moving = gc::find_hand_landmarks(merged, motion);
+    EXPECT_LT(std::hypot(moving.fingertip.x - 217, moving.fingertip.y - 100), 4.0)
+        << moving.fingertip;
+    // What the hand is merged with reaches farther than the finger: not a pointing hand's
+    // shape, though the hand alone is.
+    const gc::HandProportions with_strip = gc::hand_proportions(merged, motion);
+    ASSERT_TRUE(with_strip.valid);
+    EXPECT_FALSE(with_strip.farthest_moved);
+    EXPECT_FALSE(with_strip.pointing());
+    EXPECT_TRUE(gc::hand_proportions(hand, motion).farthest_moved);
+
+    // Nothing of the shape moved: the shape alone decides.
+    const auto unmoved = gc::find_hand_landmarks(merged, cv::Mat1b::zeros(size));
+    EXPECT_EQ(unmoved.fingertip, still.fingertip);
+    EXPECT_THROW(gc::find_hand_landmarks(merged, cv::Mat1b::zeros(10, 10)), std::invalid_argument);
+}
+
 // on_finger marks the outline along the index finger: the fingertip and the finger's sides,
 // not the palm's far side or the thumb.
 TEST(HandTemplate, KnowsWhichOutlinePointsAreOnTheFinger) {

@@ -170,9 +170,12 @@ TEST(HandTracker, FollowsARenderedSceneAcrossSeeds) {
 // failed before the grey-level steps measured the normals from skin into skin. On seed 75
 // the first template merged two boxes of the hand's colour and stayed on them as the hand
 // moved off; it failed before a watch that saw the contour hold still covered the frame.
+// On seed 44 the hand was re-captured merged with a strip of a table of its colour, whose
+// far end passed for the finger; it failed (16 crossing frames off the hand, the finger
+// reversed) before the fingertip was looked for where the shape moved.
 TEST(HandTracker, KeepsTheHandWhileItCrossesAFace) {
-    for (std::uint64_t seed :
-         {1u, 2u, 3u, 4u, 5u, 6u, 12u, 21u, 23u, 25u, 10u, 17u, 30u, 73u, 22u, 96u, 75u}) {
+    for (std::uint64_t seed : {1u, 2u, 3u, 4u, 5u, 6u, 12u, 21u, 23u, 25u, 10u, 17u, 30u, 73u,
+                               22u, 96u, 75u, 44u}) {
         const gc::sim::Scene scene(mixed_scene(gc::sim::Preset::FacePass, seed));
         gc::HandTracker tracker(seeded_params(1000, seed));
         cv::Mat bgr;

@@ -1,10 +1,10 @@
 // Not a test: the per-seed figures behind docs/tracker.md's tables. For each scene seed it
-// tracks the left eye of a 200-frame `mixed` sequence and prints the sequence's SNR and, for
-// face_pass, the frames where the hand covers at least 5 % of the face's skin and, of those,
-// the ones where the tracker was lost or off the hand (IoU < 0.5), as in
-// HandTracker.KeepsTheHandWhileItCrossesAFace.
+// tracks one eye (the left unless told) of a 200-frame `mixed` sequence and prints the
+// sequence's SNR and, for face_pass, the frames where the hand covers at least 5 % of the
+// face's skin and, of those, the ones where the tracker was lost or off the hand
+// (IoU < 0.5), as in HandTracker.KeepsTheHandWhileItCrossesAFace.
 //
-//   tracking_study PRESET FIRST_SEED LAST_SEED [PARTICLES]
+//   tracking_study PRESET FIRST_SEED LAST_SEED [PARTICLES [left|right]]
 #include "face_crossing.hpp"
 #include "metrics/metrics.hpp"
 #include "sim/scene.hpp"
@@ -18,13 +18,16 @@
 
 int main(int argc, char** argv) {
     if (argc < 4) {
-        std::fprintf(stderr, "usage: %s PRESET FIRST_SEED LAST_SEED [PARTICLES]\n", argv[0]);
+        std::fprintf(stderr, "usage: %s PRESET FIRST_SEED LAST_SEED [PARTICLES [left|right]]\n", argv[0]);
         return 2;
     }
     const auto preset = gc::sim::preset_from_string(argv[1]);
     const int first = std::atoi(argv[2]), last = std::atoi(argv[3]);
     const int particles = argc > 4 ? std::atoi(argv[4]) : 1000;
-    if (!preset || first < 0 || last < first || particles < 1) {
+    const std::string eye_name = argc > 5 ? argv[5] : "left";
+    const gc::Eye eye = eye_name == "right" ? gc::Eye::Right : gc::Eye::Left;
+    if (!preset || first < 0 || last < first || particles < 1 ||
+        (eye_name != "left" && eye_name != "right")) {
         std::fprintf(stderr, "%s: bad arguments\n", argv[0]);
         return 2;
     }
@@ -45,7 +48,7 @@ int main(int argc, char** argv) {
         gc::SnrAccumulator snr;
         int crossing = 0, off = 0;
         for (int f = 0; f < 200; ++f) {
-            scene.render(f, gc::Eye::Left, {}, bgr, &truth);
+            scene.render(f, eye, {}, bgr, &truth);
             const auto& e = tracker.process(bgr);
             const cv::Mat1b tracked = e.valid() ? gc::contour_mask(e.contour, bgr.size())
                                                 : cv::Mat1b(bgr.size(), uchar(0));
