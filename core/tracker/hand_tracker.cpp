@@ -197,18 +197,19 @@ struct HandTracker::Impl {
         // The hand seen before is kept when it fits the detection: a new capture could
         // include skin-coloured things the hand touches at this moment. Unless the known
         // template was itself unsure and this capture is clean.
-        const bool cleaner = template_quality != CaptureQuality::Clean &&
-                             capture_quality(*found) == CaptureQuality::Clean;
+        const CaptureQuality quality = capture_quality(*found);
+        const bool cleaner = template_quality != CaptureQuality::Clean && quality == CaptureQuality::Clean;
         if (shape && skin && !cleaner && refit_known_shape(*found, memb, bgr)) return;
-        capture(*found, memb, bgr);
+        capture(*found, quality, memb, bgr);
     }
 
     // A new template from a detection; false (nothing changed) if the blob has no finger.
-    bool capture(const Detection& found, const cv::Mat1b& memb, const cv::Mat& bgr) {
+    bool capture(const Detection& found, CaptureQuality quality, const cv::Mat1b& memb,
+                 const cv::Mat& bgr) {
         auto captured = template_from(found, memb, bgr);
         if (!captured) return false;
         const HandState at = as_captured(*captured);
-        adopt(std::move(*captured), found.skin, capture_quality(found), at);
+        adopt(std::move(*captured), found.skin, quality, at);
         return true;
     }
 
@@ -278,11 +279,13 @@ struct HandTracker::Impl {
         // the contour is on something static, and a capture of its rank away from it
         // replaces it without a trial (which would move it with the static contour).
         const bool still_twice = everywhere && watch_everywhere;
-        if (!found || capture_quality(*found) < template_quality) return false;
+        if (!found) return false;
+        const CaptureQuality quality = capture_quality(*found);
+        if (quality < template_quality) return false;
         if (weak_edges && grows_hand(found->area)) return false;
         const cv::Rect local = cv::boundingRect(found->mask);
         const bool apart = ((local + recapture_roi.tl()) & estimate.bbox).area() == 0;
-        const bool equal = capture_quality(*found) == template_quality && !(still_twice && apart);
+        const bool equal = quality == template_quality && !(still_twice && apart);
         if (equal && trial) return false;
         if (local.x <= 1 || local.y <= 1 || local.br().x >= recapture_roi.width - 1 ||
             local.br().y >= recapture_roi.height - 1)
@@ -302,7 +305,7 @@ struct HandTracker::Impl {
             trial.emplace(std::move(*candidate), whole.skin, at);
             return false;
         }
-        if (!capture(whole, memb, bgr)) return false;
+        if (!capture(whole, quality, memb, bgr)) return false;
         // The template changed, the hand did not: the new lock is judged against the
         // likelihood tracking had (P_init kept), not re-measured on a template that may fit
         // its edges worse (a cut one), which would let it follow clutter with full confidence.
