@@ -538,7 +538,12 @@ struct HandTracker::Impl {
         // hand waits for a frame where the hand stands apart. A smaller one may still
         // drop what a merged template holds, but not by a verdict taken on such a frame,
         // where part of either outline may be unseen.
-        if (weak_edges && trial &&
+        // The area the edges last fitted can itself be wrong: a contour shrunk onto a piece
+        // of the hand (a merged template's scale collapsing) still fits edges there. So a
+        // candidate is stepped on at least one frame first, and one whose outline has agreed
+        // with the image clearly better than the tracked one's on every frame so far
+        // (TemplateTrial::clearly_better) is not dropped for its size.
+        if (weak_edges && trial && trial->frames() > 0 && !trial->clearly_better() &&
             grows_hand(cv::contourArea(trial->candidate().outline) * trial->state().scale *
                        trial->state().scale))
             trial.reset();

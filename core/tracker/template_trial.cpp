@@ -2,6 +2,7 @@
 
 #include "measure/contour_fit.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -24,7 +25,10 @@ TemplateTrial::Verdict TemplateTrial::step(const cv::Mat1b& membership, const cv
     const HandState guess = moved_along(state_, before, after);
     const FitResult fit = refine_fit(membership, candidate_, guess, FitParams{}, bgr);
     state_ = fit.converged ? fit.state : guess;
-    agreement_ += fit.converged ? fit.agreement : 0.0;
+    const double agreement = fit.converged ? fit.agreement : 0.0;
+    least_gain_ = frames_ == 0 ? agreement - current_agreement
+                               : std::min(least_gain_, agreement - current_agreement);
+    agreement_ += agreement;
     current_agreement_ += current_agreement;
     if (++frames_ < kFrames) return Verdict::Running;
     return agreement_ > current_agreement_ + kMargin * kFrames ? Verdict::Replaced : Verdict::Kept;

@@ -21,6 +21,8 @@ class TemplateTrial {
 public:
     static constexpr int kFrames = 8;        // frames the two are compared over
     static constexpr double kMargin = 0.05;  // mean agreement the candidate must gain
+    // Agreement gained on every frame that no doubt about the moment (weak edges) outweighs.
+    static constexpr double kClearMargin = 0.25;
 
     enum class Verdict { Running, Kept, Replaced };
 
@@ -33,6 +35,11 @@ public:
     Verdict step(const cv::Mat1b& membership, const cv::Mat& bgr, const HandState& before,
                  const HandState& after, double current_agreement);
 
+    // Frames stepped so far, and whether on every one of them the candidate's outline has
+    // agreed with the image by at least kClearMargin more than the tracked template's.
+    int frames() const { return frames_; }
+    bool clearly_better() const { return frames_ > 0 && least_gain_ >= kClearMargin; }
+
     HandTemplate& candidate() { return candidate_; }
     const SkinModel& skin() const { return skin_; }
     const HandState& state() const { return state_; }
@@ -44,6 +51,7 @@ private:
     double agreement_ = 0.0;          // the candidate's, summed over the frames so far
     double current_agreement_ = 0.0;  // the tracked template's, over the same frames
     int frames_ = 0;
+    double least_gain_ = 0.0;         // the smallest per-frame agreement gain so far
 };
 
 }  // namespace gc

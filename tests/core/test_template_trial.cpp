@@ -74,4 +74,36 @@ TEST(TemplateTrial, ACaptureOfTheHandAloneReplacesOneMergedWithAStaticObject) {
     EXPECT_EQ(run_trial(alone, alone, nullptr), gc::TemplateTrial::Verdict::Kept);
 }
 
+// Whether, after the frames before the verdict, the candidate has clearly out-agreed the
+// tracked template (TemplateTrial::clearly_better); the tracked one is placed at
+// `tracked_scale` about its palm, as a filter whose scale collapsed would place it.
+bool clearly_better_before_verdict(const gc::HandTemplate& tracked, double tracked_scale,
+                                   const gc::HandTemplate& candidate) {
+    const auto placed = [&](int k) {
+        gc::HandState s = at(tracked, k);
+        s.scale = tracked_scale;
+        return s;
+    };
+    gc::TemplateTrial trial(candidate, gc::SkinModel::generic(), at(candidate, 0));
+    EXPECT_FALSE(trial.clearly_better());  // no evidence yet
+    for (int k = 1; k < gc::TemplateTrial::kFrames; ++k) {
+        const cv::Mat1b memb = skin_map(k);
+        const auto fit = gc::refine_fit(memb, tracked, placed(k));
+        EXPECT_EQ(trial.step(memb, {}, placed(k - 1), placed(k), fit.converged ? fit.agreement : 0.0),
+                  gc::TemplateTrial::Verdict::Running);
+    }
+    EXPECT_EQ(trial.frames(), gc::TemplateTrial::kFrames - 1);
+    return trial.clearly_better();
+}
+
+TEST(TemplateTrial, TheWholeHandClearlyOutAgreesAContourShrunkOntoPartOfIt) {
+    const cv::Mat1b first = skin_map(0);
+    const auto alone = gc::HandTemplate::from_mask(drawn_hand(kSize, palm_at(0), 20.0, 1.0), first);
+    EXPECT_TRUE(clearly_better_before_verdict(alone, 0.5, alone));
+    // Not the other way round, nor between two contours that both fit.
+    EXPECT_FALSE(clearly_better_before_verdict(alone, 1.0, alone));
+    const auto merged = gc::HandTemplate::from_mask(first, first);
+    EXPECT_FALSE(clearly_better_before_verdict(alone, 1.0, merged));
+}
+
 }  // namespace
