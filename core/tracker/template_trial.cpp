@@ -26,8 +26,7 @@ TemplateTrial::Verdict TemplateTrial::step(const cv::Mat1b& membership, const cv
     const FitResult fit = refine_fit(membership, candidate_, guess, FitParams{}, bgr);
     state_ = fit.converged ? fit.state : guess;
     const double agreement = fit.converged ? fit.agreement : 0.0;
-    least_gain_ = frames_ == 0 ? agreement - current_agreement
-                               : std::min(least_gain_, agreement - current_agreement);
+    least_gain_ = std::min(least_gain_, agreement - current_agreement);
     agreement_ += agreement;
     current_agreement_ += current_agreement;
     if (++frames_ < kFrames) return Verdict::Running;

@@ -12,6 +12,8 @@
 
 #include <opencv2/core.hpp>
 
+#include <limits>
+
 namespace gc {
 
 // `s` moved by the similarity motion (translation, rotation, scale) that took `from` to `to`.
@@ -51,7 +53,7 @@ private:
     double agreement_ = 0.0;          // the candidate's, summed over the frames so far
     double current_agreement_ = 0.0;  // the tracked template's, over the same frames
     int frames_ = 0;
-    double least_gain_ = 0.0;         // the smallest per-frame agreement gain so far
+    double least_gain_ = std::numeric_limits<double>::infinity();  // smallest per-frame gain so far
 };
 
 }  // namespace gc
