@@ -2,7 +2,9 @@
 // tracks one eye (the left unless told) of a 200-frame `mixed` sequence and prints the
 // sequence's SNR and, for face_pass, the frames where the hand covers at least 5 % of the
 // face's skin and, of those, the ones where the tracker was lost or off the hand
-// (IoU < 0.5), as in HandTracker.KeepsTheHandWhileItCrossesAFace.
+// (IoU < 0.5), as in HandTracker.KeepsTheHandWhileItCrossesAFace. Of the frames off the hand,
+// `lost` were reported lost (the rest tracked something else), and `entry` is the IoU on the
+// first crossing frame: low when the tracker was already wrong before the face.
 //
 //   tracking_study PRESET FIRST_SEED LAST_SEED [PARTICLES [left|right]]
 #include "face_crossing.hpp"
@@ -12,6 +14,7 @@
 
 #include <opencv2/core.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -32,7 +35,7 @@ int main(int argc, char** argv) {
         return 2;
     }
     double snr_sum = 0.0;
-    int seeds = 0, crossing_seeds = 0, kept = 0;
+    int seeds = 0, crossing_seeds = 0, kept = 0, dropped_on_entry = 0;
     for (int seed = first; seed <= last; ++seed) {
         gc::sim::SceneConfig cfg;
         cfg.preset = *preset;
@@ -46,7 +49,8 @@ int main(int argc, char** argv) {
         cv::Mat bgr;
         gc::sim::EyeTruth truth;
         gc::SnrAccumulator snr;
-        int crossing = 0, off = 0;
+        int crossing = 0, off = 0, lost = 0;
+        double entry_iou = -1.0;
         for (int f = 0; f < 200; ++f) {
             scene.render(f, eye, {}, bgr, &truth);
             const auto& e = tracker.process(bgr);
@@ -56,17 +60,22 @@ int main(int argc, char** argv) {
             if (!gc_test::hand_crosses_face(truth)) continue;
             ++crossing;
             off += !gc_test::on_the_hand(e, truth, tracked);
+            lost += !e.valid();
+            if (entry_iou < 0.0) entry_iou = e.valid() ? gc::mask_iou(truth.mask, tracked) : 0.0;
         }
         snr_sum += snr.snr_db();
         ++seeds;
         if (crossing > 10) {
             ++crossing_seeds;
             kept += off == 0;
+            dropped_on_entry += off > 0 && entry_iou >= 0.5;
         }
-        std::printf("seed %d snr %.2f crossing %d off %d\n", seed, snr.snr_db(), crossing, off);
+        std::printf("seed %d snr %.2f crossing %d off %d lost %d entry %.2f\n", seed, snr.snr_db(),
+                    crossing, off, lost, std::max(entry_iou, 0.0));
         std::fflush(stdout);
     }
-    std::printf("mean snr %.3f dB over %d seeds; hand kept through the face on %d of %d crossing seeds\n",
-                snr_sum / seeds, seeds, kept, crossing_seeds);
+    std::printf("mean snr %.3f dB over %d seeds; hand kept through the face on %d of %d crossing seeds"
+                " (of the others, %d were on the hand as the crossing began)\n",
+                snr_sum / seeds, seeds, kept, crossing_seeds, dropped_on_entry);
     return 0;
 }
