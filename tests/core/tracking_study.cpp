@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
         return 2;
     }
     double snr_sum = 0.0;
-    int seeds = 0, crossing_seeds = 0, kept = 0, dropped_on_entry = 0;
+    int seeds = 0, crossing_seeds = 0, kept = 0, failed_after_good_entry = 0;
     for (int seed = first; seed <= last; ++seed) {
         gc::sim::SceneConfig cfg;
         cfg.preset = *preset;
@@ -68,7 +68,7 @@ int main(int argc, char** argv) {
         if (crossing > 10) {
             ++crossing_seeds;
             kept += off == 0;
-            dropped_on_entry += off > 0 && entry_iou >= 0.5;
+            failed_after_good_entry += off > 0 && entry_iou >= 0.5;
         }
         std::printf("seed %d snr %.2f crossing %d off %d lost %d entry %.2f\n", seed, snr.snr_db(),
                     crossing, off, lost, std::max(entry_iou, 0.0));
@@ -76,6 +76,6 @@ int main(int argc, char** argv) {
     }
     std::printf("mean snr %.3f dB over %d seeds; hand kept through the face on %d of %d crossing seeds"
                 " (of the others, %d were on the hand as the crossing began)\n",
-                snr_sum / seeds, seeds, kept, crossing_seeds, dropped_on_entry);
+                snr_sum / seeds, seeds, kept, crossing_seeds, failed_after_good_entry);
     return 0;
 }
