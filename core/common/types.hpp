@@ -14,11 +14,16 @@ enum class Eye { Left = 0, Right = 1 };
 // X_t = (x, y, r, s): the position in pixels of the template origin (the palm centre),
 // the in-plane rotation in radians (image axes: x right, y down, so positive is clockwise
 // on screen) and the scale relative to the template captured at initialisation.
+// `squash` is the template's shape rather than its pose: the outline's horizontal
+// foreshortening relative to the capture (the hand turned about the vertical axis, as
+// when pointing at someone else around a table, narrows in the image by the cosine of the
+// turn). The tracker estimates it from the edges and applies it to every hypothesis.
 struct HandState {
     double x = 0.0;
     double y = 0.0;
     double rotation = 0.0;
     double scale = 1.0;
+    double squash = 1.0;
 };
 
 // C_t of the dynamics: how the head's motion between two frames moves a static hand in the

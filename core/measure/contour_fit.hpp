@@ -1,7 +1,8 @@
 // Refinement of one hypothesis against the image ("refine the best contour"): a few
 // Gauss-Newton steps of a weighted least-squares fit of the similarity transform
 // (x, y, rotation, scale) to the skin edges found along the dense outline's normals
-// (point-to-line distances, which are linear in a = s cos r, b = s sin r, x, y).
+// (point-to-line distances, which are linear in a = s cos r, b = s sin r, x, y), and
+// optionally of the squash (HandState::squash), linearised about its current value.
 #pragma once
 
 #include "common/types.hpp"
@@ -19,6 +20,12 @@ struct FitParams {
     double step = 0.5;          // bilinear sampling step along a normal
     double robust_scale = 1.5;  // pixels: Cauchy weight 1 / (1 + (d / scale)^2)
     double min_found = 0.5;     // fraction of the outline's normals that must find an edge
+    // Fit the squash too, by at most max_squash_step per call (relative) and within
+    // [min_squash, max_squash]. Off: the start's squash is kept.
+    bool fit_squash = false;
+    double max_squash_step = 0.04;
+    double min_squash = 0.5;
+    double max_squash = 1.5;
 };
 
 struct FitResult {

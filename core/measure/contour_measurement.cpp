@@ -33,15 +33,40 @@ void for_each_normal(const HandTemplate& shape, const HandState& state, Visit&& 
     const float c = static_cast<float>(std::cos(state.rotation));
     const float s = static_cast<float>(std::sin(state.rotation));
     const float k = static_cast<float>(state.scale);
+    const float a = static_cast<float>(state.squash);
     const float tx = static_cast<float>(state.x), ty = static_cast<float>(state.y);
     const float cs = c * k, ss = s * k;
     const std::size_t m = shape.points.size();
-    for (std::size_t i = 0; i < m; ++i) {
-        const cv::Point2f& u = shape.points[i];
-        const cv::Point2f& n = shape.normals[i];
-        if (!visit(i, tx + cs * u.x - ss * u.y, ty + ss * u.x + cs * u.y, c * n.x - s * n.y,
-                   s * n.x + c * n.y))
-            return;
+    if (a == 1.0f) {  // the common case: a similarity keeps the normals unit
+        for (std::size_t i = 0; i < m; ++i) {
+            const cv::Point2f& u = shape.points[i];
+            const cv::Point2f& n = shape.normals[i];
+            if (!visit(i, tx + cs * u.x - ss * u.y, ty + ss * u.x + cs * u.y, c * n.x - s * n.y,
+                       s * n.x + c * n.y))
+                return;
+        }
+        return;
+    }
+    // Squashed: the normals change length and need normalising. Done a block at a time
+    // ahead of the search, where the loop has no branch and vectorises (sqrt included).
+    constexpr std::size_t kBlock = 64;
+    float nxs[kBlock], nys[kBlock];
+    const float inv_a = 1.0f / a;
+    for (std::size_t first = 0; first < m; first += kBlock) {
+        const std::size_t count = std::min(kBlock, m - first);
+        const cv::Point2f* n = shape.normals.data() + first;
+        for (std::size_t j = 0; j < count; ++j) {
+            const float nx = (c * n[j].x - s * n[j].y) * inv_a, ny = s * n[j].x + c * n[j].y;
+            const float inv_len = 1.0f / std::sqrt(nx * nx + ny * ny);
+            nxs[j] = nx * inv_len;
+            nys[j] = ny * inv_len;
+        }
+        for (std::size_t j = 0; j < count; ++j) {
+            const cv::Point2f& u = shape.points[first + j];
+            if (!visit(first + j, tx + a * (cs * u.x - ss * u.y), ty + ss * u.x + cs * u.y, nxs[j],
+                       nys[j]))
+                return;
+        }
     }
 }
 

@@ -70,10 +70,20 @@ private:
     float cap2_;
 };
 
-// Where a state puts a template point: s R(r) u + t (image axes, y down).
+// Where a state puts a template point: diag(squash, 1) s R(r) u + t (image axes, y down).
 inline cv::Point2d place(const HandState& s, const cv::Point2f& u) {
     const double c = std::cos(s.rotation) * s.scale, sn = std::sin(s.rotation) * s.scale;
-    return {s.x + c * u.x - sn * u.y, s.y + sn * u.x + c * u.y};
+    return {s.x + s.squash * (c * u.x - sn * u.y), s.y + sn * u.x + c * u.y};
+}
+
+// Where a state turns a template normal: the inverse transpose of place()'s linear part,
+// normalised (a squash tilts normals towards the horizontal).
+inline cv::Point2d place_normal(const HandState& s, const cv::Point2f& n) {
+    const double c = std::cos(s.rotation), sn = std::sin(s.rotation);
+    if (s.squash == 1.0) return {c * n.x - sn * n.y, sn * n.x + c * n.y};
+    const double nx = (c * n.x - sn * n.y) / s.squash, ny = sn * n.x + c * n.y;
+    const double len = std::sqrt(nx * nx + ny * ny);
+    return {nx / len, ny / len};
 }
 
 }  // namespace gc

@@ -330,7 +330,7 @@ struct HandTracker::Impl {
             lm.palm.x, lm.palm.y,
             std::atan2(lm.fingertip.y - lm.palm.y, lm.fingertip.x - lm.palm.x) -
                 std::atan2(shape->fingertip.y, shape->fingertip.x),
-            std::clamp(found_reach / reach, kMinScale, kMaxScale)};
+            std::clamp(found_reach / reach, kMinScale, kMaxScale), previous.squash};
         const FitResult fit = refine_fit(memb, *shape, guess, FitParams{8, 8.0, 0.5, 2.0, 0.5});
         if (!fit.converged) return false;
         update_grey(bgr, cv::Rect(0, 0, bgr.cols, bgr.rows));
@@ -405,7 +405,7 @@ struct HandTracker::Impl {
             cv::Point at;
             cv::minMaxLoc(dist, nullptr, nullptr, nullptr, &at);
             const HandState guess{double(box.x + at.x - 1), double(box.y + at.y - 1),
-                                  estimate.mean.rotation, scale};
+                                  estimate.mean.rotation, scale, estimate.mean.squash};
             const FitResult fit = refine_fit(membership, *shape, guess, FitParams{8, 8.0, 0.5, 2.0, 0.5});
             if (!fit.converged) continue;
             const double like = measurement.normal_likelihood(
@@ -442,6 +442,7 @@ struct HandTracker::Impl {
             s.rotation += motion.drotation + sd[2] * w[2];
             s.scale = std::clamp(s.scale * motion.scale_factor * std::exp(sd[3] * w[3]), kMinScale,
                                  kMaxScale);
+            s.squash = previous.squash;  // the shape, not a sampled dimension
             predicted[i].state = s;
             min_x = std::min(min_x, s.x);
             max_x = std::max(max_x, s.x);
@@ -500,6 +501,7 @@ struct HandTracker::Impl {
         }
         mean.rotation += b.rotation;
         mean.scale = std::exp(log_s);
+        mean.squash = previous.squash;
         estimate.mean = mean;
         estimate.best = b;
 
@@ -512,10 +514,15 @@ struct HandTracker::Impl {
         const bool weak_edges = best_like < params.lost_ratio * p_init;
         edges_were_weak = weak_edges;
 
-        // Refine from the better of mean and best; report that.
+        // Refine from the better of mean and best; report that. The squash follows the
+        // hand's turn only while its edges fit (where they are weak, in front of a face,
+        // the outline's horizontal extent is not seen), and only for a clean template: one
+        // merged with something else would use it to stretch over that.
         const double mean_misfit = measurement.misfit(membership, steps, *shape, mean);
         const HandState start = mean_misfit <= best_misfit ? mean : b;
-        const FitResult fit = refine_fit(membership, *shape, start, FitParams{}, bgr);
+        FitParams refine;
+        refine.fit_squash = !weak_edges && template_quality == CaptureQuality::Clean;
+        const FitResult fit = refine_fit(membership, *shape, start, refine, bgr);
         const HandState out = fit.converged ? fit.state : start;
 
         // Lost when the edges no longer fit (thesis: every likelihood < lost_ratio x P_init),
@@ -628,14 +635,13 @@ struct HandTracker::Impl {
     // image border is held to the first rule: there the rim is missing for want of image,
     // and a hand pushed to the border by the head's turn is better found again whole.
     bool rim_is_skin(const HandState& s) const {
-        const double c = std::cos(s.rotation), sn = std::sin(s.rotation);
         int skin_points = 0, finger_points = 0, finger_skin = 0;
         bool in_view = true;
         for (std::size_t i = 0; i < shape->outline.size(); ++i) {
             const cv::Point2d p = place(s, shape->outline[i]);
-            const cv::Point2f& n = shape->outline_normals[i];
-            const int x = cvRound(p.x - 2.5 * (c * n.x - sn * n.y));
-            const int y = cvRound(p.y - 2.5 * (sn * n.x + c * n.y));
+            const cv::Point2d n = place_normal(s, shape->outline_normals[i]);
+            const int x = cvRound(p.x - 2.5 * n.x);
+            const int y = cvRound(p.y - 2.5 * n.y);
             const bool inside = x >= 0 && y >= 0 && x < membership.cols && y < membership.rows;
             in_view = in_view && inside;
             const bool skin = inside && membership(y, x) >= kSkinEdgeLevel;

@@ -13,7 +13,7 @@ HandState moved_along(const HandState& s, const HandState& from, const HandState
     const double vx = s.x - from.x, vy = s.y - from.y;
     const double c = std::cos(dr), sn = std::sin(dr);
     return HandState{to.x + k * (c * vx - sn * vy), to.y + k * (sn * vx + c * vy),
-                     s.rotation + dr, s.scale * k};
+                     s.rotation + dr, s.scale * k, s.squash};
 }
 
 TemplateTrial::TemplateTrial(HandTemplate candidate, SkinModel skin, const HandState& at)

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -263,6 +264,65 @@ TEST(ContourFit, AgreementFallsWhereTheTemplateHasNoEdgeInTheImage) {
     ASSERT_TRUE(good.converged);
     EXPECT_GT(good.agreement, 0.9);
     EXPECT_LT(bad.agreement, good.agreement - 0.15);
+}
+
+// Placed by a squashed state, the normals stay unit, perpendicular to the placed outline's
+// tangents (the inverse transpose of the placement's linear part), and outward.
+TEST(ContourMeasurement, SquashedNormalsArePerpendicularToTheSquashedOutline) {
+    const auto mask = drawn_hand({320, 240}, {150, 130}, 20.0, 1.0);
+    const auto t = gc::HandTemplate::from_mask(mask, mask);
+    const gc::HandState s{t.origin_px.x, t.origin_px.y, 0.4, 1.1, 0.7};
+    const std::size_t n = t.outline.size();
+    std::vector<cv::Point2f> placed(n);
+    for (std::size_t k = 0; k < n; ++k) placed[k] = cv::Point2f(gc::place(s, t.outline[k]));
+    int inward = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        // The template's tangent at the point, placed as a displacement of it.
+        const cv::Point2f& u = t.outline[i];
+        const cv::Point2f along(-t.outline_normals[i].y, t.outline_normals[i].x);
+        const cv::Point2d tangent = gc::place(s, u + along) - gc::place(s, u);
+        const cv::Point2d nrm = gc::place_normal(s, t.outline_normals[i]);
+        EXPECT_NEAR(std::hypot(nrm.x, nrm.y), 1.0, 1e-9);
+        EXPECT_NEAR(nrm.dot(tangent), 0.0, 1e-5) << i;  // float template points
+        // Outward: a step along the normal leaves the placed outline's interior.
+        const cv::Point2d step = cv::Point2d(placed[i]) + 2.0 * nrm;
+        inward += cv::pointPolygonTest(placed, cv::Point2f(step), false) > 0.0;
+    }
+    EXPECT_EQ(inward, 0);
+}
+
+// The hand turned about the vertical axis narrows in the image: fitting the squash follows
+// it over a few frames (each call moves it by at most max_squash_step) and fits the outline
+// better than the similarity alone can.
+TEST(ContourFit, FollowsAHorizontalSquash) {
+    const auto mask = drawn_hand({320, 240}, {150, 130}, 20.0, 1.0);
+    const auto t = gc::HandTemplate::from_mask(mask, mask);
+    // The same hand narrowed to 0.85 of its width about the palm.
+    const cv::Matx23d narrow(0.85, 0.0, (1.0 - 0.85) * t.origin_px.x, 0.0, 1.0, 0.0);
+    cv::Mat1b turned;
+    cv::warpAffine(mask, turned, narrow, mask.size(), cv::INTER_LINEAR);
+    const gc::HandState start{t.origin_px.x, t.origin_px.y, 0.0, 1.0};
+    gc::FitParams params;
+    params.fit_squash = true;
+    gc::HandState s = start;
+    gc::FitResult fit;
+    for (int frame = 0; frame < 8; ++frame) {
+        fit = gc::refine_fit(turned, t, s, params);
+        ASSERT_TRUE(fit.converged);
+        EXPECT_GE(fit.state.squash, s.squash * (1.0 - params.max_squash_step) - 1e-12);
+        s = fit.state;
+    }
+    EXPECT_NEAR(s.squash, 0.85, 0.03);
+    EXPECT_NEAR(s.scale, 1.0, 0.04);
+    EXPECT_NEAR(s.rotation, 0.0, 0.03);
+    const auto rigid = gc::refine_fit(turned, t, start);
+    ASSERT_TRUE(rigid.converged);
+    EXPECT_EQ(rigid.state.squash, 1.0);
+    EXPECT_GT(fit.agreement, rigid.agreement + 0.1);
+    EXPECT_LT(fit.rms_px, rigid.rms_px);
+    // On the unturned hand the squash stays near 1.
+    const auto same = gc::refine_fit(mask, t, start, params);
+    EXPECT_NEAR(same.state.squash, 1.0, 0.01);
 }
 
 }  // namespace
