@@ -13,6 +13,7 @@ namespace gc {
 
 FitResult refine_fit(const cv::Mat1b& membership, const HandTemplate& shape,
                      const HandState& start, const FitParams& params, const cv::Mat& bgr) {
+    check_squash(start, "refine_fit");
     FitResult result;
     result.state = start;
     HandState s = start;

@@ -30,6 +30,7 @@ namespace {
 // point and unit outward normal in image pixels) until it returns false.
 template <typename Visit>
 void for_each_normal(const HandTemplate& shape, const HandState& state, Visit&& visit) {
+    check_squash(state, "ContourMeasurement");
     const float c = static_cast<float>(std::cos(state.rotation));
     const float s = static_cast<float>(std::sin(state.rotation));
     const float k = static_cast<float>(state.scale);

@@ -17,6 +17,10 @@
 
 #include <opencv2/core.hpp>
 
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
 namespace gc {
 
 struct ObservationParams {
@@ -69,6 +73,13 @@ private:
     double log_scale_;
     float cap2_;
 };
+
+// Throws std::invalid_argument, naming `who`, unless the state's squash is finite and > 0:
+// the measurement and the fit divide by it.
+inline void check_squash(const HandState& s, const char* who) {
+    if (!(std::isfinite(s.squash) && s.squash > 0.0))
+        throw std::invalid_argument(std::string(who) + ": the state's squash must be finite and > 0");
+}
 
 // Where a state puts a template point: diag(squash, 1) s R(r) u + t (image axes, y down).
 inline cv::Point2d place(const HandState& s, const cv::Point2f& u) {

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 #include <vector>
@@ -323,6 +324,14 @@ TEST(ContourFit, FollowsAHorizontalSquash) {
     // On the unturned hand the squash stays near 1.
     const auto same = gc::refine_fit(mask, t, start, params);
     EXPECT_NEAR(same.state.squash, 1.0, 0.01);
+    // A squash the placement cannot divide by is refused, by the fit and the measurement.
+    for (const double bad : {0.0, -1.0, std::numeric_limits<double>::infinity(),
+                             std::numeric_limits<double>::quiet_NaN()}) {
+        gc::HandState s_bad = start;
+        s_bad.squash = bad;
+        EXPECT_THROW(gc::refine_fit(turned, t, s_bad, params), std::invalid_argument) << bad;
+        EXPECT_THROW(gc::ContourMeasurement().misfit(turned, t, s_bad), std::invalid_argument) << bad;
+    }
 }
 
 }  // namespace
