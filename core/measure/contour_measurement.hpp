@@ -84,7 +84,8 @@ inline void check_squash(const HandState& s, const char* who) {
 // Where a state puts a template point: diag(squash, 1) s R(r) u + t (image axes, y down).
 inline cv::Point2d place(const HandState& s, const cv::Point2f& u) {
     const double c = std::cos(s.rotation) * s.scale, sn = std::sin(s.rotation) * s.scale;
-    return {s.x + s.squash * (c * u.x - sn * u.y), s.y + sn * u.x + c * u.y};
+    // (squash * c) first: at squash 1 the sums round exactly as a similarity's.
+    return {s.x + (s.squash * c) * u.x - (s.squash * sn) * u.y, s.y + sn * u.x + c * u.y};
 }
 
 // Where a state turns a template normal: the inverse transpose of place()'s linear part,

@@ -368,7 +368,7 @@ struct HandTracker::Impl {
         edges_were_weak = false;
         tracked_frames = 0;
         watch_everywhere = false;
-        firm_area = std::abs(cv::contourArea(shape->outline)) * x0.scale * x0.scale;
+        firm_area = std::abs(cv::contourArea(shape->outline)) * x0.scale * x0.scale * x0.squash;
         trial.reset();
         detector.reset();
     }
@@ -393,7 +393,7 @@ struct HandTracker::Impl {
         HandState best_state;
         for (int i = 1; i < count; ++i) {
             const double area = stats.at<int>(i, cv::CC_STAT_AREA);
-            const double ratio = area / (template_area * scale * scale);
+            const double ratio = area / (template_area * scale * scale * estimate.mean.squash);
             if (ratio < 0.4 || ratio > 3.0) continue;
             // The palm is the blob's thickest point.
             const cv::Rect box(stats.at<int>(i, cv::CC_STAT_LEFT), stats.at<int>(i, cv::CC_STAT_TOP),
@@ -454,7 +454,8 @@ struct HandTracker::Impl {
 
         // The skin map once per frame, over the region the hypotheses can reach; the rest
         // of the map stays 0 (cleared where the previous region was).
-        const double reach = max_s * template_radius + measurement.params().half_window + 2.0;
+        const double reach = max_s * std::max(1.0, previous.squash) * template_radius +
+                             measurement.params().half_window + 2.0;
         const cv::Rect frame(0, 0, bgr.cols, bgr.rows);
         const cv::Rect roi = cv::Rect(cv::Point(int(std::floor(min_x - reach)), int(std::floor(min_y - reach))),
                                       cv::Point(int(std::ceil(max_x + reach)) + 1, int(std::ceil(max_y + reach)) + 1)) &

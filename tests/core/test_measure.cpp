@@ -292,6 +292,18 @@ TEST(ContourMeasurement, SquashedNormalsArePerpendicularToTheSquashedOutline) {
     EXPECT_EQ(inward, 0);
 }
 
+// Unsquashed, the placement rounds exactly as the similarity it was before the squash.
+TEST(ContourMeasurement, UnsquashedPlacementIsTheSimilarityExactly) {
+    const gc::HandState s{123.4, -56.7, 0.73, 1.37};
+    const double c = std::cos(s.rotation) * s.scale, sn = std::sin(s.rotation) * s.scale;
+    for (const cv::Point2f u : {cv::Point2f(3.1f, -7.9f), cv::Point2f(-41.3f, 12.7f),
+                                cv::Point2f(0.1f, 55.5f)}) {
+        const cv::Point2d p = gc::place(s, u);
+        EXPECT_EQ(p.x, s.x + c * u.x - sn * u.y);
+        EXPECT_EQ(p.y, s.y + sn * u.x + c * u.y);
+    }
+}
+
 // The hand turned about the vertical axis narrows in the image: fitting the squash follows
 // it over a few frames (each call moves it by at most max_squash_step) and fits the outline
 // better than the similarity alone can.
@@ -321,6 +333,9 @@ TEST(ContourFit, FollowsAHorizontalSquash) {
     EXPECT_EQ(rigid.state.squash, 1.0);
     EXPECT_GT(fit.agreement, rigid.agreement + 0.1);
     EXPECT_LT(fit.rms_px, rigid.rms_px);
+    // The particles are weighted with the squash too (the measurement's own placement).
+    const gc::ContourMeasurement meas;
+    EXPECT_LT(meas.misfit(turned, t, s), 0.5 * meas.misfit(turned, t, rigid.state));
     // On the unturned hand the squash stays near 1.
     const auto same = gc::refine_fit(mask, t, start, params);
     EXPECT_NEAR(same.state.squash, 1.0, 0.01);
