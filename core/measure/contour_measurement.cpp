@@ -38,7 +38,7 @@ void for_each_normal(const HandTemplate& shape, const HandState& state, Visit&& 
     const float tx = static_cast<float>(state.x), ty = static_cast<float>(state.y);
     const float cs = c * k, ss = s * k;
     const std::size_t m = shape.points.size();
-    if (a == 1.0f) {  // the common case: a similarity keeps the normals unit
+    if (a == 1.0f) {  // unsquashed (a new or unclean template): the normals stay unit
         for (std::size_t i = 0; i < m; ++i) {
             const cv::Point2f& u = shape.points[i];
             const cv::Point2f& n = shape.normals[i];
