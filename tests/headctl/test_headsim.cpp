@@ -146,8 +146,12 @@ TEST(HeadSim, ThirtyTwoConcurrentClientsAllGetAnswers) {
                 LineClient c(server.port());
                 c.line();
                 for (int i = 0; i < 20; ++i) {
-                    const std::string id = "#" + std::to_string(t * 100 + i);
-                    const std::string r = c.request(id + (i % 2 ? " STATUS" : " MOVE VEL pan=1"));
+                    // Appended, not concatenated: GCC 12 warns (-Wrestrict) on "#" + string.
+                    std::string id = "#";
+                    id += std::to_string(t * 100 + i);
+                    std::string request = id;
+                    request += i % 2 ? " STATUS" : " MOVE VEL pan=1";
+                    const std::string r = c.request(request);
                     if (starts_with(r, "OK " + id)) ++answered;
                 }
             } catch (const std::exception&) {
