@@ -23,6 +23,9 @@ constexpr double kModeBandFraction = 0.3;
 // 15, which include a static box of the hand's chromaticity but not its brightness, 0.26
 // and 0.31. Clean scenes (hand edges mixed with a dark background) stay below 0.25.
 constexpr double kMaxShadingSpread = 0.25;
+// Static-scene skin cleared within 2 px of a blob, as a fraction of its area, beyond which
+// the blob was cut off that skin (a hand in front of a plain background has none).
+constexpr double kStaticCutFraction = 0.01;
 
 void check_frame(const cv::Mat& bgr) {
     if (bgr.empty()) throw std::invalid_argument("MotionDetector: empty frame");
@@ -144,10 +147,13 @@ cv::Mat1b largest_component(const cv::Mat1b& mask, int& area) {
 std::optional<Detection> segment_hand(const cv::Mat& bgr, const cv::Mat1b& moving,
                                       const cv::Rect& box, const SkinModel& prior,
                                       const DetectionParams& params,
-                                      const cv::Mat1b& recent_motion, bool history_mature) {
+                                      const cv::Mat1b& recent_motion, bool history_mature,
+                                      const cv::Mat1b& static_scene) {
     check_frame(bgr);
     if (moving.size() != bgr.size() || moving.type() != CV_8UC1)
         throw std::invalid_argument("segment_hand: moving-pixel mask must be CV_8UC1 of the frame size");
+    if (!static_scene.empty() && static_scene.size() != bgr.size())
+        throw std::invalid_argument("segment_hand: the static-scene mask must have the frame's size");
     const cv::Rect roi = box & cv::Rect(0, 0, bgr.cols, bgr.rows);
     if (roi.area() == 0) return std::nullopt;
     auto skin = learn_skin(bgr(roi), moving(roi), prior, params.prior_gate_sigma);
@@ -160,6 +166,13 @@ std::optional<Detection> segment_hand(const cv::Mat& bgr, const cv::Mat1b& movin
     cv::Mat1b seg;
     skin->membership(bgr, cv::Rect(0, 0, bgr.cols, bgr.rows), seg);
     cv::threshold(seg, seg, 127, 255, cv::THRESH_BINARY);
+    // Skin of the static scene is not the hand's; what was cleared is kept to tell a blob
+    // that touched it.
+    cv::Mat1b cleared;
+    if (!static_scene.empty()) {
+        cv::bitwise_and(seg, static_scene, cleared);
+        seg.setTo(0, static_scene);
+    }
     const cv::Mat kernel = cv::getStructuringElement(
         cv::MORPH_ELLIPSE, cv::Size(params.close_size, params.close_size));
     cv::morphologyEx(seg, seg, cv::MORPH_CLOSE, kernel);
@@ -231,6 +244,16 @@ std::optional<Detection> segment_hand(const cv::Mat& bgr, const cv::Mat1b& movin
             break;
         }
     }
+    // A blob that static skin was cleared off (more than a sliver along its outline) is
+    // not known to be the hand alone: its outline there is the cut, not the hand's.
+    if (!cleared.empty() && !cut) {
+        const cv::Rect frame(0, 0, bgr.cols, bgr.rows);
+        const cv::Rect around = cv::Rect(cv::boundingRect(blob) - cv::Point(2, 2) + cv::Size(4, 4)) & frame;
+        cv::Mat1b near;
+        cv::dilate(blob(around), near, cv::Mat(), cv::Point(-1, -1), 2);
+        cv::bitwise_and(near, cleared(around), near);
+        if (cv::countNonZero(near) > kStaticCutFraction * area) cut = true;
+    }
     if (area < params.min_hand_area ||
         area > params.max_hand_fraction * double(bgr.rows) * bgr.cols)
         return std::nullopt;
@@ -265,8 +288,10 @@ void MotionDetector::reset() {
 }
 
 std::optional<Detection> MotionDetector::process(const cv::Mat& bgr, const SkinModel& prior,
-                                                 bool segment) {
+                                                 bool segment, const cv::Mat1b& static_scene) {
     check_frame(bgr);
+    if (!static_scene.empty() && static_scene.size() != bgr.size())
+        throw std::invalid_argument("MotionDetector: the static-scene mask must have the frame's size");
     cv::cvtColor(bgr, grey_, cv::COLOR_BGR2GRAY);
     if (previous_.empty() || previous_.size() != grey_.size()) {
         grey_.copyTo(previous_);
@@ -294,7 +319,7 @@ std::optional<Detection> MotionDetector::process(const cv::Mat& bgr, const SkinM
     box.height += 2 * p_.box_margin;
     box &= cv::Rect(0, 0, bgr.cols, bgr.rows);
     return segment_hand(bgr, changed_, box, prior, p_, history_,
-                        motion_frames_ >= p_.history_frames);
+                        motion_frames_ >= p_.history_frames, static_scene);
 }
 
 }  // namespace gc

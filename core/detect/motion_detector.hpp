@@ -33,7 +33,9 @@ struct Detection {
     // Fraction of the skin component within history_reach of recent motion (1 without a
     // history), before any cut: how sure the capture is to be the moving hand alone.
     double motion_support = 1.0;
-    bool cut = false;   // the component was cut to the neighbourhood of recent motion
+    // The component was cut to the neighbourhood of recent motion, or skin of the static
+    // scene was cleared off it: part of its outline may be the cut rather than the hand's.
+    bool cut = false;
     cv::Mat1b motion = {};  // frame-sized, non-zero where the image changed recently (or empty)
 };
 
@@ -56,9 +58,11 @@ public:
     // primes the detector. Throws std::invalid_argument on an empty or non-BGR frame.
     // With `segment` false only the frame difference and the motion history are updated
     // (cheap), and nullopt is returned: for watching the hand between full detections.
+    // `static_scene` (CV_8UC1 of the frame's size, or empty): pixels known to show the
+    // static scene, which are not the hand whatever their colour; another size throws.
     std::optional<Detection> process(const cv::Mat& bgr,
                                      const SkinModel& prior = SkinModel::generic(),
-                                     bool segment = true);
+                                     bool segment = true, const cv::Mat1b& static_scene = {});
 
     void reset();
 
@@ -79,11 +83,14 @@ private:
 // that changed in the last frames) is given and much of the component lies far from it,
 // the component is cut to within `history_reach` of it when `history_mature` (motion was
 // seen for history_frames frames), and rejected otherwise: a static face or object of skin
-// colour that the hand touches is not part of the hand.
+// colour that the hand touches is not part of the hand. Pixels of `static_scene` (frame-
+// sized, or empty) are not skin: a known static background is cut off exactly, and a
+// component it was cut off (more than 1 % of its area within 2 px) is marked `cut`.
 std::optional<Detection> segment_hand(const cv::Mat& bgr, const cv::Mat1b& moving,
                                       const cv::Rect& box, const SkinModel& prior,
                                       const DetectionParams& params,
                                       const cv::Mat1b& recent_motion = {},
-                                      bool history_mature = true);
+                                      bool history_mature = true,
+                                      const cv::Mat1b& static_scene = {});
 
 }  // namespace gc

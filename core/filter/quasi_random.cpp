@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace gc {
@@ -46,8 +47,14 @@ double inverse_normal_cdf(double p) {
     return t[k] * (1.0 - a) + t[k + 1] * a;
 }
 
-double radical_inverse(std::uint64_t index, unsigned base) {
-    const double inv = 1.0 / base;
+namespace {
+
+// The digits of `index`, least significant first, mirrored about the point. `Base` is
+// either unsigned or a std::integral_constant: with the base a constant the divisions
+// compile to multiplications, and this runs for every particle and dimension of a frame.
+template <typename Base>
+double mirrored_digits(std::uint64_t index, Base base) {
+    const double inv = 1.0 / static_cast<unsigned>(base);
     double scale = inv, result = 0.0;
     while (index > 0) {
         result += static_cast<double>(index % base) * scale;
@@ -55,6 +62,25 @@ double radical_inverse(std::uint64_t index, unsigned base) {
         scale *= inv;
     }
     return result;
+}
+
+template <unsigned B>
+using ConstantBase = std::integral_constant<unsigned, B>;
+
+}  // namespace
+
+double radical_inverse(std::uint64_t index, unsigned base) {
+    switch (base) {  // the sampler's bases (kPrimes)
+        case 2: return mirrored_digits(index, ConstantBase<2>{});
+        case 3: return mirrored_digits(index, ConstantBase<3>{});
+        case 5: return mirrored_digits(index, ConstantBase<5>{});
+        case 7: return mirrored_digits(index, ConstantBase<7>{});
+        case 11: return mirrored_digits(index, ConstantBase<11>{});
+        case 13: return mirrored_digits(index, ConstantBase<13>{});
+        case 17: return mirrored_digits(index, ConstantBase<17>{});
+        case 19: return mirrored_digits(index, ConstantBase<19>{});
+        default: return mirrored_digits(index, base);
+    }
 }
 
 QuasiNormalSampler::QuasiNormalSampler(int dims, std::uint64_t seed) : dims_(dims), rng_(seed) {

@@ -1,5 +1,6 @@
 #include "tracker/hand_tracker.hpp"
 
+#include "background/static_background.hpp"
 #include "contour/hand_template.hpp"
 #include "detect/motion_detector.hpp"
 #include "filter/adaptive_noise.hpp"
@@ -79,6 +80,7 @@ struct HandTracker::Impl {
     QuasiNormalSampler sampler;
     std::mt19937_64 rng;
     MotionDetector detector;
+    StaticBackground background;
 
     std::optional<SkinModel> skin;
     std::optional<HandTemplate> shape;
@@ -91,7 +93,7 @@ struct HandTracker::Impl {
     cv::Mat1b membership;
     cv::Rect membership_roi;
     cv::Mat1b grey;  // the frame's grey levels, where the membership map was computed
-    const cv::Mat1b no_grey;
+    const cv::Mat1b no_map;  // an empty map: no grey steps, no static scene
     bool edges_were_weak = false;  // on the last tracked frame (best_like < lost_ratio P_init)
     cv::Mat1b contour_fill;
     std::vector<cv::Point> fill_points;
@@ -132,6 +134,7 @@ struct HandTracker::Impl {
         previous = HandState{};
         membership_roi = {};
         detector.reset();
+        background.reset();
         noise.reset();
         skin.reset();
         shape.reset();
@@ -166,11 +169,16 @@ struct HandTracker::Impl {
             membership = cv::Mat1b(frame_size, uchar(0));
             membership_roi = {};
         }
+        // A turn of the head moves the scene in the image: its median starts again.
+        if (motion.dx != 0.0 || motion.dy != 0.0 || motion.drotation != 0.0 ||
+            motion.scale_factor != 1.0)
+            background.reset();
         if (estimate.state == TrackState::Tracking) {
             track(bgr, motion);
         } else {
             acquire(bgr);
         }
+        if (params.ignore_static_skin) learn_background(bgr);
         return estimate;
     }
 
@@ -185,7 +193,8 @@ struct HandTracker::Impl {
         const int turn = lost ? lost_search++ : 0;
         if (lost && shape && skin && turn % kLostSearchEvery == 0 && reacquire_by_skin(bgr)) return;
         const SkinModel prior = skin ? *skin : SkinModel::generic();
-        const auto found = detector.process(bgr, prior, !lost || turn % 2 == 1);
+        const bool segment = !lost || turn % 2 == 1;
+        const auto found = detector.process(bgr, prior, segment, static_scene(bgr, segment, {}));
         if (!found) return;
         // A template is only captured from a hand wholly in view: a shape cut by the image
         // border would be tracked as that cut shape from then on.
@@ -269,7 +278,9 @@ struct HandTracker::Impl {
         }
         if (recapture_roi.width < 32 || recapture_roi.height < 32) return false;
         const bool last = phase == period - 1;
-        const auto found = detector.process(bgr(recapture_roi), *skin, last);
+        const cv::Mat1b& scene = static_scene(bgr, last, recapture_roi);
+        const auto found =
+            detector.process(bgr(recapture_roi), *skin, last, scene.empty() ? scene : scene(recapture_roi));
         const bool everywhere = recapture_roi == frame && watch_everywhere;
         if (last) {
             watch_everywhere = contour_held_still(detector.recent_motion(), recapture_roi);
@@ -470,7 +481,7 @@ struct HandTracker::Impl {
         // even pointing-shaped: its outline is not the hand's silhouette, and inside a face
         // grey steps (eyes, brows, mouth) are everywhere for it to settle on.
         const bool use_steps = edges_were_weak && template_quality != CaptureQuality::Unsure;
-        const cv::Mat1b& steps = use_steps ? grey : no_grey;
+        const cv::Mat1b& steps = use_steps ? grey : no_map;
         if (use_steps) update_grey(bgr, roi);
 
         // Weight by the observation density.
@@ -513,7 +524,12 @@ struct HandTracker::Impl {
         }
         estimate.confidence = p_init > 0.0 ? std::clamp(best_like / p_init, 0.0, 1.0) : 0.0;
         const bool weak_edges = best_like < params.lost_ratio * p_init;
-        edges_were_weak = weak_edges;
+        // Whether the next frame measures grey steps is judged on the skin edges alone:
+        // judged with the steps, finding them would switch them off on the next frame and
+        // the density would alternate between two landscapes, frame by frame.
+        edges_were_weak = use_steps ? measurement.normal_likelihood(measurement.misfit(
+                                          membership, no_map, *shape, b)) < params.lost_ratio * p_init
+                                    : weak_edges;
 
         // Refine from the better of mean and best; report that. The squash follows the
         // hand's turn only while its edges fit (where they are weak, in front of a face,
@@ -666,6 +682,39 @@ struct HandTracker::Impl {
         low_frames = 0;
         lost_search = 0;
         detector.reset();
+    }
+
+    // Where the frame shows the static scene, over `roi` (empty: the whole frame), for a
+    // detection that segments this frame (`wanted`); else, or while it is unknown, empty.
+    const cv::Mat1b& static_scene(const cv::Mat& bgr, bool wanted, cv::Rect roi) {
+        if (!wanted || !params.ignore_static_skin) return no_map;
+        if (roi.area() == 0) roi = cv::Rect(0, 0, bgr.cols, bgr.rows);
+        return background.find_static(bgr, roi);
+    }
+
+    // The static scene is learnt everywhere but on and around the tracked hand (its
+    // contour grown by the search window), so that a hand held still is not learnt into it,
+    // while the scene between the fingers and around the hand is.
+    void learn_background(const cv::Mat& bgr) {
+        if (!estimate.valid()) {
+            background.learn(bgr);
+            return;
+        }
+        const int grow = measurement.params().half_window;
+        const cv::Rect box = cv::Rect(estimate.bbox.x - grow, estimate.bbox.y - grow,
+                                      estimate.bbox.width + 2 * grow, estimate.bbox.height + 2 * grow) &
+                             cv::Rect(0, 0, bgr.cols, bgr.rows);
+        if (box.area() == 0) {
+            background.learn(bgr);
+            return;
+        }
+        fill_contour(box);
+        // The outline drawn 2 x grow + 1 px thick with round ends: the filled contour
+        // grown by `grow` (a dilation by a disc, at a fraction of its cost).
+        const cv::Point* poly = fill_points.data();
+        const int count = static_cast<int>(fill_points.size());
+        cv::polylines(contour_fill, &poly, &count, 1, true, 255, 2 * grow + 1);
+        background.learn(bgr, box, contour_fill);
     }
 
     // The grey map over `roi`, for the normals that run from skin into skin.

@@ -1,5 +1,7 @@
 #include "detect/motion_detector.hpp"
 
+#include "background/static_background.hpp"
+
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
@@ -99,6 +101,42 @@ TEST(MotionDetector, LeavesOutAStaticSkinObjectTheHandTouches) {
     // At most a rim of the board within reach of the moving finger remains.
     EXPECT_LT(cv::countNonZero(on_board), 0.25 * 80 * 50);
     EXPECT_GT(iou(found->mask, truth), 0.7);
+}
+
+TEST(MotionDetector, CutsOffAKnownStaticSceneExactly) {
+    cv::setRNGSeed(5);
+    DrawnScene scene(7);
+    const cv::Rect board_box(190, 40, 80, 50);
+    cv::rectangle(scene.background, board_box, cv::Scalar(scene.skin), cv::FILLED);
+    // The scene, learnt before the hand came in.
+    gc::StaticBackground learnt;
+    cv::Mat3b frame;
+    cv::Mat1b truth;
+    for (int i = 0; i < 30; ++i) {
+        scene.render({-100.0, -100.0}, 0.0, frame, truth);
+        learnt.learn(frame);
+    }
+    gc::MotionDetector det;
+    std::optional<gc::Detection> found;
+    for (int i = 0; i < 12 && !found; ++i) {
+        scene.render({150.0 + 3.0 * (i % 2 ? 1 : -1), 130.0}, 35.0 + 4.0 * (i % 3), frame, truth);
+        found = det.process(frame, gc::SkinModel::generic(), true,
+                            learnt.find_static(frame, cv::Rect(0, 0, frame.cols, frame.rows)));
+    }
+    ASSERT_TRUE(found);
+    cv::Mat1b off_hand(frame.size(), uchar(0));
+    off_hand(board_box).setTo(255);
+    cv::bitwise_and(off_hand, ~truth, off_hand);
+    cv::bitwise_and(off_hand, found->mask, off_hand);
+    // None of the board, not even the rim near the moving finger that the motion cut keeps.
+    EXPECT_LT(cv::countNonZero(off_hand), 0.02 * board_box.area());
+    EXPECT_GT(iou(found->mask, truth), 0.85);
+    // The hand touched the board: its outline there is the board's cut, so the capture is
+    // not ranked clean.
+    EXPECT_TRUE(found->cut);
+    EXPECT_NE(gc::capture_quality(*found), gc::CaptureQuality::Clean);
+    EXPECT_THROW(det.process(frame, gc::SkinModel::generic(), true, cv::Mat1b(10, 10, uchar(0))),
+                 std::invalid_argument);
 }
 
 TEST(MotionDetector, LearnsTheHandsBrightnessBesideADarkerObjectOfItsTone) {

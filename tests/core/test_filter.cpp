@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+
 #include <cmath>
 #include <numeric>
 #include <random>
@@ -70,6 +72,17 @@ TEST(QuasiRandom, HaltonPoints) {
     EXPECT_DOUBLE_EQ(gc::radical_inverse(1, 2), 0.5);
     EXPECT_DOUBLE_EQ(gc::radical_inverse(6, 2), 0.375);   // 110b -> 0.011b
     EXPECT_NEAR(gc::radical_inverse(5, 3), 7.0 / 9.0, 1e-12);  // 12_3 -> 0.21_3
+    EXPECT_NEAR(gc::radical_inverse(23, 23), 1.0 / 529.0, 1e-15);  // 10_23 -> 0.01_23 (a base not among the sampler's)
+    // Every base, the sampler's own (compiled with a constant base) and others, against
+    // the digits taken one by one: the same point exactly.
+    for (unsigned base : {2u, 3u, 5u, 7u, 11u, 13u, 17u, 19u, 23u, 29u})
+        for (std::uint64_t index : {std::uint64_t{0}, std::uint64_t{1}, std::uint64_t{977},
+                                    std::uint64_t{1} << 20, (std::uint64_t{1} << 40) + 12345}) {
+            double expected = 0.0, scale = 1.0 / base;
+            for (std::uint64_t rest = index; rest > 0; rest /= base, scale /= base)
+                expected += double(rest % base) * scale;
+            EXPECT_NEAR(gc::radical_inverse(index, base), expected, 1e-15) << base << " " << index;
+        }
 }
 
 TEST(QuasiRandom, DeviatesAreStandardNormalAndEvenlySpread) {
