@@ -77,11 +77,12 @@ void StaticBackground::learn(const cv::Mat& bgr, const cv::Rect& keep_out,
         // mask), while trust keeps counting against it: a static object the hand covers
         // is still known as the scene's.
         const std::uint8_t* mask =
-            keep_out_mask.empty() ? nullptr : keep_out_mask.ptr<std::uint8_t>(y - keep_out.y) - keep_out.x;
+            keep_out_mask.empty() ? nullptr : keep_out_mask.ptr<std::uint8_t>(y - keep_out.y);
+        const auto held_at = [&](int x) { return !mask || mask[x - keep_out.x] != 0; };
         for (int x = out.x; x < out.x + out.width;) {
-            const bool held = !mask || mask[x];
+            const bool held = held_at(x);
             const int start = x;
-            while (x < out.x + out.width && (!mask || mask[x]) == held) ++x;
+            while (x < out.x + out.width && held_at(x) == held) ++x;
             learn_run(f, m, trust, start, x, !held);
         }
     }
