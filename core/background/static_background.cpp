@@ -119,11 +119,4 @@ const cv::Mat1b& StaticBackground::find_static(const cv::Mat& bgr, const cv::Rec
     return scene_;
 }
 
-void StaticBackground::clear_static(const cv::Mat& bgr, const cv::Rect& roi, cv::Mat1b& membership) {
-    if (membership.size() != bgr.size()) return;
-    const cv::Mat1b& scene = find_static(bgr, roi);
-    if (scene.empty() || scene_area_.area() == 0) return;
-    membership(scene_area_).setTo(0, scene(scene_area_));
-}
-
 }  // namespace gc

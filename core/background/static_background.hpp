@@ -1,11 +1,11 @@
 // What the camera sees when nothing moves: a per-pixel running median of the frames, learnt
 // everywhere but where the tracked hand is. Skin that matches it is skin of the scene (a
-// face, a skin-coloured object), not the moving hand, and can be cleared from the hand's
-// skin map so that the hand's outline has an edge in front of it.
+// face, a skin-coloured object), not the moving hand, and the detector leaves it out, so
+// that a capture touching it is cut off at its outline.
 //
-// The median is approximated by stepping each channel one level per frame towards the frame
-// (so a pixel takes |change| frames to follow a change): a hand passing over a pixel, or
-// waving over it half the time, does not move it. A pixel counts as the scene's when its
+// The median is approximated by stepping each channel one level towards the frame on every
+// frame the pixel learns from (so it takes |change| of them to follow a change): a hand
+// passing over a pixel, or waving over it half the time, does not move it. A pixel counts as the scene's when its
 // median is trusted (the frame has matched it more often than not, by a margin: the first
 // frame's median holds whatever was there, the hand included), the frame matches it now,
 // and so do all its neighbours: sensor noise and the hand's texture passing over a similar
@@ -32,10 +32,10 @@ public:
     explicit StaticBackground(const StaticBackgroundParams& params = {});
 
     // Steps the median towards `bgr` (CV_8UC3), on every other row (the other half on the
-    // next call), everywhere but in `keep_out`, where it is held: all of it, or where given, only where `keep_out_mask` (keep_out's size) is
-    // non-zero. Trust is counted everywhere, against the held median too. The first frame
-    // after construction or reset() becomes the median, untrusted; a frame of another size
-    // starts it again.
+    // next call), everywhere but in `keep_out`, where it is held: all of it, or where
+    // given, only where `keep_out_mask` (keep_out's size) is non-zero. Trust is counted
+    // everywhere, against the held median too. The first frame after construction or
+    // reset() becomes the median, untrusted; a frame of another size starts it again.
     // Throws std::invalid_argument on a wrong frame type or mask size.
     void learn(const cv::Mat& bgr, const cv::Rect& keep_out = {}, const cv::Mat1b& keep_out_mask = {});
     // Forgets the median (the camera moved: the scene is elsewhere in the image).
@@ -47,9 +47,6 @@ public:
     // learn() or when the frame's size or type differs. Reuses its buffers: no allocation
     // once they have the frame's size.
     const cv::Mat1b& find_static(const cv::Mat& bgr, const cv::Rect& roi);
-    // Sets `membership` (CV_8UC1, the frame's size) to 0 over `roi` wherever the frame
-    // shows the static scene. Does nothing where find_static() finds nothing.
-    void clear_static(const cv::Mat& bgr, const cv::Rect& roi, cv::Mat1b& membership);
 
 private:
     StaticBackgroundParams p_;
