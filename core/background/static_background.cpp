@@ -42,23 +42,16 @@ void StaticBackground::learn(const cv::Mat& bgr, const cv::Rect& keep_out,
     const std::uint8_t tol = static_cast<std::uint8_t>(p_.tolerance);
     // Pixels [from, to) of a row, byte by byte (a pixel's trust is its channels' least):
     // trust counts up on a match and down on a miss, and where `step` the median moves one
-    // level towards the frame. Branch-free byte loops, which vectorise (__restrict: byte
+    // level towards the frame. A branch-free byte loop, which vectorises (__restrict: byte
     // pointers may otherwise alias, which stops the vectoriser).
     const auto learn_run = [tol](const std::uint8_t* __restrict f, std::uint8_t* __restrict m,
                                  std::uint8_t* __restrict trust, int from, int to, bool step) {
-        if (step) {
-            for (int i = 3 * from; i < 3 * to; ++i) {
-                const std::uint8_t a = f[i], b = m[i], t = trust[i];
-                const bool match = std::uint8_t(std::max(a, b) - std::min(a, b)) <= tol;
-                trust[i] = std::uint8_t(t + (match & (t != 255)) - (!match & (t != 0)));
-                m[i] = std::uint8_t(b + (a > b) - (a < b));
-            }
-        } else {
-            for (int i = 3 * from; i < 3 * to; ++i) {
-                const std::uint8_t a = f[i], b = m[i], t = trust[i];
-                const bool match = std::uint8_t(std::max(a, b) - std::min(a, b)) <= tol;
-                trust[i] = std::uint8_t(t + (match & (t != 255)) - (!match & (t != 0)));
-            }
+        const std::uint8_t moves = step ? 1 : 0;
+        for (int i = 3 * from; i < 3 * to; ++i) {
+            const std::uint8_t a = f[i], b = m[i], t = trust[i];
+            const bool match = std::uint8_t(std::max(a, b) - std::min(a, b)) <= tol;
+            trust[i] = std::uint8_t(t + (match & (t != 255)) - (!match & (t != 0)));
+            m[i] = std::uint8_t(b + moves * ((a > b) - (a < b)));
         }
     };
     // Every other row, the two halves in turn: each pixel learns every second frame, which
