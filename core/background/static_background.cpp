@@ -82,6 +82,24 @@ void StaticBackground::learn(const cv::Mat& bgr, const cv::Rect& keep_out,
     row_parity_ ^= 1;
 }
 
+StaticBackground::Look StaticBackground::look(const cv::Mat& bgr, cv::Point p) const {
+    if (median_.empty() || bgr.size() != median_.size() || bgr.type() != CV_8UC3) return Look::Unknown;
+    const auto trusted = [this](int x, int y) {
+        const cv::Vec3b& t = trust_(y, x);
+        return std::min({t[0], t[1], t[2]}) >= p_.trusted_after;
+    };
+    const auto same = [&](int x, int y) {
+        return matches(bgr.ptr<std::uint8_t>(y) + 3 * x, median_.ptr<std::uint8_t>(y) + 3 * x, p_.tolerance);
+    };
+    if (!trusted(p.x, p.y)) return Look::Unknown;
+    if (!same(p.x, p.y)) return Look::Foreground;
+    // The neighbours as find_static()'s erosion sees them (the border replicated).
+    for (int y = std::max(p.y - 1, 0); y <= std::min(p.y + 1, bgr.rows - 1); ++y)
+        for (int x = std::max(p.x - 1, 0); x <= std::min(p.x + 1, bgr.cols - 1); ++x)
+            if (!trusted(x, y) || !same(x, y)) return Look::Unsure;
+    return Look::Scene;
+}
+
 const cv::Mat1b& StaticBackground::find_static(const cv::Mat& bgr, const cv::Rect& roi) {
     if (median_.empty() || bgr.size() != median_.size() || bgr.type() != CV_8UC3) return none_;
     const cv::Rect frame(0, 0, bgr.cols, bgr.rows);

@@ -42,6 +42,18 @@ public:
     void reset();
     bool empty() const { return median_.empty(); }
 
+    // What the frame shows at one pixel, against the learnt scene.
+    enum class Look {
+        Unknown,     // no trusted median there (or no median, or another frame size)
+        Scene,       // the scene: the pixel and its neighbours match their trusted medians
+        Foreground,  // something in front of it: the pixel differs from its trusted median
+        Unsure,      // trusted and matching, but a neighbour is not (noise, a chance match)
+    };
+    // As find_static() would say at `p`, and more: Unknown where it would say 0 for want
+    // of a trusted median, Foreground where the median is trusted and the pixel differs.
+    // `p` must lie in the frame.
+    Look look(const cv::Mat& bgr, cv::Point p) const;
+
     // Where the frame `bgr` shows the static scene, over `roi`: a map of the frame's size,
     // 255 there and 0 elsewhere (valid until the next call). Empty before the first
     // learn() or when the frame's size or type differs. Reuses its buffers: no allocation

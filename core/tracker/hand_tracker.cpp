@@ -35,6 +35,10 @@ constexpr double kAdaptRate = 0.05;
 constexpr int kMinFrameSide = 32;
 constexpr double kRimSkinFraction = 0.85;       // inner rim this much skin: the hand is there;
 constexpr double kLooseRimSkinFraction = 0.75;  // ... or this much, with the finger's at 0.85
+constexpr double kRimDepth = 2.5;           // px along the normals, in or out: the contour's rims
+constexpr double kForegroundRimSkinFraction = 0.5;  // a contour on what moved: this much rim skin,
+constexpr double kMovedFraction = 0.5;               // this much of it known to differ from the scene,
+constexpr double kSceneOutsideFraction = 0.5;        // and this much of the outer rim the scene
 constexpr double kMinJudgedWeight = 0.3;   // share of the normals that must see an edge to judge
 constexpr double kMaxCaptureGrowth = 1.15;  // area ratio: a capture this much larger adds something
 constexpr int kLostSearchEvery = 3;
@@ -178,7 +182,7 @@ struct HandTracker::Impl {
         } else {
             acquire(bgr);
         }
-        if (params.ignore_static_skin) learn_background(bgr);
+        if (params.use_static_scene) learn_background(bgr);
         return estimate;
     }
 
@@ -390,6 +394,10 @@ struct HandTracker::Impl {
     bool reacquire_by_skin(const cv::Mat& bgr) {
         cv::Mat1b seg;
         skin->segment(bgr, seg);
+        // Skin of the static scene (a face the hand was lost in front of) is left out, as
+        // the detector does: the hand's blob is then the hand's alone.
+        const cv::Mat1b& scene = static_scene(bgr, true, {});
+        if (!scene.empty()) seg.setTo(0, scene);
         cv::morphologyEx(seg, seg, cv::MORPH_CLOSE,
                          cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(5, 5)));
         cv::Mat1i labels;
@@ -546,9 +554,10 @@ struct HandTracker::Impl {
         // not even the refined contour's, and the contour's inner rim is no longer skin.
         // Edges also vanish where the hand passes in front of a face or a skin-coloured
         // object; there the hand is still under the contour, and tracking goes on while the
-        // rim is skin or while the edges that can still be seen (not skin against skin) fit
-        // as well as tracking did. The refined contour is the best placed one to judge.
-        if (weak_edges && !hand_still_there(out, steps)) {
+        // rim is skin, while the edges that can still be seen (not skin against skin) fit
+        // as well as tracking did, or while the contour outlines something that moved in
+        // front of the learnt scene. The refined contour is the best placed one to judge.
+        if (weak_edges && !hand_still_there(out, steps, bgr)) {
             if (++low_frames >= params.lost_frames) {
                 lose();
                 return;
@@ -629,10 +638,11 @@ struct HandTracker::Impl {
     bool grows_hand(double area) const { return area > kMaxCaptureGrowth * firm_area; }
 
     // On a weak-edge frame: whether the contour at `s` still holds the hand (see track()).
-    bool hand_still_there(const HandState& s, const cv::Mat1b& steps) const {
+    bool hand_still_there(const HandState& s, const cv::Mat1b& steps, const cv::Mat& bgr) const {
         const double like =
             measurement.normal_likelihood(measurement.misfit(membership, steps, *shape, s));
-        return like >= params.lost_ratio * p_init || rim_is_skin(s) || visible_edges_fit(s);
+        return like >= params.lost_ratio * p_init || rim_is_skin(s) || visible_edges_fit(s) ||
+               outlines_foreground(s, bgr);
     }
 
     // True when the normals that are not skin against skin carry enough of the weight and
@@ -655,13 +665,10 @@ struct HandTracker::Impl {
         int skin_points = 0, finger_points = 0, finger_skin = 0;
         bool in_view = true;
         for (std::size_t i = 0; i < shape->outline.size(); ++i) {
-            const cv::Point2d p = place(s, shape->outline[i]);
-            const cv::Point2d n = place_normal(s, shape->outline_normals[i]);
-            const int x = cvRound(p.x - 2.5 * n.x);
-            const int y = cvRound(p.y - 2.5 * n.y);
-            const bool inside = x >= 0 && y >= 0 && x < membership.cols && y < membership.rows;
+            const cv::Point p = rim_point(s, i, -kRimDepth);
+            const bool inside = p.inside(cv::Rect(0, 0, membership.cols, membership.rows));
             in_view = in_view && inside;
-            const bool skin = inside && membership(y, x) >= kSkinEdgeLevel;
+            const bool skin = inside && membership(p) >= kSkinEdgeLevel;
             skin_points += skin;
             if (shape->on_finger(shape->outline[i])) {
                 ++finger_points;
@@ -672,6 +679,38 @@ struct HandTracker::Impl {
         const double finger = finger_points > 0 ? double(finger_skin) / finger_points : 0.0;
         return all >= kRimSkinFraction ||
                (in_view && all >= kLooseRimSkinFraction && finger >= kRimSkinFraction);
+    }
+
+    // Whether the contour at `s` outlines something that moved in front of the learnt
+    // static scene, with skin on at least half its rim (a hand, not a sleeve): just inside
+    // it, at least half known to differ from the scene and hardly any of it the scene; just
+    // outside it, at least half the scene. In front of a face, skin cannot tell the hand
+    // from the face behind it, and a hand turned away from the rigid template shows less
+    // of the template's rim; the scene can. A contour slid onto the face has the face, the
+    // scene, inside it; one shrunk or slid within the hand and arm has them outside it.
+    bool outlines_foreground(const HandState& s, const cv::Mat& bgr) const {
+        if (!params.use_static_scene || background.empty()) return false;
+        const cv::Rect frame(0, 0, bgr.cols, bgr.rows);
+        int skin_in = 0, moved_in = 0, scene_in = 0, scene_out = 0;
+        for (std::size_t i = 0; i < shape->outline.size(); ++i) {
+            const cv::Point in = rim_point(s, i, -kRimDepth), out = rim_point(s, i, kRimDepth);
+            if (in.inside(frame)) {
+                skin_in += membership(in) >= kSkinEdgeLevel;
+                const StaticBackground::Look look = background.look(bgr, in);
+                moved_in += look == StaticBackground::Look::Foreground;
+                scene_in += look == StaticBackground::Look::Scene;
+            }
+            if (out.inside(frame)) scene_out += background.look(bgr, out) == StaticBackground::Look::Scene;
+        }
+        const double points = double(shape->outline.size());
+        return skin_in >= kForegroundRimSkinFraction * points && moved_in >= kMovedFraction * points &&
+               scene_in <= (1.0 - kRimSkinFraction) * points && scene_out >= kSceneOutsideFraction * points;
+    }
+
+    // Outline point `i` of the contour at `s`, moved `depth` px along its outward normal.
+    cv::Point rim_point(const HandState& s, std::size_t i, double depth) const {
+        const cv::Point2d p = place(s, shape->outline[i]) + depth * place_normal(s, shape->outline_normals[i]);
+        return {cvRound(p.x), cvRound(p.y)};
     }
 
     void lose() {
@@ -687,7 +726,7 @@ struct HandTracker::Impl {
     // Where the frame shows the static scene, over `roi` (empty: the whole frame), for a
     // detection that segments this frame (`wanted`); else, or while it is unknown, empty.
     const cv::Mat1b& static_scene(const cv::Mat& bgr, bool wanted, cv::Rect roi) {
-        if (!wanted || !params.ignore_static_skin) return no_map;
+        if (!wanted || !params.use_static_scene) return no_map;
         if (roi.area() == 0) roi = cv::Rect(0, 0, bgr.cols, bgr.rows);
         return background.find_static(bgr, roi);
     }

@@ -18,7 +18,9 @@ struct TrackerParams {
     double lost_ratio = 0.6;         // lost when every likelihood < lost_ratio * P_init
     int lost_frames = 3;             // ... for this many consecutive frames
     bool adapt_skin = true;          // update the skin mean from inside the tracked contour
-    bool ignore_static_skin = true;  // captures leave out skin of the learnt static scene
+    // Learn the static scene: captures leave out its skin, and in front of skin the hand is
+    // told from the scene behind it.
+    bool use_static_scene = true;
 };
 
 // A weighted hypothesis, exposed for drawing the marginal distributions.

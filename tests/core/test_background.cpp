@@ -143,3 +143,54 @@ TEST(StaticBackground, BadInputsThrow) {
     // A grey frame has no static scene to show.
     EXPECT_TRUE(bg.find_static(cv::Mat1b(scene.size(), uchar(0)), kWhole).empty());
 }
+
+TEST(StaticBackground, LooksAtOnePixelAsTheMapDoesAndTellsWhatMovedFromWhatIsUnknown) {
+    using Look = gc::StaticBackground::Look;
+    gc::StaticBackground bg;
+    const cv::Mat3b scene = textured_scene();
+    EXPECT_EQ(bg.look(scene, {80, 60}), Look::Unknown);  // nothing learnt yet
+    bg.learn(noisy(scene, 1));
+    EXPECT_EQ(bg.look(noisy(scene, 2), {80, 60}), Look::Unknown);  // a median, not trusted
+    for (int i = 3; i < 42; ++i) bg.learn(noisy(scene, i));
+    cv::Mat3b with_hand = noisy(scene, 100);
+    const cv::Rect hand(60, 40, 30, 40);
+    cv::rectangle(with_hand, hand, cv::Scalar(110, 140, 190), cv::FILLED);
+    const cv::Mat1b found = bg.find_static(with_hand, kWhole).clone();
+    // Wherever the map says scene, look() does; inside the object it says foreground, and
+    // just beside it (a neighbour differs) neither.
+    int disagree = 0;
+    for (int y = 0; y < kWhole.height; ++y)
+        for (int x = 0; x < kWhole.width; ++x)
+            disagree += (found(y, x) != 0) != (bg.look(with_hand, {x, y}) == Look::Scene);
+    EXPECT_EQ(disagree, 0);
+    EXPECT_EQ(bg.look(with_hand, {75, 60}), Look::Foreground);
+    EXPECT_EQ(bg.look(with_hand, {hand.x - 1, 60}), Look::Unsure);
+    EXPECT_EQ(bg.look(with_hand, {30, 100}), Look::Scene);
+    // A pixel of a frame of another size, or of another type, is unknown.
+    EXPECT_EQ(bg.look(cv::Mat3b(60, 80, cv::Vec3b(0, 0, 0)), {10, 10}), Look::Unknown);
+    cv::Mat1b grey;
+    cv::cvtColor(with_hand, grey, cv::COLOR_BGR2GRAY);
+    EXPECT_EQ(bg.look(grey, {75, 60}), Look::Unknown);
+}
+
+TEST(StaticBackground, ASceneTheFrameNoLongerMatchesIsForgottenNotCalledForeground) {
+    using Look = gc::StaticBackground::Look;
+    gc::StaticBackground bg;
+    const cv::Mat3b scene = textured_scene();
+    for (int i = 0; i < 40; ++i) bg.learn(noisy(scene, i));  // trust 20 per pixel
+    // The scene changes for good (a light switched on): trust drains, one miss per two
+    // frames, and the median no longer stands for the scene.
+    cv::Mat3b lit;
+    cv::add(scene, cv::Scalar(40, 40, 40), lit);
+    int frames = 0;
+    while (bg.look(noisy(lit, 500 + frames), {80, 60}) == Look::Foreground && frames < 100)
+        bg.learn(noisy(lit, 500 + frames++));
+    // Trust 20 falls below 8 after 13 misses, 26 frames.
+    EXPECT_GE(frames, 24);
+    EXPECT_LE(frames, 28);
+    EXPECT_EQ(bg.look(noisy(lit, 999), {80, 60}), Look::Unknown);
+    // The median then follows the lit scene (40 levels, one per two frames) and is trusted
+    // again 8 matches later.
+    for (int i = 0; i < 120; ++i) bg.learn(noisy(lit, 1000 + i));
+    EXPECT_EQ(bg.look(noisy(lit, 2000), {80, 60}), Look::Scene);
+}
