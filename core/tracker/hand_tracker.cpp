@@ -38,6 +38,7 @@ constexpr double kLooseRimSkinFraction = 0.75;  // ... or this much, with the fi
 constexpr double kRimDepth = 2.5;           // px along the normals, in or out: the contour's rims
 constexpr double kForegroundRimSkinFraction = 0.5;  // a contour on what moved: this much rim skin,
 constexpr double kMovedFraction = 0.5;               // this much of it known to differ from the scene,
+constexpr double kMaxSceneInsideFraction = 0.15;    // at most this much of it the scene,
 constexpr double kSceneOutsideFraction = 0.5;        // and this much of the outer rim the scene
 constexpr double kMinJudgedWeight = 0.3;   // share of the normals that must see an edge to judge
 constexpr double kMaxCaptureGrowth = 1.15;  // area ratio: a capture this much larger adds something
@@ -704,7 +705,7 @@ struct HandTracker::Impl {
         }
         const double points = double(shape->outline.size());
         return skin_in >= kForegroundRimSkinFraction * points && moved_in >= kMovedFraction * points &&
-               scene_in <= (1.0 - kRimSkinFraction) * points && scene_out >= kSceneOutsideFraction * points;
+               scene_in <= kMaxSceneInsideFraction * points && scene_out >= kSceneOutsideFraction * points;
     }
 
     // Outline point `i` of the contour at `s`, moved `depth` px along its outward normal.
@@ -724,7 +725,8 @@ struct HandTracker::Impl {
     }
 
     // Where the frame shows the static scene, over `roi` (empty: the whole frame), for a
-    // detection that segments this frame (`wanted`); else, or while it is unknown, empty.
+    // segmentation of this frame (`wanted`: the detector's, or the skin search after a
+    // loss); else, or while it is unknown, empty.
     const cv::Mat1b& static_scene(const cv::Mat& bgr, bool wanted, cv::Rect roi) {
         if (!wanted || !params.use_static_scene) return no_map;
         if (roi.area() == 0) roi = cv::Rect(0, 0, bgr.cols, bgr.rows);
