@@ -642,8 +642,9 @@ struct HandTracker::Impl {
     bool hand_still_there(const HandState& s, const cv::Mat1b& steps, const cv::Mat& bgr) const {
         const double like =
             measurement.normal_likelihood(measurement.misfit(membership, steps, *shape, s));
-        return like >= params.lost_ratio * p_init || rim_is_skin(s) || visible_edges_fit(s) ||
-               outlines_foreground(s, bgr);
+        if (like >= params.lost_ratio * p_init) return true;
+        const RimSurvey rim = survey_rim(s, bgr);
+        return rim_is_skin(rim) || visible_edges_fit(s) || outlines_foreground(rim);
     }
 
     // True when the normals that are not skin against skin carry enough of the weight and
@@ -655,63 +656,73 @@ struct HandTracker::Impl {
                measurement.normal_likelihood(q) >= params.lost_ratio * p_init;
     }
 
-    // Whether the skin just inside the contour (2.5 px in along the normals) says the hand
-    // is under it: nearly all of the rim above the boundary level, or most of it with
-    // nearly all of the finger's. The hand's own rim falls short mostly along the creases
-    // of the curled fingers; a contour turned or slid off the hand keeps most of the palm's
-    // rim but not the finger's, and the finger carries the direction. A contour cut by the
-    // image border is held to the first rule: there the rim is missing for want of image,
-    // and a hand pushed to the border by the head's turn is better found again whole.
-    bool rim_is_skin(const HandState& s) const {
-        int skin_points = 0, finger_points = 0, finger_skin = 0;
-        bool in_view = true;
+    // What lies just inside (2.5 px in along the normals) and just outside the contour's
+    // outline points: skin, and against the learnt static scene.
+    struct RimSurvey {
+        int points = 0;
+        bool in_view = true;  // every inner point inside the frame
+        int skin = 0, finger = 0, finger_skin = 0;
+        int moved = 0, scene = 0;  // inner points known to differ from the scene / the scene
+        int scene_outside = 0;     // outer points that are the scene
+    };
+
+    RimSurvey survey_rim(const HandState& s, const cv::Mat& bgr) const {
+        RimSurvey rim;
+        rim.points = static_cast<int>(shape->outline.size());
+        const cv::Rect frame(0, 0, membership.cols, membership.rows);
+        const bool scene_known = params.use_static_scene && !background.empty();
         for (std::size_t i = 0; i < shape->outline.size(); ++i) {
-            const cv::Point p = rim_point(s, i, -kRimDepth);
-            const bool inside = p.inside(cv::Rect(0, 0, membership.cols, membership.rows));
-            in_view = in_view && inside;
-            const bool skin = inside && membership(p) >= kSkinEdgeLevel;
-            skin_points += skin;
+            const cv::Point2d p = place(s, shape->outline[i]);
+            const cv::Point2d n = kRimDepth * place_normal(s, shape->outline_normals[i]);
+            const cv::Point in(cvRound(p.x - n.x), cvRound(p.y - n.y));
+            const bool inside = in.inside(frame);
+            rim.in_view = rim.in_view && inside;
+            const bool skin = inside && membership(in) >= kSkinEdgeLevel;
+            rim.skin += skin;
             if (shape->on_finger(shape->outline[i])) {
-                ++finger_points;
-                finger_skin += skin;
+                ++rim.finger;
+                rim.finger_skin += skin;
             }
+            if (!scene_known) continue;
+            if (inside) {
+                const StaticBackground::Look look = background.look(bgr, in);
+                rim.moved += look == StaticBackground::Look::Foreground;
+                rim.scene += look == StaticBackground::Look::Scene;
+            }
+            const cv::Point out(cvRound(p.x + n.x), cvRound(p.y + n.y));
+            if (out.inside(frame))
+                rim.scene_outside += background.look(bgr, out) == StaticBackground::Look::Scene;
         }
-        const double all = double(skin_points) / double(shape->outline.size());
-        const double finger = finger_points > 0 ? double(finger_skin) / finger_points : 0.0;
-        return all >= kRimSkinFraction ||
-               (in_view && all >= kLooseRimSkinFraction && finger >= kRimSkinFraction);
+        return rim;
     }
 
-    // Whether the contour at `s` outlines something that moved in front of the learnt
-    // static scene, with skin on at least half its rim (a hand, not a sleeve): just inside
-    // it, at least half known to differ from the scene and hardly any of it the scene; just
+    // Whether the skin of the inner rim says the hand is under the contour: nearly all of
+    // the rim above the boundary level, or most of it with nearly all of the finger's. The
+    // hand's own rim falls short mostly along the creases of the curled fingers; a contour
+    // turned or slid off the hand keeps most of the palm's rim but not the finger's, and
+    // the finger carries the direction. A contour cut by the image border is held to the
+    // first rule: there the rim is missing for want of image, and a hand pushed to the
+    // border by the head's turn is better found again whole.
+    static bool rim_is_skin(const RimSurvey& rim) {
+        const double all = double(rim.skin) / rim.points;
+        const double finger = rim.finger > 0 ? double(rim.finger_skin) / rim.finger : 0.0;
+        return all >= kRimSkinFraction ||
+               (rim.in_view && all >= kLooseRimSkinFraction && finger >= kRimSkinFraction);
+    }
+
+    // Whether the contour outlines something that moved in front of the learnt static
+    // scene, with skin on at least half its rim (a hand, not a sleeve): just inside it, at
+    // least half known to differ from the scene and hardly any of it the scene; just
     // outside it, at least half the scene. In front of a face, skin cannot tell the hand
     // from the face behind it, and a hand turned away from the rigid template shows less
     // of the template's rim; the scene can. A contour slid onto the face has the face, the
     // scene, inside it; one shrunk or slid within the hand and arm has them outside it.
-    bool outlines_foreground(const HandState& s, const cv::Mat& bgr) const {
-        if (!params.use_static_scene || background.empty()) return false;
-        const cv::Rect frame(0, 0, bgr.cols, bgr.rows);
-        int skin_in = 0, moved_in = 0, scene_in = 0, scene_out = 0;
-        for (std::size_t i = 0; i < shape->outline.size(); ++i) {
-            const cv::Point in = rim_point(s, i, -kRimDepth), out = rim_point(s, i, kRimDepth);
-            if (in.inside(frame)) {
-                skin_in += membership(in) >= kSkinEdgeLevel;
-                const StaticBackground::Look look = background.look(bgr, in);
-                moved_in += look == StaticBackground::Look::Foreground;
-                scene_in += look == StaticBackground::Look::Scene;
-            }
-            if (out.inside(frame)) scene_out += background.look(bgr, out) == StaticBackground::Look::Scene;
-        }
-        const double points = double(shape->outline.size());
-        return skin_in >= kForegroundRimSkinFraction * points && moved_in >= kMovedFraction * points &&
-               scene_in <= kMaxSceneInsideFraction * points && scene_out >= kSceneOutsideFraction * points;
-    }
-
-    // Outline point `i` of the contour at `s`, moved `depth` px along its outward normal.
-    cv::Point rim_point(const HandState& s, std::size_t i, double depth) const {
-        const cv::Point2d p = place(s, shape->outline[i]) + depth * place_normal(s, shape->outline_normals[i]);
-        return {cvRound(p.x), cvRound(p.y)};
+    // Without a learnt scene the counts are 0 and this is false.
+    static bool outlines_foreground(const RimSurvey& rim) {
+        const double points = rim.points;
+        return rim.skin >= kForegroundRimSkinFraction * points && rim.moved >= kMovedFraction * points &&
+               rim.scene <= kMaxSceneInsideFraction * points &&
+               rim.scene_outside >= kSceneOutsideFraction * points;
     }
 
     void lose() {
