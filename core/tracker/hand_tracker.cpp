@@ -39,7 +39,7 @@ constexpr double kRimDepth = 2.5;           // px along the normals, in or out: 
 constexpr double kForegroundRimSkinFraction = 0.5;  // a contour on what moved: this much rim skin,
 constexpr double kMovedFraction = 0.5;               // this much of it known to differ from the scene,
 constexpr double kMaxSceneInsideFraction = 0.15;    // at most this much of it the scene,
-constexpr double kSceneOutsideFraction = 0.5;        // and this much of the outer rim the scene
+constexpr double kSceneOutsideFraction = 0.5;        // and this much of the outer rim matching it
 constexpr double kMinJudgedWeight = 0.3;   // share of the normals that must see an edge to judge
 constexpr double kMaxCaptureGrowth = 1.15;  // area ratio: a capture this much larger adds something
 constexpr int kLostSearchEvery = 3;
@@ -663,7 +663,7 @@ struct HandTracker::Impl {
         bool in_view = true;  // every inner point inside the frame
         int skin = 0, finger = 0, finger_skin = 0;
         int moved = 0, scene = 0;  // inner points known to differ from the scene / the scene
-        int scene_outside = 0;     // outer points that are the scene
+        int scene_outside = 0;     // outer points that match the scene (Scene or Unsure)
     };
 
     RimSurvey survey_rim(const HandState& s, const cv::Mat& bgr) const {
@@ -690,8 +690,10 @@ struct HandTracker::Impl {
                 rim.scene += look == StaticBackground::Look::Scene;
             }
             const cv::Point out(cvRound(p.x + n.x), cvRound(p.y + n.y));
-            if (out.inside(frame))
-                rim.scene_outside += background.look(bgr, out) == StaticBackground::Look::Scene;
+            if (out.inside(frame)) {
+                const StaticBackground::Look look = background.look(bgr, out);
+                rim.scene_outside += look == StaticBackground::Look::Scene || look == StaticBackground::Look::Unsure;
+            }
         }
         return rim;
     }
@@ -713,7 +715,9 @@ struct HandTracker::Impl {
     // Whether the contour outlines something that moved in front of the learnt static
     // scene, with skin on at least half its rim (a hand, not a sleeve): just inside it, at
     // least half known to differ from the scene and hardly any of it the scene; just
-    // outside it, at least half the scene. In front of a face, skin cannot tell the hand
+    // outside it, at least half matching the scene (a point next to something that does
+    // not, Unsure, counts: the outer rim runs 1.5 px from the hand's edge, and along the
+    // wrist it borders the moving arm). In front of a face, skin cannot tell the hand
     // from the face behind it, and a hand turned away from the rigid template shows less
     // of the template's rim; the scene can. A contour slid onto the face has the face, the
     // scene, inside it; one shrunk or slid within the hand and arm has them outside it.
