@@ -43,6 +43,7 @@ public:
     bool clearly_better() const { return frames_ > 0 && least_gain_ >= kClearMargin; }
 
     HandTemplate& candidate() { return candidate_; }
+    const HandTemplate& candidate() const { return candidate_; }
     const SkinModel& skin() const { return skin_; }
     const HandState& state() const { return state_; }
 
