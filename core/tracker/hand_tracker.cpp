@@ -43,6 +43,8 @@ constexpr double kSceneOutsideFraction = 0.5;        // and this much of the out
 // Inner rim share of the static scene above which a contour holds some of it: a hand
 // alone shows 0.13 or less on 99 % of frames (face_pass 1-200), a merged template 0.14 at median.
 constexpr double kMergedSceneFraction = 0.15;
+// ... and above which it lies on the scene rather than on the hand.
+constexpr double kOnSceneFraction = 0.5;
 constexpr double kMinJudgedWeight = 0.3;   // share of the normals that must see an edge to judge
 constexpr double kMaxCaptureGrowth = 1.15;  // area ratio: a capture this much larger adds something
 constexpr int kLostSearchEvery = 3;
@@ -268,7 +270,9 @@ struct HandTracker::Impl {
     // The hand is what waved: a watch that saw (nearly) nothing change under the tracked
     // contour says it may hold a static skin-coloured object instead (a template merged
     // with one at capture, left on it as the hand moved off). The next watch then covers
-    // the whole frame, and there a capture need not overlap the tracked contour.
+    // the whole frame, and there a capture need not overlap the tracked contour. So does
+    // the learnt scene, at once: a tracked contour whose inner rim is mostly the scene is
+    // replaced by any capture of its rank in the window.
     bool recapture(const cv::Mat& bgr, bool weak_edges) {
         const int period = template_quality == CaptureQuality::Unsure || watch_everywhere
                                ? kUnsureRecapturePeriod
@@ -304,12 +308,16 @@ struct HandTracker::Impl {
         if (weak_edges && grows_hand(found->area)) return false;
         const cv::Rect local = cv::boundingRect(found->mask);
         const bool apart = ((local + recapture_roi.tl()) & estimate.bbox).area() == 0;
-        const bool equal = quality == template_quality && !(still_twice && apart);
+        // A contour whose inner rim is mostly the learnt scene has been left on a static
+        // thing (a template merged with it, the hand gone on): a capture of its rank
+        // replaces it without a trial, wherever it is in the window.
+        const bool on_scene = lies_on_scene(previous, bgr);
+        const bool equal = quality == template_quality && !(still_twice && apart) && !on_scene;
         if (equal && trial) return false;
         if (local.x <= 1 || local.y <= 1 || local.br().x >= recapture_roi.width - 1 ||
             local.br().y >= recapture_roi.height - 1)
             return false;  // cut by the window (or the frame): not the whole hand
-        if (!everywhere && apart) return false;
+        if (!everywhere && apart && !on_scene) return false;
         Detection whole = *found;
         whole.mask = cv::Mat1b(bgr.size(), uchar(0));
         found->mask.copyTo(whole.mask(recapture_roi));
@@ -625,6 +633,13 @@ struct HandTracker::Impl {
         if (tracked.scene < kMergedSceneFraction * tracked.points) return false;
         const RimSurvey candidate = survey_rim(trial->candidate(), trial->state(), bgr);
         return double(candidate.scene) / candidate.points <= 0.5 * double(tracked.scene) / tracked.points;
+    }
+
+    // Whether at least kOnSceneFraction of the inner rim of the contour at `s` is the learnt
+    // static scene (false while none is learnt).
+    bool lies_on_scene(const HandState& s, const cv::Mat& bgr) const {
+        const RimSurvey rim = survey_rim(s, bgr);
+        return rim.scene >= kOnSceneFraction * rim.points;
     }
 
     // Whether the reported contour lies inside the watched `window` and less than

@@ -160,6 +160,28 @@ TEST(HandTracker, FollowsARenderedSceneAcrossSeeds) {
     }
 }
 
+// One eye of a 200-frame face_pass sequence tracked with 1000 particles: the frames where
+// the hand crosses the face, and those of them where the tracker was lost or off the hand.
+struct FaceCrossing {
+    int frames = 0, off = 0;
+};
+
+FaceCrossing track_face_pass(std::uint64_t seed, gc::Eye eye) {
+    const gc::sim::Scene scene(mixed_scene(gc::sim::Preset::FacePass, seed));
+    gc::HandTracker tracker(seeded_params(1000, seed));
+    cv::Mat bgr;
+    gc::sim::EyeTruth truth;
+    FaceCrossing c;
+    for (int f = 0; f < 200; ++f) {
+        scene.render(f, eye, {}, bgr, &truth);
+        const auto& e = tracker.process(bgr);
+        if (!gc_test::hand_crosses_face(truth)) continue;
+        ++c.frames;
+        c.off += !gc_test::on_the_hand(e, truth, gc::contour_mask(e.contour, bgr.size()));
+    }
+    return c;
+}
+
 // face_pass: the hand passes in front of a face of its own skin colour, where its edges
 // vanish. On every frame where the hand covers the face (>= 5 % of the hand over the face's
 // skin) the tracker must stay on the hand (tracking, IoU >= 0.5): the thesis lost it there.
@@ -176,23 +198,22 @@ TEST(HandTracker, FollowsARenderedSceneAcrossSeeds) {
 TEST(HandTracker, KeepsTheHandWhileItCrossesAFace) {
     for (std::uint64_t seed : {1u, 2u, 3u, 4u, 5u, 6u, 12u, 21u, 23u, 25u, 10u, 17u, 30u, 73u,
                                22u, 96u, 75u, 44u}) {
-        const gc::sim::Scene scene(mixed_scene(gc::sim::Preset::FacePass, seed));
-        gc::HandTracker tracker(seeded_params(1000, seed));
-        cv::Mat bgr;
-        gc::sim::EyeTruth truth;
-        int crossing = 0, off = 0;
-        for (int f = 0; f < 200; ++f) {
-            scene.render(f, gc::Eye::Left, {}, bgr, &truth);
-            const auto& e = tracker.process(bgr);
-            ASSERT_EQ(truth.face.size(), bgr.size());
-            if (!gc_test::hand_crosses_face(truth)) continue;
-            ++crossing;
-            off += !gc_test::on_the_hand(e, truth, gc::contour_mask(e.contour, bgr.size()));
-        }
-        EXPECT_GT(crossing, 10) << "seed " << seed << ": the hand must cross the face";
-        EXPECT_EQ(off, 0) << "seed " << seed << ": lost or off the hand in " << off << " of "
-                          << crossing << " crossing frames";
+        const FaceCrossing c = track_face_pass(seed, gc::Eye::Left);
+        EXPECT_GT(c.frames, 10) << "seed " << seed << ": the hand must cross the face";
+        EXPECT_EQ(c.off, 0) << "seed " << seed << ": lost or off the hand in " << c.off << " of "
+                            << c.frames << " crossing frames";
     }
+}
+
+// Right-eye face_pass 47: the first templates merged the hand with a box of its colour, and
+// the contour slid onto the box (its inner rim 0.6 the learnt scene) while the hand moved
+// on by it, so no watch saw the contour hold still. The captures of the hand apart from it
+// were refused until frame 91, 13 frames into the crossing of the face; a contour lying on
+// the learnt scene now gives way to them at once.
+TEST(HandTracker, LeavesTheLearntSceneForACaptureOfTheHand) {
+    const FaceCrossing c = track_face_pass(47, gc::Eye::Right);
+    EXPECT_GT(c.frames, 10);
+    EXPECT_EQ(c.off, 0) << "lost or off the hand in " << c.off << " of " << c.frames << " crossing frames";
 }
 
 // A pointing hand of the proportions capture_quality() ranks as pointing (palm radius 22,
