@@ -43,7 +43,8 @@ constexpr double kSceneOutsideFraction = 0.5;        // and this much of the out
 // Inner rim share of the static scene above which a contour holds some of it: a hand
 // alone shows 0.13 or less on 99 % of frames (face_pass 1-200), a merged template 0.14 at median.
 constexpr double kMergedSceneFraction = 0.15;
-// ... and above which it lies on the scene rather than on the hand.
+// ... and above which it lies on the scene rather than on the hand: 4 of 37 855 frames on
+// the hand (IoU >= 0.85), 76 of the 146 below IoU 0.3 (face_pass 1-200).
 constexpr double kOnSceneFraction = 0.5;
 constexpr double kMinJudgedWeight = 0.3;   // share of the normals that must see an edge to judge
 constexpr double kMaxCaptureGrowth = 1.15;  // area ratio: a capture this much larger adds something
