@@ -207,9 +207,9 @@ TEST(HandTracker, KeepsTheHandWhileItCrossesAFace) {
 
 // Right-eye face_pass 47: the first templates merged the hand with a box of its colour, and
 // the contour slid onto the box (its inner rim 0.6 the learnt scene) while the hand moved
-// on by it, so no watch saw the contour hold still. The captures of the hand apart from it
-// were refused until frame 91, 13 frames into the crossing of the face; a contour lying on
-// the learnt scene now gives way to them at once.
+// on by it. Until two watches had seen the contour hold still, the captures of the hand
+// apart from it were refused: the hand was found again at frame 91, 13 frames into the
+// crossing of the face. A contour lying on the learnt scene now gives way to them at once.
 TEST(HandTracker, LeavesTheLearntSceneForACaptureOfTheHand) {
     const FaceCrossing c = track_face_pass(47, gc::Eye::Right);
     EXPECT_GT(c.frames, 10);
