@@ -26,6 +26,16 @@ constexpr double kMaxShadingSpread = 0.25;
 // Static-scene skin cleared within 2 px of a blob, as a fraction of its area, beyond which
 // the blob was cut off that skin (a hand in front of a plain background has none).
 constexpr double kStaticCutFraction = 0.01;
+// Thin strands: the opening's diameter, in radii of the blob's largest inscribed circle (the
+// palm's). A finger is about 0.45 of it wide (17-20 mm against a palm radius of about 40),
+// so the opening keeps it with a margin and drops strands up to two thirds of its width.
+constexpr double kStrandOpening = 0.3;
+// The blob is left whole when the opening would keep less than this share of it (strands
+// are thin and carry little area: more means the hand itself was cut) or would leave more
+// than kStrandPieces pieces (a ragged blob, skin split along shading on the first frames,
+// which the opening crumbles).
+constexpr double kStrandKeep = 0.75;
+constexpr int kStrandPieces = 3;
 
 void check_frame(const cv::Mat& bgr) {
     if (bgr.empty()) throw std::invalid_argument("MotionDetector: empty frame");
@@ -142,6 +152,59 @@ cv::Mat1b largest_component(const cv::Mat1b& mask, int& area) {
     return labels == keep;
 }
 
+// The label (1 to count - 1) holding the most `moving` pixels (a view of labels' size), or
+// 0 when none holds any.
+int most_moving_label(const cv::Mat1i& labels, int count, const cv::Mat1b& moving) {
+    std::vector<int> votes(count, 0);
+    for (int y = 0; y < labels.rows; ++y) {
+        const int* l = labels.ptr<int>(y);
+        const std::uint8_t* m = moving.ptr<std::uint8_t>(y);
+        for (int x = 0; x < labels.cols; ++x)
+            if (m[x]) ++votes[l[x]];
+    }
+    votes[0] = 0;
+    const int best = static_cast<int>(std::max_element(votes.begin(), votes.end()) - votes.begin());
+    return votes[best] > 0 ? best : 0;
+}
+
+// Thin strands of the hand's colour touching it (a shelf's edge, a cable, a picture
+// frame's rim) are joined to it by the close but are no part of it, and a template that
+// keeps one finds no edge along it once the hand moves on. An opening narrower than the
+// finger drops them; of what it leaves, the piece holding the most moving pixels is the
+// hand, and dilating it by the same element within the blob gives back the outline the
+// opening rounded (a strand keeps a stub as long as the element is wide).
+void drop_thin_strands(cv::Mat1b& blob, int& area, const cv::Mat1b& moving) {
+    const cv::Rect bound = cv::boundingRect(blob);
+    if (bound.area() == 0) return;
+    cv::Mat1b padded;
+    cv::copyMakeBorder(blob(bound), padded, 1, 1, 1, 1, cv::BORDER_CONSTANT, 0);
+    cv::Mat1f dist;
+    cv::distanceTransform(padded, dist, cv::DIST_L2, cv::DIST_MASK_5);
+    double palm_radius = 0.0;
+    cv::minMaxLoc(dist, nullptr, &palm_radius);
+    const int side = int(std::lround(kStrandOpening * palm_radius)) | 1;
+    if (side < 3) return;
+    const cv::Mat element = cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(side, side));
+    const cv::Rect around = cv::Rect(bound.x - side, bound.y - side, bound.width + 2 * side,
+                                     bound.height + 2 * side) &
+                            cv::Rect(0, 0, blob.cols, blob.rows);
+    cv::Mat1b opened;
+    cv::morphologyEx(blob(around), opened, cv::MORPH_OPEN, element);
+    cv::Mat1i labels;
+    const int count = cv::connectedComponents(opened, labels, 8, CV_32S);
+    if (count < 2 || count - 1 > kStrandPieces) return;
+    const int hand = most_moving_label(labels, count, moving(around));
+    if (hand == 0) return;
+    cv::Mat1b body = labels == hand;
+    cv::dilate(body, body, element);
+    cv::bitwise_and(body, blob(around), body);
+    const int kept = cv::countNonZero(body);
+    if (kept < kStrandKeep * area) return;
+    blob.setTo(0);
+    body.copyTo(blob(around));
+    area = kept;
+}
+
 }  // namespace
 
 std::optional<Detection> segment_hand(const cv::Mat& bgr, const cv::Mat1b& moving,
@@ -180,18 +243,11 @@ std::optional<Detection> segment_hand(const cv::Mat& bgr, const cv::Mat1b& movin
     cv::Mat stats, centroids;
     const int count = cv::connectedComponentsWithStats(seg, labels, stats, centroids, 8, CV_32S);
     if (count < 2) return std::nullopt;
-    std::vector<int> votes(count, 0);
-    for (int y = roi.y; y < roi.y + roi.height; ++y) {
-        const auto* m = moving.ptr<std::uint8_t>(y);
-        const auto* l = labels.ptr<int>(y);
-        for (int x = roi.x; x < roi.x + roi.width; ++x)
-            if (m[x]) ++votes[l[x]];
-    }
-    votes[0] = 0;
-    const int best = static_cast<int>(std::max_element(votes.begin(), votes.end()) - votes.begin());
-    if (votes[best] == 0) return std::nullopt;
+    const int best = most_moving_label(labels(roi), count, moving(roi));
+    if (best == 0) return std::nullopt;
     cv::Mat1b blob = labels == best;
     int area = stats.at<int>(best, cv::CC_STAT_AREA);
+    drop_thin_strands(blob, area, moving);
     double support = 1.0;
     bool cut = false;
     const bool has_history = !recent_motion.empty() && recent_motion.size() == bgr.size();

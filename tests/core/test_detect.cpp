@@ -1,6 +1,7 @@
 #include "detect/motion_detector.hpp"
 
 #include "background/static_background.hpp"
+#include "contour/hand_template.hpp"
 
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
@@ -58,6 +59,35 @@ double iou(const cv::Mat1b& a, const cv::Mat1b& b) {
     return double(cv::countNonZero(i)) / std::max(1, cv::countNonZero(u));
 }
 
+// Pixels of `captured` inside `box` that are not the hand's (`truth`).
+int captured_off_hand(const cv::Mat1b& captured, const cv::Mat1b& truth, const cv::Rect& box) {
+    cv::Mat1b off_hand(captured.size(), uchar(0));
+    off_hand(box).setTo(255);
+    cv::bitwise_and(off_hand, ~truth, off_hand);
+    cv::bitwise_and(off_hand, captured, off_hand);
+    return cv::countNonZero(off_hand);
+}
+
+// Waves the drawn hand by the board-and-strand tests' script (the palm 3 px either side of
+// x 150, the finger turning by `turn_deg` steps from 35 deg) until the detector finds it,
+// for at most 12 frames. `frame` and `truth` are left with the last frame's; with `learnt`,
+// its static scene is given to the detector.
+std::optional<gc::Detection> wave_until_found(const DrawnScene& scene, double turn_deg,
+                                              cv::Mat3b& frame, cv::Mat1b& truth,
+                                              gc::StaticBackground* learnt = nullptr) {
+    gc::MotionDetector det;
+    std::optional<gc::Detection> found;
+    for (int i = 0; i < 12 && !found; ++i) {
+        scene.render({150.0 + 3.0 * (i % 2 ? 1 : -1), 130.0}, 35.0 + turn_deg * (i % 3), frame,
+                     truth);
+        const cv::Rect whole(0, 0, frame.cols, frame.rows);
+        found = learnt ? det.process(frame, gc::SkinModel::generic(), true,
+                                     learnt->find_static(frame, whole))
+                       : det.process(frame);
+    }
+    return found;
+}
+
 TEST(MotionDetector, FindsAWavingHand) {
     cv::setRNGSeed(3);
     DrawnScene scene(5);
@@ -85,14 +115,9 @@ TEST(MotionDetector, LeavesOutAStaticSkinObjectTheHandTouches) {
     DrawnScene scene(7);
     // A skin-coloured board, same tone and brightness, that the fingertip touches.
     cv::rectangle(scene.background, cv::Rect(190, 40, 80, 50), cv::Scalar(scene.skin), cv::FILLED);
-    gc::MotionDetector det;
     cv::Mat3b frame;
     cv::Mat1b truth;
-    std::optional<gc::Detection> found;
-    for (int i = 0; i < 12 && !found; ++i) {
-        scene.render({150.0 + 3.0 * (i % 2 ? 1 : -1), 130.0}, 35.0 + 4.0 * (i % 3), frame, truth);
-        found = det.process(frame);
-    }
+    const auto found = wave_until_found(scene, 4.0, frame, truth);
     ASSERT_TRUE(found);
     cv::Mat1b board(frame.size(), uchar(0));
     cv::rectangle(board, cv::Rect(190, 40, 80, 50), 255, cv::FILLED);
@@ -116,27 +141,37 @@ TEST(MotionDetector, CutsOffAKnownStaticSceneExactly) {
         scene.render({-100.0, -100.0}, 0.0, frame, truth);
         learnt.learn(frame);
     }
-    gc::MotionDetector det;
-    std::optional<gc::Detection> found;
-    for (int i = 0; i < 12 && !found; ++i) {
-        scene.render({150.0 + 3.0 * (i % 2 ? 1 : -1), 130.0}, 35.0 + 4.0 * (i % 3), frame, truth);
-        found = det.process(frame, gc::SkinModel::generic(), true,
-                            learnt.find_static(frame, cv::Rect(0, 0, frame.cols, frame.rows)));
-    }
+    const auto found = wave_until_found(scene, 4.0, frame, truth, &learnt);
     ASSERT_TRUE(found);
-    cv::Mat1b off_hand(frame.size(), uchar(0));
-    off_hand(board_box).setTo(255);
-    cv::bitwise_and(off_hand, ~truth, off_hand);
-    cv::bitwise_and(off_hand, found->mask, off_hand);
     // None of the board, not even the rim near the moving finger that the motion cut keeps.
-    EXPECT_LT(cv::countNonZero(off_hand), 0.02 * board_box.area());
+    EXPECT_LT(captured_off_hand(found->mask, truth, board_box), 0.02 * board_box.area());
     EXPECT_GT(iou(found->mask, truth), 0.85);
     // The hand touched the board: its outline there is the board's cut, so the capture is
     // not ranked clean.
     EXPECT_TRUE(found->cut);
     EXPECT_NE(gc::capture_quality(*found), gc::CaptureQuality::Clean);
-    EXPECT_THROW(det.process(frame, gc::SkinModel::generic(), true, cv::Mat1b(10, 10, uchar(0))),
+    EXPECT_THROW(gc::MotionDetector().process(frame, gc::SkinModel::generic(), true,
+                                              cv::Mat1b(10, 10, uchar(0))),
                  std::invalid_argument);
+}
+
+TEST(MotionDetector, DropsAThinStrandOfSkinColourTheHandTouches) {
+    cv::setRNGSeed(9);
+    DrawnScene scene(11);
+    // A shelf's edge of the hand's colour, 3 px thick, that the fingertip (about (201, 94))
+    // lies on.
+    const cv::Rect strand_box(196, 93, 100, 3);
+    cv::rectangle(scene.background, strand_box, cv::Scalar(scene.skin), cv::FILLED);
+    cv::Mat3b frame;
+    cv::Mat1b truth;
+    const auto found = wave_until_found(scene, 0.0, frame, truth);
+    ASSERT_TRUE(found);
+    // At most the strand's root, where it meets the finger.
+    EXPECT_LT(captured_off_hand(found->mask, truth, strand_box), 0.1 * strand_box.area());
+    EXPECT_GT(iou(found->mask, truth), 0.9);
+    // The finger is kept whole: the fingertip is found within a finger width of the drawn one.
+    const cv::Point2d tip = gc::find_hand_landmarks(found->mask).fingertip;
+    EXPECT_LT(cv::norm(tip - gc::find_hand_landmarks(truth).fingertip), 10.0);
 }
 
 TEST(MotionDetector, LearnsTheHandsBrightnessBesideADarkerObjectOfItsTone) {
