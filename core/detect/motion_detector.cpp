@@ -172,7 +172,7 @@ int most_moving_label(const cv::Mat1i& labels, int count, const cv::Mat1b& movin
 // keeps one finds no edge along it once the hand moves on. An opening narrower than the
 // finger drops them; of what it leaves, the piece holding the most moving pixels is the
 // hand, and dilating it by the same element within the blob gives back the outline the
-// opening rounded (a strand keeps a stub as long as the element is wide).
+// opening rounded (a strand keeps a root as long as the element is wide).
 void drop_thin_strands(cv::Mat1b& blob, int& area, const cv::Mat1b& moving) {
     const cv::Rect bound = cv::boundingRect(blob);
     if (bound.area() == 0) return;
