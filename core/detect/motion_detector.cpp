@@ -200,8 +200,7 @@ void drop_thin_strands(cv::Mat1b& blob, int& area, const cv::Mat1b& moving) {
     cv::bitwise_and(body, blob(around), body);
     const int kept = cv::countNonZero(body);
     if (kept < kStrandKeep * area) return;
-    blob.setTo(0);
-    body.copyTo(blob(around));
+    body.copyTo(blob(around));  // outside `around` the blob is empty already
     area = kept;
 }
 

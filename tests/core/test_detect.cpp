@@ -29,6 +29,9 @@ struct DrawnScene {
                           cv::Scalar(c(rng), c(rng), c(rng) / 3), cv::FILLED);
     }
 
+    // A static thing of the hand's own colour and brightness, painted into the background.
+    void paint_skin(const cv::Rect& box) { cv::rectangle(background, box, cv::Scalar(skin), cv::FILLED); }
+
     // Sensor noise comes from OpenCV's RNG: seed it with cv::setRNGSeed for a test.
     void render(cv::Point2d palm, double finger_deg, cv::Mat3b& out, cv::Mat1b& mask) const {
         mask = cv::Mat1b(background.size(), uchar(0));
@@ -114,7 +117,7 @@ TEST(MotionDetector, LeavesOutAStaticSkinObjectTheHandTouches) {
     cv::setRNGSeed(5);
     DrawnScene scene(7);
     // A skin-coloured board, same tone and brightness, that the fingertip touches.
-    cv::rectangle(scene.background, cv::Rect(190, 40, 80, 50), cv::Scalar(scene.skin), cv::FILLED);
+    scene.paint_skin(cv::Rect(190, 40, 80, 50));
     cv::Mat3b frame;
     cv::Mat1b truth;
     const auto found = wave_until_found(scene, 4.0, frame, truth);
@@ -132,7 +135,7 @@ TEST(MotionDetector, CutsOffAKnownStaticSceneExactly) {
     cv::setRNGSeed(5);
     DrawnScene scene(7);
     const cv::Rect board_box(190, 40, 80, 50);
-    cv::rectangle(scene.background, board_box, cv::Scalar(scene.skin), cv::FILLED);
+    scene.paint_skin(board_box);
     // The scene, learnt before the hand came in.
     gc::StaticBackground learnt;
     cv::Mat3b frame;
@@ -161,7 +164,7 @@ TEST(MotionDetector, DropsAThinStrandOfSkinColourTheHandTouches) {
     // A shelf's edge of the hand's colour, 3 px thick, that the fingertip (about (201, 94))
     // lies on.
     const cv::Rect strand_box(196, 93, 100, 3);
-    cv::rectangle(scene.background, strand_box, cv::Scalar(scene.skin), cv::FILLED);
+    scene.paint_skin(strand_box);
     cv::Mat3b frame;
     cv::Mat1b truth;
     const auto found = wave_until_found(scene, 0.0, frame, truth);
