@@ -50,6 +50,10 @@ inline bool find_skin_edge_fast(const cv::Mat1b& map, float px, float py, float 
 // Nearest-pixel search along p + t * n for the strongest step |g(t + 1) - g(t - 1)|,
 // t = -half .. +half, in a grey map; true, with its offset in `offset`, when that step
 // reaches `min_step` grey levels. Samples outside the map are not compared.
+// A level of 0 marks the learnt static scene (real black is mapped to 1): a step whose
+// inner sample g(t - 1) is the scene is passed over. The hand is never the scene, so the
+// scene's border is the hand's outline only where the scene lies outside it; a contour
+// lying inside the scene would otherwise find an edge at every border of it.
 inline bool find_grey_step_fast(const cv::Mat1b& grey, float px, float py, float nx, float ny,
                                 int half, int min_step, float& offset) {
     const int w = grey.cols, h = grey.rows;
@@ -67,7 +71,7 @@ inline bool find_grey_step_fast(const cv::Mat1b& grey, float px, float py, float
     int best = min_step - 1, at = 0;
     for (int k = -half; k <= half; ++k) {
         const int after = sample(k + 1);
-        if (before >= 0 && after >= 0) {
+        if (before > 0 && after >= 0) {
             const int d = after > before ? after - before : before - after;
             if (d > best) {
                 best = d;

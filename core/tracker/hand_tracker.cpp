@@ -503,7 +503,7 @@ struct HandTracker::Impl {
         // grey steps (eyes, brows, mouth) are everywhere for it to settle on.
         const bool use_steps = edges_were_weak && template_quality != CaptureQuality::Unsure;
         const cv::Mat1b& steps = use_steps ? grey : no_map;
-        if (use_steps) update_grey(bgr, roi);
+        if (use_steps) update_steps(bgr, roi);
 
         // Weight by the observation density.
         std::size_t best = 0;
@@ -812,11 +812,23 @@ struct HandTracker::Impl {
         background.learn(bgr, box, contour_fill);
     }
 
-    // The grey map over `roi`, for the normals that run from skin into skin.
+    // The grey map over `roi`, for the normals that run from skin into skin: levels 1-255,
+    // 0 being kept for the learnt scene (update_steps).
     void update_grey(const cv::Mat& bgr, const cv::Rect& roi) {
         if (grey.size() != bgr.size()) grey = cv::Mat1b(bgr.size(), uchar(0));
         cv::Mat part = grey(roi);
         cv::cvtColor(bgr(roi), part, cv::COLOR_BGR2GRAY);
+        cv::max(part, 1, part);
+    }
+
+    // The grey map over `roi` with the learnt static scene blanked (0): in front of a face
+    // the step that counts is where the moving hand meets the scene behind it, and the
+    // face's own steps (eyes, brows, mouth), with the scene on both sides, are gone.
+    // Where no scene is learnt, the plain grey levels.
+    void update_steps(const cv::Mat& bgr, const cv::Rect& roi) {
+        update_grey(bgr, roi);
+        const cv::Mat1b& scene = static_scene(bgr, true, roi);
+        if (!scene.empty()) grey(roi).setTo(0, scene(roi));
     }
 
     // --- reporting ---------------------------------------------------------------------

@@ -103,6 +103,24 @@ TEST(EdgeSearch, FindsTheStrongestGreyStepAndIgnoresWeakOnes) {
     EXPECT_FALSE(gc::find_grey_step_fast(g, -100.0f, -100.0f, 1.0f, 0.0f, 8, 16, off));
 }
 
+// The hand (140) with the learnt scene behind it blanked to 0 from x = 30: the scene's
+// border is an edge seen from the hand, never from inside the scene.
+TEST(EdgeSearch, TakesTheSceneBorderOnlyWithTheSceneOutside) {
+    float off = 0;
+    cv::Mat1b g(20, 60, uchar(140));
+    g.colRange(30, 60).setTo(0);
+    ASSERT_TRUE(gc::find_grey_step_fast(g, 27.0f, 10.0f, 1.0f, 0.0f, 8, 16, off));
+    EXPECT_NEAR(27.0 + off, 29.5, 0.6);
+    // From the scene outward (a contour lying inside the scene): passed over, although
+    // the step is 140 levels. A weaker step in the hand beyond it is still found.
+    EXPECT_FALSE(gc::find_grey_step_fast(g, 33.0f, 10.0f, -1.0f, 0.0f, 8, 16, off));
+    g.colRange(0, 27).setTo(100);
+    ASSERT_TRUE(gc::find_grey_step_fast(g, 33.0f, 10.0f, -1.0f, 0.0f, 8, 16, off));
+    EXPECT_NEAR(33.0 - off, 26.5, 0.6);
+    // The scene's own steps (a face's eyes and brows) are blanked with it: nothing there.
+    EXPECT_FALSE(gc::find_grey_step_fast(g, 45.0f, 10.0f, 1.0f, 0.0f, 8, 16, off));
+}
+
 // A vertical boundary at x = edge between `skin` (left) and `wall` (right), each pixel the
 // area-weighted mix of the two, then blurred like a lens.
 cv::Mat3b colour_step(double edge, cv::Vec3b skin, cv::Vec3b wall) {
