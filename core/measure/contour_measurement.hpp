@@ -46,7 +46,7 @@ public:
     double misfit(const cv::Mat1b& membership, const HandTemplate& shape,
                   const HandState& state, double give_up = 2.0) const;
     // The same with the grey map of the frame (CV_8UC1, the membership map's size, valid
-    // wherever the membership is; 0 where the learnt static scene shows, see
+    // wherever the membership is; kSceneGreyLevel where the learnt static scene shows, see
     // find_grey_step_fast): normals from skin into skin are measured on it. An empty or
     // differently sized `grey` is not used.
     double misfit(const cv::Mat1b& membership, const cv::Mat1b& grey, const HandTemplate& shape,

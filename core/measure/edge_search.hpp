@@ -13,6 +13,9 @@ namespace gc {
 
 // The membership level of the skin boundary (see SkinModel::membership).
 inline constexpr int kSkinEdgeLevel = 128;
+// The grey level that marks the learnt static scene in a grey map (find_grey_step_fast);
+// real grey levels are kept above it.
+inline constexpr std::uint8_t kSceneGreyLevel = 0;
 
 // Nearest-pixel search, for scoring many hypotheses: samples at t = -half .. +half (pixel
 // steps) along p + t * n (n unit, pointing outward); pixels outside `map` count as
@@ -50,8 +53,8 @@ inline bool find_skin_edge_fast(const cv::Mat1b& map, float px, float py, float 
 // Nearest-pixel search along p + t * n for the strongest step |g(t + 1) - g(t - 1)|,
 // t = -half .. +half, in a grey map; true, with its offset in `offset`, when that step
 // reaches `min_step` grey levels. Samples outside the map are not compared.
-// A level of 0 marks the learnt static scene (real black is mapped to 1): a step whose
-// inner sample g(t - 1) is the scene is passed over. The hand is never the scene, so the
+// kSceneGreyLevel marks the learnt static scene (real grey levels lie above it): a step
+// whose inner sample g(t - 1) is the scene is passed over. The hand is never the scene, so the
 // scene's border is the hand's outline only where the scene lies outside it; a contour
 // lying inside the scene would otherwise find an edge at every border of it.
 inline bool find_grey_step_fast(const cv::Mat1b& grey, float px, float py, float nx, float ny,
@@ -71,7 +74,7 @@ inline bool find_grey_step_fast(const cv::Mat1b& grey, float px, float py, float
     int best = min_step - 1, at = 0;
     for (int k = -half; k <= half; ++k) {
         const int after = sample(k + 1);
-        if (before > 0 && after >= 0) {
+        if (before > kSceneGreyLevel && after >= 0) {
             const int d = after > before ? after - before : before - after;
             if (d > best) {
                 best = d;

@@ -812,23 +812,23 @@ struct HandTracker::Impl {
         background.learn(bgr, box, contour_fill);
     }
 
-    // The grey map over `roi`, for the normals that run from skin into skin: levels 1-255,
-    // 0 being kept for the learnt scene (update_steps).
+    // The grey map over `roi`, for the normals that run from skin into skin: levels above
+    // kSceneGreyLevel, which is kept for the learnt scene (update_steps).
     void update_grey(const cv::Mat& bgr, const cv::Rect& roi) {
-        if (grey.size() != bgr.size()) grey = cv::Mat1b(bgr.size(), uchar(0));
+        if (grey.size() != bgr.size()) grey = cv::Mat1b(bgr.size(), kSceneGreyLevel);
         cv::Mat part = grey(roi);
         cv::cvtColor(bgr(roi), part, cv::COLOR_BGR2GRAY);
-        cv::max(part, 1, part);
+        cv::max(part, kSceneGreyLevel + 1, part);
     }
 
-    // The grey map over `roi` with the learnt static scene blanked (0): in front of a face
+    // The grey map over `roi` with the learnt static scene blanked: in front of a face
     // the step that counts is where the moving hand meets the scene behind it, and the
     // face's own steps (eyes, brows, mouth), with the scene on both sides, are gone.
     // Where no scene is learnt, the plain grey levels.
     void update_steps(const cv::Mat& bgr, const cv::Rect& roi) {
         update_grey(bgr, roi);
         const cv::Mat1b& scene = static_scene(bgr, true, roi);
-        if (!scene.empty()) grey(roi).setTo(0, scene(roi));
+        if (!scene.empty()) grey(roi).setTo(kSceneGreyLevel, scene(roi));
     }
 
     // --- reporting ---------------------------------------------------------------------

@@ -103,12 +103,12 @@ TEST(EdgeSearch, FindsTheStrongestGreyStepAndIgnoresWeakOnes) {
     EXPECT_FALSE(gc::find_grey_step_fast(g, -100.0f, -100.0f, 1.0f, 0.0f, 8, 16, off));
 }
 
-// The hand (140) with the learnt scene behind it blanked to 0 from x = 30: the scene's
-// border is an edge seen from the hand, never from inside the scene.
+// The hand (140) with the learnt scene behind it blanked from x = 30: the scene's border
+// is an edge seen from the hand, never from inside the scene.
 TEST(EdgeSearch, TakesTheSceneBorderOnlyWithTheSceneOutside) {
     float off = 0;
     cv::Mat1b g(20, 60, uchar(140));
-    g.colRange(30, 60).setTo(0);
+    g.colRange(30, 60).setTo(gc::kSceneGreyLevel);
     ASSERT_TRUE(gc::find_grey_step_fast(g, 27.0f, 10.0f, 1.0f, 0.0f, 8, 16, off));
     EXPECT_NEAR(27.0 + off, 29.5, 0.6);
     // From the scene outward (a contour lying inside the scene): passed over, although
