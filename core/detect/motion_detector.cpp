@@ -152,6 +152,24 @@ cv::Mat1b largest_component(const cv::Mat1b& mask, int& area) {
     return labels == keep;
 }
 
+// The dilation of `mask` by a centred `element`, kept within `where` (zero elsewhere). Only
+// the pixels within the element's reach of `where` are read: a dilation of the whole frame
+// by a wide disc costs as much as the rest of a detection, where only the blob's box is
+// looked at.
+cv::Mat1b dilated_within(const cv::Mat1b& mask, const cv::Mat& element, const cv::Rect& where) {
+    const cv::Rect frame(0, 0, mask.cols, mask.rows);
+    const cv::Rect inner = where & frame;
+    cv::Mat1b out(mask.size(), uchar(0));
+    if (inner.area() == 0) return out;
+    const int rx = element.cols / 2, ry = element.rows / 2;
+    const cv::Rect wide =
+        cv::Rect(inner.x - rx, inner.y - ry, inner.width + 2 * rx, inner.height + 2 * ry) & frame;
+    cv::Mat1b grown;
+    cv::dilate(mask(wide), grown, element);
+    grown(inner - wide.tl()).copyTo(out(inner));
+    return out;
+}
+
 // The label (1 to count - 1) holding the most `moving` pixels (a view of labels' size), or
 // 0 when none holds any.
 int most_moving_label(const cv::Mat1i& labels, int count, const cv::Mat1b& moving) {
@@ -252,9 +270,9 @@ std::optional<Detection> segment_hand(const cv::Mat& bgr, const cv::Mat1b& movin
     const bool has_history = !recent_motion.empty() && recent_motion.size() == bgr.size();
     const cv::Mat1b motion = has_history ? recent_motion : cv::Mat1b();
     if (has_history) {
-        cv::Mat1b near;
         const int k = 2 * params.history_reach + 1;
-        cv::dilate(recent_motion, near, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(k, k)));
+        cv::Mat1b near = dilated_within(
+            recent_motion, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(k, k)), cv::boundingRect(blob));
         cv::bitwise_and(near, blob, near);
         const int kept = cv::countNonZero(near);
         support = double(kept) / std::max(1, area);
@@ -278,11 +296,14 @@ std::optional<Detection> segment_hand(const cv::Mat& bgr, const cv::Mat1b& movin
     // middle of the palm may not have changed), else the wider cut stands.
     if (has_history && history_mature && !hand_proportions(blob, motion).pointing()) {
         const cv::Mat1b component = labels == best;
+        const cv::Rect component_box(stats.at<int>(best, cv::CC_STAT_LEFT), stats.at<int>(best, cv::CC_STAT_TOP),
+                                     stats.at<int>(best, cv::CC_STAT_WIDTH), stats.at<int>(best, cv::CC_STAT_HEIGHT));
         for (const int reach : {params.history_reach * 2 / 3, params.history_reach / 3}) {
             if (reach < 2) break;
-            cv::Mat1b near;
-            cv::dilate(recent_motion, near,
-                       cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * reach + 1, 2 * reach + 1)));
+            cv::Mat1b near = dilated_within(
+                recent_motion,
+                cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * reach + 1, 2 * reach + 1)),
+                component_box);
             cv::bitwise_and(near, component, near);
             std::vector<std::vector<cv::Point>> outer;
             cv::findContours(near, outer, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE);

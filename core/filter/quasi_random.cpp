@@ -35,17 +35,19 @@ const std::vector<double>& quantile_table() {
     return table;
 }
 
-}  // namespace
-
-double inverse_normal_cdf(double p) {
-    const auto& t = quantile_table();
+// Linear interpolation in `table` (quantile_table()); p is clamped to (0, 1).
+inline double interpolate_quantile(const double* table, double p) {
     if (!(p > 0.0)) return -kTailZ;  // also catches NaN
     if (p >= 1.0) return kTailZ;
     const double f = p * kTableSize;
     const int k = std::min(static_cast<int>(f), kTableSize - 1);
     const double a = f - k;
-    return t[k] * (1.0 - a) + t[k + 1] * a;
+    return table[k] * (1.0 - a) + table[k + 1] * a;
 }
+
+}  // namespace
+
+double inverse_normal_cdf(double p) { return interpolate_quantile(quantile_table().data(), p); }
 
 namespace {
 
@@ -67,20 +69,27 @@ double mirrored_digits(std::uint64_t index, Base base) {
 template <unsigned B>
 using ConstantBase = std::integral_constant<unsigned, B>;
 
+// Calls f(base) with the base as a std::integral_constant when it is one of the sampler's
+// (kPrimes), else as a plain unsigned.
+template <typename F>
+decltype(auto) with_constant_base(unsigned base, F&& f) {
+    switch (base) {
+        case 2: return f(ConstantBase<2>{});
+        case 3: return f(ConstantBase<3>{});
+        case 5: return f(ConstantBase<5>{});
+        case 7: return f(ConstantBase<7>{});
+        case 11: return f(ConstantBase<11>{});
+        case 13: return f(ConstantBase<13>{});
+        case 17: return f(ConstantBase<17>{});
+        case 19: return f(ConstantBase<19>{});
+        default: return f(base);
+    }
+}
+
 }  // namespace
 
 double radical_inverse(std::uint64_t index, unsigned base) {
-    switch (base) {  // the sampler's bases (kPrimes)
-        case 2: return mirrored_digits(index, ConstantBase<2>{});
-        case 3: return mirrored_digits(index, ConstantBase<3>{});
-        case 5: return mirrored_digits(index, ConstantBase<5>{});
-        case 7: return mirrored_digits(index, ConstantBase<7>{});
-        case 11: return mirrored_digits(index, ConstantBase<11>{});
-        case 13: return mirrored_digits(index, ConstantBase<13>{});
-        case 17: return mirrored_digits(index, ConstantBase<17>{});
-        case 19: return mirrored_digits(index, ConstantBase<19>{});
-        default: return mirrored_digits(index, base);
-    }
+    return with_constant_base(base, [index](auto b) { return mirrored_digits(index, b); });
 }
 
 QuasiNormalSampler::QuasiNormalSampler(int dims, std::uint64_t seed) : dims_(dims), rng_(seed) {
@@ -101,12 +110,16 @@ void QuasiNormalSampler::next_frame(std::span<double> out) {
     // and the noise of a particle lineage would add up coherently.
     const std::uint64_t start = 1 + (rng_() >> 44);  // below 2^20: few digits to compute
     const std::size_t count = out.size() / dims_;
-    for (std::size_t i = 0; i < count; ++i)
-        for (int d = 0; d < dims_; ++d) {
-            double u = radical_inverse(start + i, kPrimes[d]) + shift[d];
-            if (u >= 1.0) u -= 1.0;
-            out[i * dims_ + d] = inverse_normal_cdf(u);
-        }
+    const double* table = quantile_table().data();
+    // One dimension at a time, so that its base is a constant in the inner loop.
+    for (int d = 0; d < dims_; ++d)
+        with_constant_base(kPrimes[d], [&](auto base) {
+            for (std::size_t i = 0; i < count; ++i) {
+                double u = mirrored_digits(start + i, base) + shift[d];
+                if (u >= 1.0) u -= 1.0;
+                out[i * dims_ + d] = interpolate_quantile(table, u);
+            }
+        });
 }
 
 }  // namespace gc
