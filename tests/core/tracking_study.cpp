@@ -6,7 +6,10 @@
 // `lost` were reported lost (the rest tracked something else), and `entry` is the IoU on the
 // first crossing frame: low when the tracker was already wrong before the face.
 //
-//   tracking_study PRESET FIRST_SEED LAST_SEED [PARTICLES [left|right]]
+//   tracking_study PRESET FIRST_SEED LAST_SEED [PARTICLES [left|right [trace]]]
+//
+// `trace` also prints one line per frame: state, confidence, IoU with the hand, scale, and
+// whether the hand crosses the face.
 #include "face_crossing.hpp"
 #include "metrics/metrics.hpp"
 #include "sim/scene.hpp"
@@ -28,6 +31,7 @@ int main(int argc, char** argv) {
     const int first = std::atoi(argv[2]), last = std::atoi(argv[3]);
     const int particles = argc > 4 ? std::atoi(argv[4]) : 1000;
     const std::string eye_name = argc > 5 ? argv[5] : "left";
+    const bool trace = argc > 6 && std::string(argv[6]) == "trace";
     const gc::Eye eye = eye_name == "right" ? gc::Eye::Right : gc::Eye::Left;
     if (!preset || first < 0 || last < first || particles < 1 ||
         (eye_name != "left" && eye_name != "right")) {
@@ -57,7 +61,13 @@ int main(int argc, char** argv) {
             const cv::Mat1b tracked = e.valid() ? gc::contour_mask(e.contour, bgr.size())
                                                 : cv::Mat1b(bgr.size(), uchar(0));
             snr.add(truth.mask, tracked);
-            if (!gc_test::hand_crosses_face(truth)) continue;
+            const bool crosses = gc_test::hand_crosses_face(truth);
+            if (trace)
+                std::printf("  frame %3d %s conf %.2f iou %.2f scale %.2f hand %d%s\n", f,
+                            e.valid() ? "track" : "acq  ", e.confidence,
+                            e.valid() ? gc::mask_iou(truth.mask, tracked) : 0.0, e.mean.scale,
+                            cv::countNonZero(truth.mask), crosses ? " face" : "");
+            if (!crosses) continue;
             ++crossing;
             off += !gc_test::on_the_hand(e, truth, tracked);
             lost += !e.valid();
