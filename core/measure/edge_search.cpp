@@ -1,21 +1,29 @@
 #include "measure/edge_search.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 
 namespace gc {
 
 namespace {
 
-// Bilinear sample of a BGR image, clamped to its border.
+// Bilinear sample of a BGR image, clamped to its border. Per channel,
+// (c00 (1 - fx) + c10 fx) (1 - fy) + (c01 (1 - fx) + c11 fx) fy, read through row pointers:
+// this runs for every step of every colour edge of every refinement.
 cv::Vec3d sample_colour(const cv::Mat& bgr, double x, double y) {
     x = std::clamp(x, 0.0, bgr.cols - 1.0);
     y = std::clamp(y, 0.0, bgr.rows - 1.0);
     const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
     const int x1 = std::min(x0 + 1, bgr.cols - 1), y1 = std::min(y0 + 1, bgr.rows - 1);
     const double fx = x - x0, fy = y - y0;
-    const auto at = [&](int xx, int yy) { return cv::Vec3d(bgr.at<cv::Vec3b>(yy, xx)); };
-    return (at(x0, y0) * (1.0 - fx) + at(x1, y0) * fx) * (1.0 - fy) +
-           (at(x0, y1) * (1.0 - fx) + at(x1, y1) * fx) * fy;
+    const std::uint8_t* top = bgr.ptr<std::uint8_t>(y0);
+    const std::uint8_t* bottom = bgr.ptr<std::uint8_t>(y1);
+    cv::Vec3d out;
+    for (int c = 0; c < 3; ++c)
+        out[c] = (top[3 * x0 + c] * (1.0 - fx) + top[3 * x1 + c] * fx) * (1.0 - fy) +
+                 (bottom[3 * x0 + c] * (1.0 - fx) + bottom[3 * x1 + c] * fx) * fy;
+    return out;
 }
 
 }  // namespace
@@ -43,15 +51,25 @@ double colour_edge_offset(const cv::Mat& bgr, cv::Point2d p, cv::Point2d n, doub
 }
 
 double sample_bilinear(const cv::Mat1b& map, double x, double y) {
+    const auto blend = [](double v00, double v10, double v01, double v11, double fx, double fy) {
+        const double top = v00 * (1.0 - fx) + v10 * fx;
+        const double bottom = v01 * (1.0 - fx) + v11 * fx;
+        return top * (1.0 - fy) + bottom * fy;
+    };
+    // Inside, where all four pixels exist (most samples), without a bounds test per pixel
+    // (and, x and y being non-negative, truncation is the floor).
+    if (x >= 0.0 && y >= 0.0 && x < map.cols - 1.0 && y < map.rows - 1.0) {
+        const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
+        const std::uint8_t* top = map.ptr<std::uint8_t>(y0) + x0;
+        const std::uint8_t* bottom = map.ptr<std::uint8_t>(y0 + 1) + x0;
+        return blend(top[0], top[1], bottom[0], bottom[1], x - x0, y - y0);
+    }
     const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
-    const double fx = x - x0, fy = y - y0;
     auto at = [&](int xx, int yy) -> double {
         if (xx < 0 || yy < 0 || xx >= map.cols || yy >= map.rows) return 0.0;
         return map(yy, xx);
     };
-    const double top = at(x0, y0) * (1.0 - fx) + at(x0 + 1, y0) * fx;
-    const double bottom = at(x0, y0 + 1) * (1.0 - fx) + at(x0 + 1, y0 + 1) * fx;
-    return top * (1.0 - fy) + bottom * fy;
+    return blend(at(x0, y0), at(x0 + 1, y0), at(x0, y0 + 1), at(x0 + 1, y0 + 1), x - x0, y - y0);
 }
 
 bool find_skin_edge_precise(const cv::Mat1b& map, cv::Point2d p, cv::Point2d n, double half,
