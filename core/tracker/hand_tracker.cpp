@@ -30,10 +30,6 @@ namespace {
 // tracked, and tiny hypotheses would otherwise fit any small skin blob.
 constexpr double kMinScale = 0.5;
 constexpr double kMaxScale = 2.0;
-// A contour held this close to kMinScale for kCollapsedFrames frames has collapsed onto part
-// of the hand or of something else rather than followed the hand away.
-constexpr double kCollapsedScale = 1.2 * kMinScale;
-constexpr int kCollapsedFrames = 8;
 constexpr double kAdaptConfidence = 0.8;  // skin mean adapts only from a trusted contour
 constexpr double kAdaptRate = 0.05;
 constexpr int kMinFrameSide = 32;
@@ -118,7 +114,6 @@ struct HandTracker::Impl {
     double p_init = 0.0;           // per-normal likelihood of the first tracked iteration
     bool awaiting_p_init = false;
     int low_frames = 0;
-    int collapsed_frames = 0;      // consecutive frames reported at kCollapsedScale or less
     HandState previous;            // the last reported (refined) state
     CaptureQuality template_quality = CaptureQuality::Unsure;  // of the template's capture
     int tracked_frames = 0;        // since the last start_tracking
@@ -162,7 +157,6 @@ struct HandTracker::Impl {
         p_init = 0.0;
         awaiting_p_init = false;
         low_frames = 0;
-        collapsed_frames = 0;
         template_quality = CaptureQuality::Unsure;
         tracked_frames = 0;
         firm_area = 0.0;
@@ -399,7 +393,6 @@ struct HandTracker::Impl {
         previous = x0;
         awaiting_p_init = true;
         low_frames = 0;
-        collapsed_frames = 0;
         edges_were_weak = false;
         tracked_frames = 0;
         watch_everywhere = false;
@@ -585,7 +578,6 @@ struct HandTracker::Impl {
         } else {
             low_frames = 0;
         }
-        if (collapsed(out)) return;
 
         // While the edges are weak the hand may be touching a face or a skin-coloured
         // object, and a capture now could merge it: a candidate larger than the tracked
@@ -776,26 +768,12 @@ struct HandTracker::Impl {
                rim.scene_outside >= kSceneOutsideFraction * points;
     }
 
-    // A contour at the bottom of the scale range frame after frame has collapsed: the
-    // template (possibly merged with something the hand touched at capture) is dropped and
-    // the hand acquired anew (a hand that really went that far away is captured again at
-    // its new size).
-    bool collapsed(const HandState& out) {
-        collapsed_frames = out.scale <= kCollapsedScale ? collapsed_frames + 1 : 0;
-        if (collapsed_frames < kCollapsedFrames) return false;
-        lose();
-        shape.reset();
-        template_quality = CaptureQuality::Unsure;
-        return true;
-    }
-
     void lose() {
         estimate.state = TrackState::Lost;
         estimate.confidence = 0.0;
         estimate.contour.clear();
         estimate.bbox = {};
         low_frames = 0;
-        collapsed_frames = 0;
         lost_search = 0;
         detector.reset();
     }

@@ -219,20 +219,6 @@ TEST(HandTracker, LeavesTheLearntSceneForACaptureOfTheHand) {
     EXPECT_EQ(c.off, 0) << "lost or off the hand in " << c.off << " of " << c.frames << " crossing frames";
 }
 
-// Left-eye face_pass 605 and 674: the hand waved in front of a board of its own colour and
-// the first templates held part of the board; the contour then shrank to the bottom of the
-// scale range (0.50-0.52 from frame 40 on, on 605) and sat there, off the hand, into the
-// crossing of the face. A contour held near the smallest scale for 8 frames is now dropped
-// with its template and the hand acquired anew.
-TEST(HandTracker, AcquiresAnewAfterTheContourCollapses) {
-    for (std::uint64_t seed : {605u, 674u}) {
-        const FaceCrossing c = track_face_pass(seed, gc::Eye::Left);
-        EXPECT_GT(c.frames, 10) << "seed " << seed << ": the hand must cross the face";
-        EXPECT_EQ(c.off, 0) << "seed " << seed << ": lost or off the hand in " << c.off << " of "
-                            << c.frames << " crossing frames";
-    }
-}
-
 // A pointing hand of the proportions capture_quality() ranks as pointing (palm radius 22,
 // a finger 10 px wide reaching 2.5 palm radii, pointing up), with sensor noise.
 void draw_upright_hand(const DrawnScene& scene, cv::Point palm, cv::Mat3b& out, cv::Mat1b& mask) {
