@@ -8,9 +8,15 @@ namespace gc {
 
 namespace {
 
-// Bilinear sample of a BGR image, clamped to its border. Per channel,
-// (c00 (1 - fx) + c10 fx) (1 - fy) + (c01 (1 - fx) + c11 fx) fy, read through row pointers:
-// this runs for every step of every colour edge of every refinement.
+// The bilinear blend of four neighbouring values at fractions (fx, fy) from v00.
+inline double blend(double v00, double v10, double v01, double v11, double fx, double fy) {
+    const double top = v00 * (1.0 - fx) + v10 * fx;
+    const double bottom = v01 * (1.0 - fx) + v11 * fx;
+    return top * (1.0 - fy) + bottom * fy;
+}
+
+// Bilinear sample of a BGR image, clamped to its border, read through row pointers: this
+// runs for every step of every colour edge of every refinement.
 cv::Vec3d sample_colour(const cv::Mat& bgr, double x, double y) {
     x = std::clamp(x, 0.0, bgr.cols - 1.0);
     y = std::clamp(y, 0.0, bgr.rows - 1.0);
@@ -21,8 +27,7 @@ cv::Vec3d sample_colour(const cv::Mat& bgr, double x, double y) {
     const std::uint8_t* bottom = bgr.ptr<std::uint8_t>(y1);
     cv::Vec3d out;
     for (int c = 0; c < 3; ++c)
-        out[c] = (top[3 * x0 + c] * (1.0 - fx) + top[3 * x1 + c] * fx) * (1.0 - fy) +
-                 (bottom[3 * x0 + c] * (1.0 - fx) + bottom[3 * x1 + c] * fx) * fy;
+        out[c] = blend(top[3 * x0 + c], top[3 * x1 + c], bottom[3 * x0 + c], bottom[3 * x1 + c], fx, fy);
     return out;
 }
 
@@ -51,11 +56,6 @@ double colour_edge_offset(const cv::Mat& bgr, cv::Point2d p, cv::Point2d n, doub
 }
 
 double sample_bilinear(const cv::Mat1b& map, double x, double y) {
-    const auto blend = [](double v00, double v10, double v01, double v11, double fx, double fy) {
-        const double top = v00 * (1.0 - fx) + v10 * fx;
-        const double bottom = v01 * (1.0 - fx) + v11 * fx;
-        return top * (1.0 - fy) + bottom * fy;
-    };
     // Inside, where all four pixels exist (most samples), without a bounds test per pixel
     // (and, x and y being non-negative, truncation is the floor).
     if (x >= 0.0 && y >= 0.0 && x < map.cols - 1.0 && y < map.rows - 1.0) {
