@@ -6,34 +6,46 @@
 // `lost` were reported lost (the rest tracked something else), and `entry` is the IoU on the
 // first crossing frame: low when the tracker was already wrong before the face.
 //
-//   tracking_study PRESET FIRST_SEED LAST_SEED [PARTICLES [left|right [trace]]]
+//   tracking_study PRESET FIRST_SEED LAST_SEED [PARTICLES [left|right [trace] [jpeg=Q]]]
 //
 // `trace` also prints one line per frame: state, confidence, IoU with the hand, scale, and
-// whether the hand crosses the face.
+// whether the hand crosses the face. `jpeg=Q` passes every frame through JPEG at quality
+// Q (1-100, 4:2:0 chroma) before tracking: what a camera's MJPEG or a lossy recording does.
 #include "face_crossing.hpp"
 #include "metrics/metrics.hpp"
 #include "sim/scene.hpp"
 #include "tracker/hand_tracker.hpp"
 
 #include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 int main(int argc, char** argv) {
     if (argc < 4) {
-        std::fprintf(stderr, "usage: %s PRESET FIRST_SEED LAST_SEED [PARTICLES [left|right]]\n", argv[0]);
+        std::fprintf(stderr, "usage: %s PRESET FIRST_SEED LAST_SEED [PARTICLES [left|right [trace] [jpeg=Q]]]\n", argv[0]);
         return 2;
     }
     const auto preset = gc::sim::preset_from_string(argv[1]);
     const int first = std::atoi(argv[2]), last = std::atoi(argv[3]);
     const int particles = argc > 4 ? std::atoi(argv[4]) : 1000;
     const std::string eye_name = argc > 5 ? argv[5] : "left";
-    const bool trace = argc > 6 && std::string(argv[6]) == "trace";
+    bool trace = false, options_ok = true;
+    int jpeg_quality = 0;  // 0: frames as rendered
+    for (int i = 6; i < argc; ++i) {
+        const std::string option = argv[i];
+        if (option == "trace")
+            trace = true;
+        else if (option.rfind("jpeg=", 0) == 0)
+            jpeg_quality = std::atoi(option.c_str() + 5);
+        options_ok = options_ok && (option == "trace" || (jpeg_quality >= 1 && jpeg_quality <= 100));
+    }
     const gc::Eye eye = eye_name == "right" ? gc::Eye::Right : gc::Eye::Left;
-    if (!preset || first < 0 || last < first || particles < 1 ||
+    if (!preset || first < 0 || last < first || particles < 1 || !options_ok ||
         (eye_name != "left" && eye_name != "right")) {
         std::fprintf(stderr, "%s: bad arguments\n", argv[0]);
         return 2;
@@ -57,6 +69,11 @@ int main(int argc, char** argv) {
         double entry_iou = -1.0;
         for (int f = 0; f < 200; ++f) {
             scene.render(f, eye, {}, bgr, &truth);
+            if (jpeg_quality > 0) {
+                std::vector<uchar> encoded;
+                cv::imencode(".jpg", bgr, encoded, {cv::IMWRITE_JPEG_QUALITY, jpeg_quality});
+                bgr = cv::imdecode(encoded, cv::IMREAD_COLOR);
+            }
             const auto& e = tracker.process(bgr);
             const cv::Mat1b tracked = e.valid() ? gc::contour_mask(e.contour, bgr.size())
                                                 : cv::Mat1b(bgr.size(), uchar(0));
