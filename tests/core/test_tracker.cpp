@@ -5,6 +5,7 @@
 #include "tracker/stereo_tracker.hpp"
 
 #include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include <chrono>
@@ -133,30 +134,78 @@ TEST(HandTracker, AcquiresAndFollowsAMovingHand) {
     EXPECT_EQ(tracker.particles().size(), 500u);
 }
 
+// A 120-frame clean `mixed` sequence, left eye, 300 particles; with `jpeg_quality` > 0
+// every frame is passed through JPEG at that quality first. `check(frame, estimate, truth)`
+// sees every tracked frame.
+struct CleanRun {
+    int first = -1;              // the first tracked frame
+    int tracked = 0;             // tracked frames
+    int on_hand_from_30 = 0;     // tracked frames from frame 30 at IoU >= 0.8
+    double worst = 1.0;          // the lowest IoU of a tracked frame
+    double snr_db = 0.0;
+};
+constexpr int kCleanRunFrames = 120, kSettledFrame = 30;
+
+template <typename Check>
+CleanRun track_clean(std::uint64_t seed, int jpeg_quality, Check&& check) {
+    const gc::sim::Scene scene(mixed_scene(gc::sim::Preset::Clean, seed));
+    gc::HandTracker tracker(seeded_params(300, seed));
+    cv::Mat bgr;
+    gc::sim::EyeTruth truth;
+    std::vector<uchar> encoded;
+    gc::SnrAccumulator snr;
+    CleanRun run;
+    for (int f = 0; f < kCleanRunFrames; ++f) {
+        scene.render(f, gc::Eye::Left, {}, bgr, &truth);
+        if (jpeg_quality > 0) {
+            const std::vector<int> quality{cv::IMWRITE_JPEG_QUALITY, jpeg_quality};
+            EXPECT_TRUE(cv::imencode(".jpg", bgr, encoded, quality));
+            bgr = cv::imdecode(encoded, cv::IMREAD_COLOR);
+        }
+        const auto& e = tracker.process(bgr);
+        const cv::Mat1b tracked = e.valid() ? gc::contour_mask(e.contour, bgr.size())
+                                            : cv::Mat1b(bgr.size(), uchar(0));
+        snr.add(truth.mask, tracked);
+        if (!e.valid()) continue;
+        if (run.first < 0) run.first = f;
+        ++run.tracked;
+        const double iou_f = gc::mask_iou(truth.mask, tracked);
+        run.worst = std::min(run.worst, iou_f);
+        run.on_hand_from_30 += f >= kSettledFrame && iou_f >= 0.8;
+        check(f, e, truth);
+    }
+    run.snr_db = snr.snr_db();
+    return run;
+}
+
 TEST(HandTracker, FollowsARenderedSceneAcrossSeeds) {
     for (std::uint64_t seed : {1u, 2u}) {
-        const gc::sim::Scene scene(mixed_scene(gc::sim::Preset::Clean, seed));
-        gc::HandTracker tracker(seeded_params(300, seed));
-        cv::Mat bgr;
-        gc::sim::EyeTruth truth;
-        int first = -1;
-        double worst = 1.0;
-        gc::SnrAccumulator snr;
-        for (int f = 0; f < 120; ++f) {
-            scene.render(f, gc::Eye::Left, {}, bgr, &truth);
-            const auto& e = tracker.process(bgr);
-            const cv::Mat1b tracked = e.valid() ? gc::contour_mask(e.contour, bgr.size())
-                                                : cv::Mat1b(bgr.size(), uchar(0));
-            snr.add(truth.mask, tracked);
-            if (!e.valid()) continue;
-            if (first < 0) first = f;
-            worst = std::min(worst, gc::mask_iou(truth.mask, tracked));
+        const auto pointing = [&](int f, const gc::EyeEstimate& e, const gc::sim::EyeTruth& truth) {
             EXPECT_NEAR(e.pointing_deg, truth.pointing_deg, 10.0) << "seed " << seed << " frame " << f;
-        }
-        EXPECT_GE(first, 0) << "seed " << seed;
-        EXPECT_LE(first, 10) << "acquired during the wave, seed " << seed;
-        EXPECT_GT(worst, 0.8) << "seed " << seed;
-        EXPECT_GT(snr.snr_db(), 13.0) << "seed " << seed;
+        };
+        const CleanRun run = track_clean(seed, 0, pointing);
+        EXPECT_GE(run.first, 0) << "seed " << seed;
+        EXPECT_LE(run.first, 10) << "acquired during the wave, seed " << seed;
+        EXPECT_GT(run.worst, 0.8) << "seed " << seed;
+        EXPECT_GT(run.snr_db, 13.0) << "seed " << seed;
+    }
+}
+
+// The frames as an MJPEG camera or a lossy recording delivers them: JPEG at quality 80,
+// chroma 4:2:0. Quantised chroma leaves holes of non-skin in the hand's membership map and
+// shifts its edges (docs/tracker.md, "Compressed input"); the tracker must still acquire
+// the hand, keep it, and outline it well once settled. The SNR bound is a dB below the
+// uncompressed one: on seed 2 the first template is twisted at the finger and held for 7
+// frames before a clean capture replaces it (SNR 12.95 here; 14.33 on seed 1).
+TEST(HandTracker, FollowsAJpegCompressedScene) {
+    for (std::uint64_t seed : {1u, 2u}) {
+        const auto nothing = [](int, const gc::EyeEstimate&, const gc::sim::EyeTruth&) {};
+        const CleanRun run = track_clean(seed, 80, nothing);
+        ASSERT_GE(run.first, 0) << "seed " << seed;
+        EXPECT_LE(run.first, 10) << "acquired during the wave, seed " << seed;
+        EXPECT_GE(run.tracked, 0.95 * (kCleanRunFrames - run.first)) << "seed " << seed;
+        EXPECT_GE(run.on_hand_from_30, 0.95 * (kCleanRunFrames - kSettledFrame)) << "seed " << seed;
+        EXPECT_GT(run.snr_db, 12.0) << "seed " << seed;
     }
 }
 

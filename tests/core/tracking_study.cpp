@@ -27,7 +27,8 @@
 
 int main(int argc, char** argv) {
     if (argc < 4) {
-        std::fprintf(stderr, "usage: %s PRESET FIRST_SEED LAST_SEED [PARTICLES [left|right [trace] [jpeg=Q]]]\n", argv[0]);
+        std::fprintf(stderr, "usage: %s PRESET FIRST_SEED LAST_SEED [PARTICLES [left|right [trace] [jpeg=Q]]]\n",
+                     argv[0]);
         return 2;
     }
     const auto preset = gc::sim::preset_from_string(argv[1]);
