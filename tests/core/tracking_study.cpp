@@ -39,11 +39,14 @@ int main(int argc, char** argv) {
     int jpeg_quality = 0;  // 0: frames as rendered
     for (int i = 6; i < argc; ++i) {
         const std::string option = argv[i];
-        if (option == "trace")
+        if (option == "trace") {
             trace = true;
-        else if (option.rfind("jpeg=", 0) == 0)
+        } else if (option.rfind("jpeg=", 0) == 0) {
             jpeg_quality = std::atoi(option.c_str() + 5);
-        options_ok = options_ok && (option == "trace" || (jpeg_quality >= 1 && jpeg_quality <= 100));
+            options_ok = options_ok && jpeg_quality >= 1 && jpeg_quality <= 100;
+        } else {
+            options_ok = false;
+        }
     }
     const gc::Eye eye = eye_name == "right" ? gc::Eye::Right : gc::Eye::Left;
     if (!preset || first < 0 || last < first || particles < 1 || !options_ok ||
