@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -358,6 +359,34 @@ MotionDetector::MotionDetector(const DetectionParams& params) : p_(params) {
         throw std::invalid_argument("MotionDetector: invalid detection parameters");
 }
 
+int frame_noise_threshold(const cv::Mat1b& difference) {
+    // Every 4th pixel of every 4th row: a VGA frame gives 19200 samples.
+    constexpr int kStride = 4;
+    std::array<int, 256> histogram{};
+    int samples = 0;
+    for (int y = 0; y < difference.rows; y += kStride) {
+        const std::uint8_t* row = difference.ptr<std::uint8_t>(y);
+        for (int x = 0; x < difference.cols; x += kStride, ++samples) ++histogram[row[x]];
+    }
+    if (samples == 0) return 0;
+    // The quartile of the integer differences below `limit`, interpolated within its level
+    // (level k stands for the values in [k - 0.5, k + 0.5)), as the threshold it gives.
+    const auto threshold_below = [&](int limit) {
+        int counted = 0;
+        for (int k = 0; k < limit; ++k) counted += histogram[k];
+        if (counted == 0) return 0;
+        const double target = 0.25 * counted;
+        double below = 0.0;
+        int level = 0;
+        while (below + histogram[level] < target) below += histogram[level++];
+        const double quartile = std::max(0.0, level - 0.5 + (target - below) / histogram[level]);
+        return static_cast<int>(std::ceil(3.0 * quartile / 0.3186));
+    };
+    // Pixels that really changed push the quartile up: once more without those above the
+    // first estimate (the noise leaves 0.3 % there).
+    return threshold_below(threshold_below(256) + 1);
+}
+
 void MotionDetector::reset() {
     previous_.release();
     history_.release();
@@ -379,7 +408,8 @@ std::optional<Detection> MotionDetector::process(const cv::Mat& bgr, const SkinM
     grey_.copyTo(previous_);
     // No morphological opening: a slowly waving hand changes only thin strips along its
     // edges, and the threshold alone leaves just a handful of noise pixels.
-    cv::threshold(changed_, changed_, p_.diff_threshold, 255, cv::THRESH_BINARY);
+    const int threshold = std::max(p_.diff_threshold, frame_noise_threshold(changed_));
+    cv::threshold(changed_, changed_, threshold, 255, cv::THRESH_BINARY);
     cv::subtract(history_, cv::Scalar::all(1), history_);  // saturates at 0
     history_.setTo(p_.history_frames, changed_);
     if (cv::countNonZero(changed_) < p_.min_changed_pixels) {

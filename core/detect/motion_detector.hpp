@@ -14,7 +14,11 @@
 namespace gc {
 
 struct DetectionParams {
-    int diff_threshold = 12;        // grey levels: ~4 sigma of the difference of sensor noise
+    // Grey levels: ~4 sigma of the difference of a typical sensor's noise. The least
+    // threshold: raised per frame to 3 sigma of the noise the difference shows
+    // (frame_noise_threshold), so that a noisy sensor does not flag a few percent of the
+    // frame, more than the waving hand's own change.
+    int diff_threshold = 12;
     int min_changed_pixels = 40;    // less change than this is not a waving hand
     int box_margin = 24;            // pixels added around the change box
     int close_size = 5;             // morphological close kernel (pixels, odd)
@@ -76,6 +80,12 @@ private:
     cv::Mat1b history_;  // frames since each pixel last changed, counting down to 0
     int motion_frames_ = 0;  // consecutive frames with motion
 };
+
+// Three standard deviations of the noise in an absolute frame difference (CV_8UC1),
+// rounded up (0.3 % of the noise exceeds it); 0 for an empty one. Estimated from the lower
+// quartile of every 16th pixel (half normal: the quartile is 0.3186 sigma), taken again
+// without the pixels above the first estimate, which really changed.
+int frame_noise_threshold(const cv::Mat1b& difference);
 
 // The part of detection after the motion box: learns the skin colour of the `moving` pixels
 // (CV_8UC1, frame-sized) inside `box`, segments the frame with it and returns the skin

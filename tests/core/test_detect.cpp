@@ -272,6 +272,26 @@ TEST(MotionDetector, RemembersWhereTheImageChangedForItsHistory) {
     EXPECT_TRUE(det.recent_motion().empty());
 }
 
+// The difference of two frames of Gaussian noise sigma has sigma * sqrt(2): its threshold
+// is 3 of that, also with a fifth of the frame truly moving, and 0 without noise.
+TEST(MotionDetector, NoiseThresholdFollowsTheSensorNoise) {
+    cv::setRNGSeed(9);
+    for (double sigma : {2.0, 5.0, 8.0}) {
+        cv::Mat1s a(480, 640), b(480, 640);
+        cv::randn(a, 128, sigma);
+        cv::randn(b, 128, sigma);
+        cv::Mat1b difference;
+        cv::Mat1s d = cv::abs(a - b);
+        d.convertTo(difference, CV_8U);
+        const double expected = 3.0 * std::sqrt(2.0) * sigma;
+        EXPECT_NEAR(gc::frame_noise_threshold(difference), expected, 1.0 + 0.05 * expected) << sigma;
+        difference(cv::Rect(0, 0, 640, 96)).setTo(90);  // a fifth of the frame moved
+        EXPECT_NEAR(gc::frame_noise_threshold(difference), expected, 1.0 + 0.1 * expected) << sigma;
+    }
+    EXPECT_EQ(gc::frame_noise_threshold(cv::Mat1b(480, 640, uchar(0))), 0);
+    EXPECT_EQ(gc::frame_noise_threshold(cv::Mat1b()), 0);
+}
+
 TEST(MotionDetector, BadInputsThrow) {
     gc::MotionDetector det;
     EXPECT_THROW(det.process(cv::Mat()), std::invalid_argument);
