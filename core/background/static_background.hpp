@@ -67,7 +67,7 @@ private:
     int row_parity_ = 0;  // the rows learn() steps next: even (0) or odd (1)
     cv::Mat1b matches_, scene_;  // per pixel: matches the median; and so do its neighbours
     cv::Rect scene_area_;        // where scene_ was last filled (0 elsewhere)
-    const cv::Mat1b none_;
+    cv::Mat1b none_;  // stays empty: the map returned where nothing is known
 };
 
 }  // namespace gc
