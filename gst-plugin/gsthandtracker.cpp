@@ -98,6 +98,7 @@ struct Engine {
     std::unique_ptr<gc::HeadLink> head;
     cv::Size head_view_size;          // the view size of the head link's calibration
     bool warned_stale_views = false;  // the current run of too-old views was reported
+    guint64 failed_frames = 0;        // frames the tracker failed on and that were passed on untracked
     // The input timestamps of the views tracked last (packed or left, right).
     std::array<GstClockTime, 2> tracked_inputs = {GST_CLOCK_TIME_NONE, GST_CLOCK_TIME_NONE};
 
@@ -576,8 +577,14 @@ static GstFlowReturn gst_hand_tracker_aggregate_frames(GstVideoAggregator* vagg,
             GST_ELEMENT_ERROR(self, CORE, NEGOTIATION, ("%s", err.what()), (nullptr));
             return GST_FLOW_NOT_NEGOTIATED;
         } catch (const std::exception& err) {
-            GST_ELEMENT_ERROR(self, STREAM, FAILED, ("Tracking failed."), ("%s", err.what()));
-            return GST_FLOW_ERROR;
+            // One bad frame must not end the stream: the tracker starts over and the frame
+            // goes on untracked.
+            e.tracker->reset();
+            ++e.failed_frames;
+            GST_ELEMENT_WARNING(self, STREAM, FAILED,
+                                ("Tracking failed on a frame (%" G_GUINT64_FORMAT " so far); the tracker starts over.",
+                                 e.failed_frames),
+                                ("%s", err.what()));
         }
     }
     const gc::FrameResult& result = e.tracker->last();

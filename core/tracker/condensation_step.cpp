@@ -36,8 +36,13 @@ void HandTracker::Impl::track(const cv::Mat& bgr, const ImageMotion& motion) {
                  cv::Point(int(std::ceil(spread.max_x + reach)) + 1, int(std::ceil(spread.max_y + reach)) + 1)) &
         frame;
     if (membership_roi.area() > 0) membership(membership_roi).setTo(0);
-    skin->membership(bgr, roi, membership);
     membership_roi = roi;
+    // Every hypothesis outside the frame (the head turned far): nothing to measure.
+    if (roi.area() == 0) {
+        lose();
+        return;
+    }
+    skin->membership(bgr, roi, membership);
     // While the edges are weak the hand is likely in front of skin (a face, a skin-coloured
     // object), and the normals from skin into skin are measured on the grey levels.
     // Elsewhere such normals are few and the skin edges decide alone, which spares the grey

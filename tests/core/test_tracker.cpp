@@ -417,6 +417,34 @@ TEST(HandTracker, ResetGivesTheOutputOfAFreshTracker) {
     EXPECT_GT(tracked, 15);  // the comparison covered tracking, not only acquisition
 }
 
+// A head that jumps (a fast PTZ turn, a re-homing head) predicts every hypothesis out of
+// the frame: the tracker reports the hand lost, without an exception, and finds it again
+// once the view is steady.
+TEST(HandTracker, SurvivesAHeadJumpThatLeavesNothingToSearch) {
+    const gc::sim::Scene scene(mixed_scene(gc::sim::Preset::Clean, 1));
+    gc::HandTracker tracker(seeded_params(1000, 1));
+    cv::Mat frame;
+    for (int f = 0; f < 40; ++f) {
+        scene.render(f, gc::Eye::Left, gc::HeadPose{}, frame, nullptr);
+        tracker.process(frame);
+    }
+    ASSERT_EQ(tracker.estimate().state, gc::TrackState::Tracking);
+    for (const double jump : {4000.0, -4000.0}) {
+        gc::ImageMotion away;
+        away.dx = jump;
+        away.dy = jump / 2;
+        scene.render(40, gc::Eye::Left, gc::HeadPose{}, frame, nullptr);
+        ASSERT_NO_THROW(tracker.process(frame, away));
+        EXPECT_EQ(tracker.estimate().state, gc::TrackState::Lost);
+        int back = -1;
+        for (int f = 41; f < 71 && back < 0; ++f) {
+            scene.render(f, gc::Eye::Left, gc::HeadPose{}, frame, nullptr);
+            if (tracker.process(frame).state == gc::TrackState::Tracking) back = f;
+        }
+        EXPECT_GE(back, 0) << "not re-acquired within 30 frames of a jump of " << jump << " px";
+    }
+}
+
 TEST(HandTracker, BadInputsGiveClearErrors) {
     gc::HandTracker t;
     EXPECT_THROW(t.process(cv::Mat()), std::invalid_argument);
