@@ -1,0 +1,25 @@
+#include "detect/dnn_input.hpp"
+
+#include <stdexcept>
+
+namespace gc {
+
+cv::Mat make_square_blob(int side) {
+    const int shape[] = {1, 3, side, side};
+    return cv::Mat(4, shape, CV_32F);
+}
+
+void fill_rgb_blob(const cv::Mat3b& bgr, double scale, double shift, cv::Mat3f& scratch, cv::Mat& blob) {
+    const int side = bgr.rows;
+    if (bgr.cols != side || blob.dims != 4 || blob.size[2] != side || blob.size[3] != side)
+        throw std::logic_error("fill_rgb_blob: the image and the blob differ in size");
+    bgr.convertTo(scratch, CV_32F, scale, shift);
+    float* data = blob.ptr<float>();
+    const int plane = side * side;
+    cv::Mat planes[] = {cv::Mat(side, side, CV_32F, data), cv::Mat(side, side, CV_32F, data + plane),
+                        cv::Mat(side, side, CV_32F, data + 2 * plane)};
+    const int bgr_to_rgb[] = {2, 0, 1, 1, 0, 2};
+    cv::mixChannels(&scratch, 1, planes, 3, bgr_to_rgb, 3);
+}
+
+}  // namespace gc

@@ -1,0 +1,15 @@
+// The input blob both hand models take: one RGB image, planar, scaled to the model's range.
+#pragma once
+
+#include <opencv2/core.hpp>
+
+namespace gc {
+
+// A 1x3xSxS float blob for a square input of side S.
+cv::Mat make_square_blob(int side);
+
+// Writes the square BGR image `bgr` into `blob` (from make_square_blob of its side) as planar
+// RGB, each value v mapped to v * scale + shift. `scratch` is reused between calls.
+void fill_rgb_blob(const cv::Mat3b& bgr, double scale, double shift, cv::Mat3f& scratch, cv::Mat& blob);
+
+}  // namespace gc

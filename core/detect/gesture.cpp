@@ -1,0 +1,51 @@
+#include "detect/gesture.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace gc {
+
+namespace {
+
+// How much farther from the wrist than its PIP an extended finger's tip lies. On the
+// reference hands the ratio is 1.2-1.5 for extended fingers and 0.3-0.9 for curled ones,
+// in both views; the threshold sits between them.
+constexpr float kExtendedReach = 1.1f;
+
+}  // namespace
+
+const char* gesture_name(Gesture g) {
+    switch (g) {
+        case Gesture::Pointing: return "pointing";
+        case Gesture::Open: return "open";
+        case Gesture::Fist: return "fist";
+        case Gesture::Other: break;
+    }
+    return "other";
+}
+
+std::array<bool, 4> extended_fingers(const HandLandmarks& hand) {
+    const HandPoint joints[4][2] = {{HandPoint::IndexPip, HandPoint::IndexTip},
+                                    {HandPoint::MiddlePip, HandPoint::MiddleTip},
+                                    {HandPoint::RingPip, HandPoint::RingTip},
+                                    {HandPoint::PinkyPip, HandPoint::PinkyTip}};
+    const cv::Point2f wrist = hand.point(HandPoint::Wrist);
+    std::array<bool, 4> extended{};
+    for (int f = 0; f < 4; ++f) {
+        const float pip = float(cv::norm(hand.point(joints[f][0]) - wrist));
+        const float tip = float(cv::norm(hand.point(joints[f][1]) - wrist));
+        extended[f] = tip > kExtendedReach * pip;
+    }
+    return extended;
+}
+
+Gesture classify_gesture(const HandLandmarks& hand) {
+    const std::array<bool, 4> e = extended_fingers(hand);
+    const int count = int(std::count(e.begin(), e.end(), true));
+    if (count == 0) return Gesture::Fist;
+    if (count == 4) return Gesture::Open;
+    if (count == 1 && e[0]) return Gesture::Pointing;
+    return Gesture::Other;
+}
+
+}  // namespace gc
