@@ -59,6 +59,8 @@ enum {
     PROP_HEAD,
     PROP_STEER,
     PROP_TARGET_DISTANCE,
+    PROP_DETECTOR,
+    PROP_MODEL_DIR,
 };
 
 // Property values, read and written under the object lock.
@@ -75,6 +77,8 @@ struct Settings {
     std::string head;  // the head's URI; empty: no head
     gc::SteerMode steer = kDefaultSteer;
     double target_distance_mm = kDefaultTargetDistanceMm;
+    gc::HandDetector detector = gc::HandDetector::Learned;
+    std::string model_dir;  // empty: the learned models are found without configuration
 };
 
 // Everything the streaming thread owns.
@@ -179,6 +183,23 @@ static GType gst_hand_tracker_steer_get_type()
     };
     if (g_once_init_enter(&type))
         g_once_init_leave(&type, g_enum_register_static("GstHandTrackerSteer", values));
+    return type;
+}
+
+#define GST_TYPE_HAND_TRACKER_DETECTOR (gst_hand_tracker_detector_get_type())
+static GType gst_hand_tracker_detector_get_type()
+{
+    static GType type = 0;
+    static const GEnumValue values[] = {
+        {int(gc::HandDetector::Learned),
+         "Learned palm detector and landmark model: finds the hand anywhere, checks the contour, gives the gesture",
+         "learned"},
+        {int(gc::HandDetector::Motion), "The thesis's detection of a waving skin-coloured hand, nothing learned",
+         "motion"},
+        {0, nullptr, nullptr},
+    };
+    if (g_once_init_enter(&type))
+        g_once_init_leave(&type, g_enum_register_static("GstHandTrackerDetector", values));
     return type;
 }
 
@@ -344,7 +365,15 @@ static bool build_tracker(GstHandTracker* self, const Settings& settings)
     params.seed = settings.seed;
     params.lost_ratio = settings.lost_threshold;
     params.lost_frames = settings.lost_frames;
-    e.tracker = std::make_unique<gc::PointingTracker>(params, e.calibration);
+    params.detector = settings.detector;
+    params.model_dir = settings.model_dir;
+    try {
+        e.tracker = std::make_unique<gc::PointingTracker>(params, e.calibration);
+    } catch (const std::runtime_error& err) {
+        GST_ELEMENT_ERROR(self, RESOURCE, NOT_FOUND, ("Cannot load the learned hand models."),
+                          ("%s (set model-dir, or detector=motion to track without them)", err.what()));
+        return false;
+    }
     e.attention.reset();
     e.view_size = {};
     e.tracked_inputs = {GST_CLOCK_TIME_NONE, GST_CLOCK_TIME_NONE};
@@ -788,6 +817,16 @@ static void gst_hand_tracker_set_property(GObject* object, guint prop_id, const 
     case PROP_TARGET_DISTANCE:
         s.target_distance_mm = g_value_get_double(value);
         break;
+    case PROP_DETECTOR:
+        s.detector = gc::HandDetector(g_value_get_enum(value));
+        rebuild = true;
+        break;
+    case PROP_MODEL_DIR: {
+        const gchar* dir = g_value_get_string(value);
+        s.model_dir = dir ? dir : "";
+        rebuild = true;
+        break;
+    }
     default:
         G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
         break;
@@ -838,6 +877,12 @@ static void gst_hand_tracker_get_property(GObject* object, guint prop_id, GValue
         break;
     case PROP_TARGET_DISTANCE:
         g_value_set_double(value, s.target_distance_mm);
+        break;
+    case PROP_DETECTOR:
+        g_value_set_enum(value, int(s.detector));
+        break;
+    case PROP_MODEL_DIR:
+        g_value_set_string(value, s.model_dir.empty() ? nullptr : s.model_dir.c_str());
         break;
     default:
         G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
@@ -935,6 +980,17 @@ static void gst_hand_tracker_class_init(GstHandTrackerClass* klass)
         g_param_spec_double("target-distance", "Target distance",
                             "steer=point: how far along the pointing ray, from the fingertip, the head looks (mm)",
                             1.0, 1.0e6, kDefaultTargetDistanceMm, flags));
+    g_object_class_install_property(
+        gobject_class, PROP_DETECTOR,
+        g_param_spec_enum("detector", "Detector", "How the hand is found and checked", GST_TYPE_HAND_TRACKER_DETECTOR,
+                          int(gc::HandDetector::Learned),
+                          GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
+    g_object_class_install_property(
+        gobject_class, PROP_MODEL_DIR,
+        g_param_spec_string("model-dir", "Model folder",
+                            "Folder of the learned models (palm_detection.onnx, hand_landmark.onnx); unset: "
+                            "GESTURECAM_MODEL_DIR, else the installed models",
+                            nullptr, GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
 
     gst_element_class_add_static_pad_template_with_gtype(element_class, &sink_left_template,
                                                          GST_TYPE_VIDEO_AGGREGATOR_PAD);
@@ -962,6 +1018,7 @@ static void gst_hand_tracker_class_init(GstHandTrackerClass* klass)
     gst_type_mark_as_plugin_api(GST_TYPE_HAND_TRACKER_OUTPUT, GstPluginAPIFlags(0));
     gst_type_mark_as_plugin_api(GST_TYPE_HAND_TRACKER_MESSAGE_UPDATES, GstPluginAPIFlags(0));
     gst_type_mark_as_plugin_api(GST_TYPE_HAND_TRACKER_STEER, GstPluginAPIFlags(0));
+    gst_type_mark_as_plugin_api(GST_TYPE_HAND_TRACKER_DETECTOR, GstPluginAPIFlags(0));
 }
 
 static void gst_hand_tracker_init(GstHandTracker* self)

@@ -52,7 +52,8 @@ GstStructure* eye_structure(const EyeEstimate& eye, bool with_contour)
                                         "bbox-height", G_TYPE_INT, eye.bbox.height,
                                         "fingertip-x", G_TYPE_DOUBLE, double(eye.fingertip.x),
                                         "fingertip-y", G_TYPE_DOUBLE, double(eye.fingertip.y),
-                                        "pointing-deg", G_TYPE_DOUBLE, eye.pointing_deg, nullptr);
+                                        "pointing-deg", G_TYPE_DOUBLE, eye.pointing_deg,
+                                        "gesture", G_TYPE_STRING, to_string(eye.gesture).data(), nullptr);
     if (with_contour) {
         // Flat (x0, y0, x1, y1, ...) keeps the serialised message readable and cheap.
         GValue array = G_VALUE_INIT;
@@ -83,6 +84,18 @@ void set_vec3(GstStructure* s, const char* name, const cv::Vec3d& v)
         gst_value_array_append_and_take_value(&array, &item);
     }
     gst_structure_take_value(s, name, &array);
+}
+
+GstHandPointingGesture meta_gesture(Gesture g)
+{
+    switch (g) {
+    case Gesture::Pointing: return GST_HAND_POINTING_GESTURE_POINTING;
+    case Gesture::Open: return GST_HAND_POINTING_GESTURE_OPEN;
+    case Gesture::Fist: return GST_HAND_POINTING_GESTURE_FIST;
+    case Gesture::Other: return GST_HAND_POINTING_GESTURE_OTHER;
+    case Gesture::Unknown: break;
+    }
+    return GST_HAND_POINTING_GESTURE_UNKNOWN;
 }
 
 GstHandPointingState meta_state(TrackState s)
@@ -131,6 +144,8 @@ void fill_meta(GstHandPointingMeta& meta, const FrameResult& result, const Repor
     meta.view_y = context.view.y;
     meta.view_width = context.view.width;
     meta.view_height = context.view.height;
+    meta.left_gesture = meta_gesture(result.left.gesture);
+    meta.right_gesture = result.stereo ? meta_gesture(result.right.gesture) : GST_HAND_POINTING_GESTURE_UNKNOWN;
 }
 
 GstStructure* pointing_structure(const FrameResult& result, const ReportContext& context,

@@ -20,6 +20,7 @@ struct ReportContext {
 };
 
 GstHandPointingState meta_state(TrackState s);
+GstHandPointingGesture meta_gesture(Gesture g);
 
 // Sets `name` in s to a GstValueArray of the three doubles of v.
 void set_vec3(GstStructure* s, const char* name, const cv::Vec3d& v);

@@ -12,4 +12,16 @@ std::string_view to_string(TrackState s)
     return "lost";
 }
 
+std::string_view to_string(Gesture g)
+{
+    switch (g) {
+    case Gesture::Unknown: return "unknown";
+    case Gesture::Pointing: return "pointing";
+    case Gesture::Open: return "open";
+    case Gesture::Fist: return "fist";
+    case Gesture::Other: return "other";
+    }
+    return "unknown";
+}
+
 }  // namespace gc

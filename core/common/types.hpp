@@ -39,6 +39,12 @@ enum class TrackState { Acquiring, Tracking, Lost };
 
 std::string_view to_string(TrackState s);
 
+// What the hand does, from its 21 key points. Unknown where no key points are known (the
+// motion-only detector, which assumes the thesis's pointing hand).
+enum class Gesture { Unknown, Pointing, Open, Fist, Other };
+
+std::string_view to_string(Gesture g);
+
 // What one eye's tracker reports for one frame; the JSON "left"/"right" objects.
 struct EyeEstimate {
     TrackState state = TrackState::Acquiring;
@@ -50,7 +56,13 @@ struct EyeEstimate {
     cv::Point2f fingertip;              // index fingertip, image pixels
     cv::Point2f palm;                   // palm centre, image pixels
     double pointing_deg = 0.0;          // palm -> fingertip, 0 = +x, counter-clockwise, y up
+    Gesture gesture = Gesture::Unknown;
+    std::vector<cv::Point2f> landmarks; // the 21 key points, or none (motion-only detector)
+    bool models_ran = false;            // the learned models looked at this frame
     bool valid() const { return state == TrackState::Tracking; }
+    // Whether this estimate may say where the hand points: a tracked hand whose gesture is
+    // pointing, or unknown (the motion-only detector tracks a pointing hand by design).
+    bool pointing() const { return valid() && (gesture == Gesture::Pointing || gesture == Gesture::Unknown); }
 };
 
 // The motorised head: pan (neck), tilt, and each eye's vergence, in degrees.

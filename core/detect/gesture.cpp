@@ -14,17 +14,7 @@ constexpr float kExtendedReach = 1.1f;
 
 }  // namespace
 
-const char* gesture_name(Gesture g) {
-    switch (g) {
-        case Gesture::Pointing: return "pointing";
-        case Gesture::Open: return "open";
-        case Gesture::Fist: return "fist";
-        case Gesture::Other: break;
-    }
-    return "other";
-}
-
-std::array<bool, 4> extended_fingers(const HandLandmarks& hand) {
+std::array<bool, 4> extended_fingers(const HandKeyPoints& hand) {
     const HandPoint joints[4][2] = {{HandPoint::IndexPip, HandPoint::IndexTip},
                                     {HandPoint::MiddlePip, HandPoint::MiddleTip},
                                     {HandPoint::RingPip, HandPoint::RingTip},
@@ -39,7 +29,7 @@ std::array<bool, 4> extended_fingers(const HandLandmarks& hand) {
     return extended;
 }
 
-Gesture classify_gesture(const HandLandmarks& hand) {
+Gesture classify_gesture(const HandKeyPoints& hand) {
     const std::array<bool, 4> e = extended_fingers(hand);
     const int count = int(std::count(e.begin(), e.end(), true));
     if (count == 0) return Gesture::Fist;

@@ -57,7 +57,7 @@ HandCrop crop_from_palm(const PalmDetection& palm) {
                            kFromPalmBox);
 }
 
-HandCrop crop_from_landmarks(const HandLandmarks& hand) {
+HandCrop crop_from_landmarks(const HandKeyPoints& hand) {
     const float rotation = upright_rotation(hand.point(HandPoint::Wrist), hand.point(HandPoint::MiddleMcp));
     // The points' box in the crop's axes (u right, v down), then its centre back in the frame.
     const float c = std::cos(rotation), s = std::sin(rotation);
@@ -88,7 +88,7 @@ LandmarkModel::LandmarkModel(const std::filesystem::path& model_path)
       scaled_(kInputSide, kInputSide),
       blob_(make_square_blob(kInputSide)) {}
 
-HandLandmarks LandmarkModel::run(const cv::Mat& bgr, const HandCrop& crop) {
+HandKeyPoints LandmarkModel::run(const cv::Mat& bgr, const HandCrop& crop) {
     if (bgr.empty() || bgr.type() != CV_8UC3)
         throw std::invalid_argument("LandmarkModel: expected a non-empty CV_8UC3 (BGR) frame");
     const bool finite = std::isfinite(crop.centre.x) && std::isfinite(crop.centre.y) &&
@@ -108,7 +108,7 @@ HandLandmarks LandmarkModel::run(const cv::Mat& bgr, const HandCrop& crop) {
     net_.forward(outputs_, output_names_);
     if (outputs_[0].total() != size_t(3 * kHandPoints) || outputs_[1].total() != 1 || outputs_[2].total() != 1)
         throw std::runtime_error("LandmarkModel: the network's outputs are not 63, 1 and 1 values");
-    HandLandmarks hand;
+    HandKeyPoints hand;
     const float* xyz = outputs_[0].ptr<float>();
     for (int i = 0; i < kHandPoints; ++i)
         hand.points[i] = to_frame * cv::Vec3f(xyz[3 * i], xyz[3 * i + 1], 1.0f);

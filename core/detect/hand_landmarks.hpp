@@ -27,7 +27,7 @@ enum class HandPoint {
 };
 inline constexpr int kHandPoints = 21;
 
-struct HandLandmarks {
+struct HandKeyPoints {
     std::array<cv::Point2f, kHandPoints> points;  // frame pixels, HandPoint order
     float presence = 0.0f;    // probability that the crop holds a hand, 0..1
     float handedness = 0.0f;  // the model's left/right score, 0..1
@@ -49,7 +49,7 @@ HandCrop crop_from_palm(const PalmDetection& palm);
 
 // The crop for the next frame from a hand's landmarks: the box of its palm and the fingers'
 // near joints, doubled (again about 2.6 palm sizes), rotated the same way.
-HandCrop crop_from_landmarks(const HandLandmarks& hand);
+HandCrop crop_from_landmarks(const HandKeyPoints& hand);
 
 // The 2x3 affine map from crop coordinates (0..side_px across the square, continuous, y
 // down) to frame coordinates.
@@ -65,7 +65,7 @@ public:
 
     // The hand in `crop` of `bgr` (CV_8UC3), its points in frame pixels. Throws
     // std::invalid_argument on an empty or non-BGR frame or an empty crop.
-    HandLandmarks run(const cv::Mat& bgr, const HandCrop& crop);
+    HandKeyPoints run(const cv::Mat& bgr, const HandCrop& crop);
 
 private:
     cv::dnn::Net net_;

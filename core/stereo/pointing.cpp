@@ -200,6 +200,7 @@ struct PointingEstimator::Impl {
         check_frame(left_bgr, "left");
         check_frame(right_bgr, "right");
         if (!plausible(le) || !plausible(re)) return out;
+        if (!le.landmarks.empty() && !re.landmarks.empty()) return from_key_points(le, re, head);
         if (!left.prepare(left_bgr, le) || !right.prepare(right_bgr, re)) return out;
 
         const RigidTransform l2r = left_to_right_at(calibration, head);
@@ -264,8 +265,41 @@ struct PointingEstimator::Impl {
         const Eigen::Vector3d H = *F - *P;
         if (H.norm() < kMinHandLengthMm) return out;
 
-        out.fingertip_mm = to_cv(*F);
-        out.palm_mm = to_cv(*P);
+        return finish(out, *F, *P, head);
+    }
+
+    // Both views' key points name the same fingertip and palm: each is triangulated from
+    // its two rays directly, which holds for a wide baseline as for a stereo head.
+    Pointing3D from_key_points(const EyeEstimate& le, const EyeEstimate& re, const HeadPose& head)
+    {
+        Pointing3D out;
+        const RigidTransform l2r = left_to_right_at(calibration, head);
+        const Eigen::Matrix3d R = to_eigen(l2r.R);
+        const Eigen::Vector3d t = to_eigen(l2r.t);
+        const Eigen::Vector3d right_origin = -R.transpose() * t;
+        const auto ray = [](const EyeData& eye, const cv::Point2f& p) {
+            std::vector<cv::Point2f> in{p}, normalised;
+            cv::undistortPoints(in, normalised, eye.M, eye.D);
+            return Eigen::Vector3d(normalised[0].x, normalised[0].y, 1.0);
+        };
+        const auto point = [&](const cv::Point2f& pl, const cv::Point2f& pr) -> std::optional<Eigen::Vector3d> {
+            const auto X = triangulate_midpoint(Eigen::Vector3d::Zero(), ray(left, pl), right_origin,
+                                                R.transpose() * ray(right, pr));
+            if (!X || X->z() < kMinDepthMm || X->z() > kMaxDepthMm) return std::nullopt;
+            return X;
+        };
+        const auto F = point(le.fingertip, re.fingertip);
+        const auto P = point(le.palm, re.palm);
+        if (!F || !P || (*F - *P).norm() < kMinHandLengthMm) return out;
+        return finish(out, *F, *P, head);
+    }
+
+    // The ray from palm P to fingertip F, in the left camera's frame and the head's.
+    Pointing3D finish(Pointing3D& out, const Eigen::Vector3d& F, const Eigen::Vector3d& P, const HeadPose& head) const
+    {
+        const Eigen::Vector3d H = F - P;
+        out.fingertip_mm = to_cv(F);
+        out.palm_mm = to_cv(P);
         out.direction = to_cv(H.normalized());
         direction_angles(out.direction, out.azimuth_deg, out.elevation_deg);
         const RigidTransform to_head = left_to_head_at(calibration, head);

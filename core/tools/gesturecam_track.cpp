@@ -33,6 +33,9 @@ options:
                         for the frame size
   --particles N         particles per eye, 1..100000 (default 1000)
   --seed S              random seed; same seed and input give the same output (default 1)
+  --detector D          how the hand is found: learned (the palm and landmark models,
+                        default) or motion (the thesis's waving skin blob, nothing learned)
+  --model-dir DIR       folder of the learned models (default: found without configuration)
   --out FILE            output file (default: standard output)
   --fps F               frame rate for pts_ns when the left input carries no timestamps
                         (image sequences); without it pts_ns is null there
@@ -73,6 +76,13 @@ Options parse_options(int argc, char** argv)
             o.params.particles = parse_number<int>(name, args.value(), 1, 100000);
         } else if (name == "--seed") {
             o.params.seed = parse_number<std::uint64_t>(name, args.value());
+        } else if (name == "--detector") {
+            const std::string_view d = args.value();
+            if (d != "learned" && d != "motion")
+                throw gc::cli::UsageError("--detector must be learned or motion, not " + std::string(d));
+            o.params.detector = d == "motion" ? gc::HandDetector::Motion : gc::HandDetector::Learned;
+        } else if (name == "--model-dir") {
+            o.params.model_dir = std::string(args.value());
         } else if (name == "--out") {
             o.out = std::string(args.value());
         } else if (name == "--fps") {

@@ -54,7 +54,9 @@ HandTracker::Impl::Impl(const TrackerParams& p)
       log_weights(p.particles),
       weights(p.particles),
       deviates(4 * static_cast<std::size_t>(p.particles)),
-      ancestors(p.particles) {}
+      ancestors(p.particles) {
+    if (p.detector == HandDetector::Learned) finder = std::make_unique<HandFinder>(HandFinderParams{p.model_dir});
+}
 
 void HandTracker::Impl::reset() { static_cast<TrackerSession&>(*this) = TrackerSession(params); }
 
@@ -75,10 +77,15 @@ const EyeEstimate& HandTracker::Impl::process(const cv::Mat& bgr, const ImageMot
     if (motion.dx != 0.0 || motion.dy != 0.0 || motion.drotation != 0.0 ||
         motion.scale_factor != 1.0)
         background.reset();
-    if (estimate.state == TrackState::Tracking) {
-        track(bgr, motion);
+    estimate.models_ran = false;
+    const bool was_tracking = estimate.state == TrackState::Tracking;
+    if (was_tracking) track(bgr, motion);
+    if (!finder) {
+        if (!was_tracking) acquire(bgr);
+    } else if (estimate.state == TrackState::Tracking) {
+        check_with_models(bgr);
     } else {
-        acquire(bgr);
+        search_with_models(bgr);  // a hand lost on this frame is looked for at once
     }
     if (params.use_static_scene) learn_background(bgr);
     return estimate;
@@ -119,6 +126,10 @@ void HandTracker::Impl::lose() {
     estimate.confidence = 0.0;
     estimate.contour.clear();
     estimate.bbox = {};
+    estimate.landmarks.clear();
+    estimate.gesture = gesture = Gesture::Unknown;
+    has_key_points = false;
+    search_turn = 0;
     low_frames = 0;
     lost_search = 0;
     detector.reset();
@@ -131,6 +142,8 @@ void HandTracker::Impl::report(const HandState& s) {
     estimate.bbox = cv::boundingRect(estimate.contour);
     estimate.palm = cv::Point2f(float(s.x), float(s.y));
     estimate.fingertip = cv::Point2f(place(s, shape->fingertip));
+    estimate.gesture = gesture;
+    if (has_key_points) place_key_points(s);
     // Image y points down; the reported angle is counter-clockwise with y up.
     estimate.pointing_deg = std::atan2(-(estimate.fingertip.y - estimate.palm.y),
                                        estimate.fingertip.x - estimate.palm.x) *

@@ -1,5 +1,7 @@
-// One eye's CONDENSATION hand tracker: acquisition by motion + skin, then factored sampling
-// over (x, y, rotation, scale) with a skin-edge measurement along the contour normals.
+// One eye's CONDENSATION hand tracker: acquisition by a learned palm detector (or, in the
+// thesis's mode, by motion + skin), then factored sampling over (x, y, rotation, scale) with
+// a skin-edge measurement along the contour normals, checked now and then by a learned
+// landmark model that also gives the hand's key points and gesture.
 #pragma once
 
 #include "common/types.hpp"
@@ -9,8 +11,14 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <string>
 
 namespace gc {
+
+// How a hand is found and checked. Learned: the palm detector finds it anywhere and the
+// landmark model confirms it, gives its key points and gesture, and re-seeds the contour.
+// Motion: the thesis's detection of a waving skin-coloured blob, nothing learned.
+enum class HandDetector { Learned, Motion };
 
 struct TrackerParams {
     int particles = 1000;            // N, the sample-set size (>= 1)
@@ -21,6 +29,9 @@ struct TrackerParams {
     // Learn the static scene: captures leave out its skin, and in front of skin the hand is
     // told from the scene behind it.
     bool use_static_scene = true;
+    HandDetector detector = HandDetector::Learned;
+    std::string model_dir;           // learned models' folder; empty: found without configuration
+    int max_model_interval = 8;      // frames between landmark checks while the contour agrees
 };
 
 // A weighted hypothesis, exposed for drawing the marginal distributions.
@@ -39,6 +50,7 @@ public:
     // Processes one frame (CV_8UC3, BGR, any size >= 32x32; the size must stay the same
     // until reset()). `camera_motion` is C_t: the image motion the head caused since the
     // previous frame. Throws std::invalid_argument on an empty or wrongly typed frame.
+    // The constructor throws std::runtime_error when the learned models cannot be loaded.
     const EyeEstimate& process(const cv::Mat& bgr, const ImageMotion& camera_motion = {});
 
     // Forgets the hand: the next frame starts acquisition again.

@@ -8,6 +8,7 @@
 
 #include "background/static_background.hpp"
 #include "contour/hand_template.hpp"
+#include "detect/hand_finder.hpp"
 #include "detect/motion_detector.hpp"
 #include "filter/adaptive_noise.hpp"
 #include "filter/quasi_random.hpp"
@@ -16,7 +17,9 @@
 #include "tracker/rim_survey.hpp"
 #include "tracker/template_trial.hpp"
 
+#include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <random>
 #include <vector>
@@ -70,6 +73,15 @@ struct TrackerSession {
     bool watch_everywhere = false; // the last watch saw the tracked contour hold still
 
     std::optional<TemplateTrial> trial;  // a re-capture of the template's quality, on trial
+
+    // The learned detector's key points, relative to the template (as its outline is), so
+    // that the contour's state carries them between the landmark model's checks.
+    bool has_key_points = false;
+    std::array<cv::Point2f, 21> key_points{};
+    Gesture gesture = Gesture::Unknown;
+    int frames_since_check = 0;  // tracked frames since the landmark model last looked
+    int check_interval = 1;      // frames between its checks: longer while the contour agrees
+    int search_turn = 0;         // frames searched by the palm detector without a hand
 };
 
 struct HandTracker::Impl : TrackerSession {
@@ -77,6 +89,7 @@ struct HandTracker::Impl : TrackerSession {
 
     TrackerParams params;
     ContourMeasurement measurement;
+    std::unique_ptr<HandFinder> finder;  // the learned models; null in the motion-only mode
     const cv::Mat1b no_map;  // an empty map: no grey steps, no static scene
 
     // Scratch buffers of the filter step and the contour fill, sized once.
@@ -121,6 +134,13 @@ struct HandTracker::Impl : TrackerSession {
     // reacquisition.cpp: a known hand found again after a loss.
     bool refit_known_shape(const Detection& found, const cv::Mat1b& memb, const cv::Mat& bgr);
     bool reacquire_by_skin(const cv::Mat& bgr);
+
+    // learned_custody.cpp: the learned models find the hand, check the contour, give key points.
+    void search_with_models(const cv::Mat& bgr);
+    std::optional<FoundHand> propose_by_motion(const cv::Mat& bgr);
+    void check_with_models(const cv::Mat& bgr);
+    bool adopt_found(const cv::Mat& bgr, const FoundHand& hand);
+    void place_key_points(const HandState& s);
 
     // tracker_maps.cpp: the maps the steps above read.
     const StaticBackground* known_scene() const;

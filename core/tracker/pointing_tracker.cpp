@@ -42,6 +42,16 @@ TrackState overall_state(std::initializer_list<TrackState> eyes)
     return all_tracking ? TrackState::Tracking : TrackState::Acquiring;
 }
 
+// Whether a stereo frame may give a ray: both eyes track, at least one sees a pointing
+// hand, and neither sees an open hand or a fist (a gesture seen by one eye only, the other
+// unsure, still counts; a contradiction does not).
+bool points_in_both(const EyeEstimate& l, const EyeEstimate& r)
+{
+    const auto not_pointing = [](Gesture g) { return g == Gesture::Open || g == Gesture::Fist; };
+    return l.valid() && r.valid() && (l.pointing() || r.pointing()) && !not_pointing(l.gesture) &&
+           !not_pointing(r.gesture);
+}
+
 }  // namespace
 
 struct PointingTracker::Impl {
@@ -132,7 +142,7 @@ const FrameResult& PointingTracker::process_stereo(const cv::Mat& left_bgr,
     r.right = std::move(eyes.right);
     r.state = overall_state({r.left.state, r.right.state});
     r.head = head;
-    r.pointing = (r.left.valid() && r.right.valid())
+    r.pointing = points_in_both(r.left, r.right)
                      ? estimator.estimate(left_bgr, right_bgr, r.left, r.right,
                                           head.value_or(HeadPose{}))
                      : Pointing3D{};
@@ -319,6 +329,15 @@ void write_eye(JsonLine& j, const EyeEstimate& e)
     j.point(e.fingertip, kPixelDecimals);
     j.key("pointing_deg");
     j.number(e.pointing_deg, kDegreeDecimals);
+    j.key("gesture");
+    j.string(to_string(e.gesture));
+    if (!e.landmarks.empty()) {
+        j.key("landmarks");
+        j.begin('[');
+        for (const cv::Point2f& p : e.landmarks)
+            j.point(p, kPixelDecimals);
+        j.end(']');
+    }
     j.end('}');
 }
 

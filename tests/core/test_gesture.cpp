@@ -14,8 +14,8 @@
 
 namespace {
 
-gc::HandLandmarks as_landmarks(const std::array<cv::Point2f, 21>& points) {
-    gc::HandLandmarks hand;
+gc::HandKeyPoints as_landmarks(const std::array<cv::Point2f, 21>& points) {
+    gc::HandKeyPoints hand;
     hand.points = points;
     hand.presence = 1.0f;
     return hand;
@@ -52,11 +52,11 @@ TEST(Gesture, SameAnswerAtAnyScaleAndTurn) {
     int compared = 0;
     for (int i = 0; i < int(reference.size()); i += 3) {
         if (!reference[i]) continue;
-        const gc::HandLandmarks hand = as_landmarks(*reference[i]);
+        const gc::HandKeyPoints hand = as_landmarks(*reference[i]);
         for (int step = 1; step < 12; ++step) {
             const double angle = step * 30.0, scale = 0.3 * std::pow(10.0, step / 11.0);
             const cv::Mat m = cv::getRotationMatrix2D(cv::Point2f(100.0f, -40.0f), angle, scale);
-            gc::HandLandmarks moved = hand;
+            gc::HandKeyPoints moved = hand;
             cv::transform(hand.points, moved.points, m);
             ASSERT_EQ(gc::extended_fingers(moved), gc::extended_fingers(hand))
                 << "frame " << i << ", turned " << angle << " deg, scaled " << scale;
@@ -67,10 +67,10 @@ TEST(Gesture, SameAnswerAtAnyScaleAndTurn) {
 }
 
 TEST(Gesture, Names) {
-    EXPECT_STREQ(gc::gesture_name(gc::Gesture::Pointing), "pointing");
-    EXPECT_STREQ(gc::gesture_name(gc::Gesture::Open), "open");
-    EXPECT_STREQ(gc::gesture_name(gc::Gesture::Fist), "fist");
-    EXPECT_STREQ(gc::gesture_name(gc::Gesture::Other), "other");
+    EXPECT_EQ(gc::to_string(gc::Gesture::Pointing), "pointing");
+    EXPECT_EQ(gc::to_string(gc::Gesture::Open), "open");
+    EXPECT_EQ(gc::to_string(gc::Gesture::Fist), "fist");
+    EXPECT_EQ(gc::to_string(gc::Gesture::Other), "other");
 }
 
 }  // namespace

@@ -102,7 +102,7 @@ TEST_F(RealPair, PalmThenLandmarksFindTheFingertip) {
             const gc::HandCrop crop = gc::crop_from_palm(palms[0]);
             EXPECT_TRUE(crop_contains(crop, (*ref)[8]));
             EXPECT_TRUE(crop_contains(crop, palm_centre(*ref)));
-            const gc::HandLandmarks hand = landmarks_->run(frame(view, i), crop);
+            const gc::HandKeyPoints hand = landmarks_->run(frame(view, i), crop);
             EXPECT_GE(hand.presence, kMinPresence);
             EXPECT_LE(cv::norm(hand.point(gc::HandPoint::IndexTip) - (*ref)[8]), 15.0);
         }
@@ -121,7 +121,7 @@ TEST_F(RealPair, LandmarksFollowTheHandFrameToFrame) {
         gc::HandCrop crop = gc::crop_from_palm(palms[0]);
         int frames = 0, near = 0;
         for (int i = s.first; i <= s.last; ++i, ++frames) {
-            const gc::HandLandmarks hand = landmarks_->run(frame(s.view, i), crop);
+            const gc::HandKeyPoints hand = landmarks_->run(frame(s.view, i), crop);
             ASSERT_GE(hand.presence, kMinPresence) << "hand lost at frame " << i;
             near += cv::norm(hand.point(gc::HandPoint::IndexTip) - (*reference(s.view, i))[8]) <= 30.0;
             crop = gc::crop_from_landmarks(hand);
@@ -144,10 +144,10 @@ TEST_F(RealPair, BlankedHandGivesNoPalmAndNoPresence) {
         for (int i : {100, 200}) {
             SCOPED_TRACE("view " + std::to_string(view) + " frame " + std::to_string(i));
             const std::array<cv::Point2f, 21>& ref = *reference(view, i);
-            gc::HandLandmarks hand;
+            gc::HandKeyPoints hand;
             hand.points = ref;
             const gc::HandCrop crop = gc::crop_from_landmarks(hand);
-            const gc::HandLandmarks before = landmarks_->run(frame(view, i), crop);
+            const gc::HandKeyPoints before = landmarks_->run(frame(view, i), crop);
             ASSERT_GE(before.presence, kMinPresence) << "the unblanked hand is not found";
             cv::Mat blanked = frame(view, i).clone();
             const cv::Rect hand_box = cv::boundingRect(std::vector<cv::Point2f>(ref.begin(), ref.end()));
@@ -175,7 +175,7 @@ TEST_F(RealPair, TextureGivesNoPalmAndNoPresence) {
 // its middle knuckle.
 TEST_F(RealPair, LandmarkCropHoldsTheHandUpright) {
     for (int view = 0; view < 2; ++view) {
-        gc::HandLandmarks hand;
+        gc::HandKeyPoints hand;
         hand.points = *reference(view, 100);
         const gc::HandCrop crop = gc::crop_from_landmarks(hand);
         for (const cv::Point2f& p : hand.points) EXPECT_TRUE(crop_contains(crop, p)) << p;

@@ -26,7 +26,7 @@ std::set<std::string> keys_of(const JsonValue& v)
 }
 
 const std::set<std::string> kEyeKeys{"x", "y", "rotation_deg", "scale", "confidence",
-                                     "bbox", "contour", "fingertip", "pointing_deg"};
+                                     "bbox", "contour", "fingertip", "pointing_deg", "gesture"};
 
 gc::EyeEstimate sample_eye()
 {

@@ -26,8 +26,16 @@ gc::sim::SceneConfig mixed_scene(gc::sim::Preset preset, std::uint64_t seed) {
     return cfg;
 }
 
-gc::TrackerParams seeded_params(int particles, std::uint64_t seed) {
+// These tests hold the thesis's tracker to its figures: detection by motion and skin,
+// nothing learned (the learned detector has its own tests in test_learned_tracker.cpp).
+gc::TrackerParams thesis_params() {
     gc::TrackerParams params;
+    params.detector = gc::HandDetector::Motion;
+    return params;
+}
+
+gc::TrackerParams seeded_params(int particles, std::uint64_t seed) {
+    gc::TrackerParams params = thesis_params();
     params.particles = particles;
     params.seed = seed;
     return params;
@@ -107,7 +115,7 @@ double iou(const std::vector<cv::Point2f>& contour, const cv::Mat1b& truth) {
 TEST(HandTracker, AcquiresAndFollowsAMovingHand) {
     cv::setRNGSeed(7);
     DrawnScene scene(9);
-    gc::TrackerParams params;
+    gc::TrackerParams params = thesis_params();
     params.particles = 500;
     gc::HandTracker tracker(params);
     cv::Mat3b frame;
@@ -306,7 +314,7 @@ TEST(HandTracker, LeavesAStaticLikenessForTheHandThatMoves) {
         cv::setRNGSeed(12);
         DrawnScene scene(background);
         cv::rectangle(scene.background, cv::Rect(80, 55, 60, 42), cv::Scalar(scene.skin), cv::FILLED);
-        gc::TrackerParams params;
+        gc::TrackerParams params = thesis_params();
         params.particles = 300;
         gc::HandTracker tracker(params);
         cv::Mat3b frame;
@@ -336,7 +344,7 @@ TEST(HandTracker, LeavesAStaticLikenessForTheHandThatMoves) {
 TEST(HandTracker, RecoversAfterTheHandLeavesAndReturns) {
     cv::setRNGSeed(8);
     DrawnScene scene(10);
-    gc::TrackerParams params;
+    gc::TrackerParams params = thesis_params();
     params.particles = 300;
     gc::HandTracker tracker(params);
     cv::Mat3b frame;
@@ -364,7 +372,7 @@ TEST(HandTracker, RecoversAfterTheHandLeavesAndReturns) {
 
 TEST(HandTracker, IsDeterministicForASeed) {
     DrawnScene scene(11);
-    gc::TrackerParams params;
+    gc::TrackerParams params = thesis_params();
     params.particles = 200;
     params.seed = 99;
     gc::HandTracker a(params), b(params);
@@ -386,7 +394,7 @@ TEST(HandTracker, IsDeterministicForASeed) {
 // after tracking a while the reset tracker repeats a fresh one's output exactly.
 TEST(HandTracker, ResetGivesTheOutputOfAFreshTracker) {
     DrawnScene scene(12);
-    gc::TrackerParams params;
+    gc::TrackerParams params = thesis_params();
     params.particles = 200;
     params.seed = 7;
     std::vector<cv::Mat3b> frames(30);
@@ -463,7 +471,7 @@ TEST(HandTracker, BadInputsGiveClearErrors) {
     EXPECT_NO_THROW(t.process(cv::Mat3b(80, 64, cv::Vec3b(0, 0, 0))));
     EXPECT_THROW(t.process(cv::Mat3b(80, 64), gc::ImageMotion{NAN, 0, 0, 1}), std::invalid_argument);
     EXPECT_THROW(t.process(cv::Mat3b(80, 64), gc::ImageMotion{0, 0, 0, 0}), std::invalid_argument);
-    gc::TrackerParams bad;
+    gc::TrackerParams bad = thesis_params();
     bad.particles = 0;
     EXPECT_THROW(gc::HandTracker{bad}, std::invalid_argument);
     bad = {};
@@ -473,7 +481,7 @@ TEST(HandTracker, BadInputsGiveClearErrors) {
 
 TEST(StereoHandTracker, TracksBothEyesLikeTwoMonoTrackers) {
     DrawnScene left_scene(12), right_scene(13);
-    gc::TrackerParams params;
+    gc::TrackerParams params = thesis_params();
     params.particles = 200;
     gc::StereoHandTracker stereo(params);
     gc::HandTracker mono_left(params);

@@ -63,6 +63,7 @@ int main(int argc, char** argv) {
         cfg.seed = static_cast<std::uint64_t>(seed);
         const gc::sim::Scene scene(cfg);
         gc::TrackerParams params;
+        params.detector = gc::HandDetector::Motion;  // the contour-based path
         params.particles = particles;
         params.seed = cfg.seed;
         gc::HandTracker tracker(params);

@@ -170,6 +170,7 @@ void tracked_scenes()
         config.seed = 5;
         const gc::sim::Scene scene(config);
         gc::TrackerParams params;
+        params.detector = gc::HandDetector::Motion;  // the contour-based path
         params.particles = 500;
         gc::StereoHandTracker trackers(params);
         gc::PointingEstimator estimator(scene.calibration());

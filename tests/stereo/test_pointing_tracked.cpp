@@ -21,6 +21,7 @@ TEST(PointingTracked, RayFromTrackedEstimates)
     config.seed = 5;
     const gc::sim::Scene scene(config);
     gc::TrackerParams params;
+    params.detector = gc::HandDetector::Motion;  // the contour-based path
     params.particles = 300;
     gc::StereoHandTracker trackers(params);
     gc::PointingEstimator estimator(scene.calibration());

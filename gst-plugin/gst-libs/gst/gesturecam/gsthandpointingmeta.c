@@ -42,6 +42,7 @@ gst_hand_pointing_meta_init (GstMeta * meta, gpointer params, GstBuffer * buffer
   hmeta->flags = GST_HAND_POINTING_FLAG_NONE;
   eye_init (&hmeta->left);
   eye_init (&hmeta->right);
+  hmeta->left_gesture = hmeta->right_gesture = GST_HAND_POINTING_GESTURE_UNKNOWN;
   memset (hmeta->fingertip_mm, 0, sizeof (hmeta->fingertip_mm));
   memset (hmeta->palm_mm, 0, sizeof (hmeta->palm_mm));
   memset (hmeta->direction, 0, sizeof (hmeta->direction));

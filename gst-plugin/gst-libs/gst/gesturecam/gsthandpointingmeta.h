@@ -28,6 +28,16 @@ typedef enum {
   GST_HAND_POINTING_STATE_LOST = 2,
 } GstHandPointingState;
 
+/* What the hand does, from its key points (the learned detector); UNKNOWN without them
+ * (the motion-only detector, which assumes a pointing hand). */
+typedef enum {
+  GST_HAND_POINTING_GESTURE_UNKNOWN = 0,
+  GST_HAND_POINTING_GESTURE_POINTING = 1,
+  GST_HAND_POINTING_GESTURE_OPEN = 2,
+  GST_HAND_POINTING_GESTURE_FIST = 3,
+  GST_HAND_POINTING_GESTURE_OTHER = 4,
+} GstHandPointingGesture;
+
 typedef enum {
   GST_HAND_POINTING_FLAG_NONE = 0,
   /* Both views were tracked (otherwise only the left one: mono input). */
@@ -83,6 +93,10 @@ typedef struct {
    * frame with GST_HAND_POINTING_FLAG_FULL_VIEW, else the attended crop of the left view.
    * Scale transforms rescale it, and every 2D field, only with FULL_VIEW. */
   gint view_x, view_y, view_width, view_height;
+
+  /* Each view's gesture (right: with GST_HAND_POINTING_FLAG_STEREO). The 3D fields are
+   * set only on frames where the hand points. */
+  GstHandPointingGesture left_gesture, right_gesture;
 } GstHandPointingMeta;
 
 GST_GESTURECAM_META_API

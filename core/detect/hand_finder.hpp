@@ -1,0 +1,58 @@
+// The learned hand models behind one interface: the palm detector finds a hand anywhere in
+// a frame, the landmark model gives its 21 key points (MediaPipe's order: 0 wrist, 4 thumb
+// tip, 8 index tip, 5/9/13/17 the knuckles) and says whether a hand is there at all.
+#pragma once
+
+#include "detect/gesture.hpp"
+
+#include <opencv2/core.hpp>
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace gc {
+
+struct HandFinderParams {
+    std::string model_dir;        // empty: found without configuration (model_files.hpp)
+    float min_palm_score = 0.5f;  // palm detector's score to accept a palm
+    float min_presence = 0.5f;    // landmark model's hand presence to accept a hand
+};
+
+// A hand the models found: its key points in frame pixels and what it does.
+struct FoundHand {
+    std::array<cv::Point2f, 21> points;
+    float presence = 0.0f;
+    Gesture gesture = Gesture::Other;
+};
+
+// The palm centre as the product reports it: the mean of the wrist and the four knuckles.
+cv::Point2f palm_centre(const std::array<cv::Point2f, 21>& points);
+
+class HandFinder {
+public:
+    // Loads both models; throws std::runtime_error naming the file that is missing or bad.
+    explicit HandFinder(const HandFinderParams& params = {});
+    ~HandFinder();
+    HandFinder(HandFinder&&) noexcept;
+    HandFinder& operator=(HandFinder&&) noexcept;
+
+    // Searches the whole frame (BGR): the best palm, then its key points.
+    std::optional<FoundHand> find(const cv::Mat& bgr);
+    // The key points of a hand known to be near `around` (last key points, moved to this
+    // frame): the landmark model alone, on a crop taken from them.
+    std::optional<FoundHand> follow(const cv::Mat& bgr, const std::array<cv::Point2f, 21>& around);
+    // The key points of a hand proposed by other means (a moving skin blob): its palm centre
+    // and the tip of its longest finger, in frame pixels. The landmark model alone decides.
+    std::optional<FoundHand> confirm(const cv::Mat& bgr, cv::Point2f palm, cv::Point2f fingertip);
+
+    int palm_calls() const;
+    int landmark_calls() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace gc

@@ -1,0 +1,165 @@
+#include "tools/real_pair.hpp"
+
+#include "stereo/calibration.hpp"
+#include "tools/json_reader.hpp"
+#include "tracker/pointing_tracker.hpp"
+
+#include <opencv2/videoio.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+namespace gc::tools {
+
+namespace {
+
+JsonValue read_json(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw std::runtime_error("cannot read " + path);
+    std::stringstream text;
+    text << in.rdbuf();
+    return JsonReader::parse(text.str());
+}
+
+cv::Point2d point_of(const JsonValue& v) { return {v[0].number(), v[1].number()}; }
+cv::Vec3d vec_of(const JsonValue& v) { return {v[0].number(), v[1].number(), v[2].number()}; }
+
+// Reference index fingertips of one view, by frame; frames without a hand are absent.
+std::map<int, cv::Point2d> view_reference(const std::string& path) {
+    std::map<int, cv::Point2d> tips;
+    const JsonValue doc = read_json(path);
+    const auto& frames = doc["frames"].array();
+    for (std::size_t i = 0; i < frames.size(); ++i)
+        if (frames[i].has("landmarks") && !frames[i]["landmarks"].is_null())
+            tips[int(i)] = point_of(frames[i]["landmarks"][8]);
+    return tips;
+}
+
+struct StereoReference {
+    bool pointing = false;
+    cv::Vec3d direction;
+};
+
+std::map<int, StereoReference> stereo_reference(const std::string& path) {
+    std::map<int, StereoReference> out;
+    const JsonValue doc = read_json(path);
+    for (const JsonValue& f : doc["frames"].array())
+        out[int(f["frame"].number())] = {std::get<bool>(f["pointing"].v), vec_of(f["direction"])};
+    return out;
+}
+
+double quantile(std::vector<double> v, double q) {
+    if (v.empty()) return std::nan("");
+    std::sort(v.begin(), v.end());
+    return v[std::min(v.size() - 1, std::size_t(q * double(v.size())))];
+}
+
+double share(int part, int whole) { return whole > 0 ? double(part) / whole : 0.0; }
+
+// Per-view tallies while the frames go by.
+struct ViewTally {
+    std::vector<double> errors, on_models, carried, pointing_errors;
+    int reference = 0, pointing_reference = 0, near = 0, tracked = 0, models = 0;
+
+    void add(const EyeEstimate& e, const std::optional<cv::Point2d>& tip, bool pointing) {
+        if (e.valid()) {
+            ++tracked;
+            models += e.models_ran;
+        }
+        if (!tip) return;
+        ++reference;
+        pointing_reference += pointing;
+        if (!e.valid()) return;
+        const double error = cv::norm(cv::Point2d(e.fingertip) - *tip);
+        errors.push_back(error);
+        (e.models_ran ? on_models : carried).push_back(error);
+        if (pointing) pointing_errors.push_back(error);
+        near += error <= 30.0;
+    }
+
+    ViewFigures figures() const {
+        ViewFigures f;
+        f.reference_frames = reference;
+        f.coverage = share(int(errors.size()), reference);
+        f.within_30px = share(near, reference);
+        f.median_px = quantile(errors, 0.5);
+        f.median_px_models = quantile(on_models, 0.5);
+        f.median_px_carried = quantile(carried, 0.5);
+        f.models_share = share(models, tracked);
+        f.pointing_frames = pointing_reference;
+        f.pointing_coverage = share(int(pointing_errors.size()), pointing_reference);
+        f.pointing_median_px = quantile(pointing_errors, 0.5);
+        return f;
+    }
+};
+
+double angle_deg(const cv::Vec3d& a, const cv::Vec3d& b) {
+    const double c = a.dot(b) / (cv::norm(a) * cv::norm(b));
+    return std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / std::numbers::pi;
+}
+
+cv::VideoCapture open_video(const std::string& path) {
+    cv::VideoCapture video(path);
+    if (!video.isOpened()) throw std::runtime_error("cannot decode " + path);
+    return video;
+}
+
+}  // namespace
+
+RealPairFigures measure_real_pair(const RealPairOptions& o) {
+    const std::string base = o.dir + "/handpose3d_";
+    const auto left_ref = view_reference(base + "cam0.mediapipe.json");
+    const auto right_ref = view_reference(base + "cam1.mediapipe.json");
+    const auto stereo_ref = stereo_reference(base + "ref3d.json");
+    cv::VideoCapture left = open_video(base + "cam0.mp4"), right = open_video(base + "cam1.mp4");
+    PointingTracker tracker(o.params, load_calibration(base + "calib.yml"));
+
+    ViewTally lt, rt;
+    std::vector<double> angles, ms;
+    int pointing = 0, other = 0, false_rays = 0, frame = 0;
+    cv::Mat l, r;
+    for (; frame < o.last_frame && left.read(l) && right.read(r); ++frame) {
+        if (frame < o.first_frame) continue;
+        const auto t0 = std::chrono::steady_clock::now();
+        const FrameResult& res = tracker.process_stereo(l, r);
+        ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        const auto ref = stereo_ref.find(frame);
+        const bool points = ref != stereo_ref.end() && ref->second.pointing;
+        const auto tip = [&](const std::map<int, cv::Point2d>& m) {
+            const auto it = m.find(frame);
+            return it == m.end() ? std::nullopt : std::optional<cv::Point2d>(it->second);
+        };
+        lt.add(res.left, tip(left_ref), points);
+        rt.add(res.right, tip(right_ref), points);
+        if (ref == stereo_ref.end()) continue;
+        if (points) {
+            ++pointing;
+            if (res.pointing.valid) angles.push_back(angle_deg(res.pointing.direction, ref->second.direction));
+        } else {
+            ++other;
+            false_rays += res.pointing.valid;
+        }
+    }
+    RealPairFigures f;
+    f.frames = frame - o.first_frame;
+    f.left = lt.figures();
+    f.right = rt.figures();
+    f.pointing_frames = pointing;
+    f.ray_coverage = share(int(angles.size()), pointing);
+    f.angle_median_deg = quantile(angles, 0.5);
+    f.angle_p90_deg = quantile(angles, 0.9);
+    f.other_frames = other;
+    f.false_pointing = share(false_rays, other);
+    f.ms_per_frame = quantile(ms, 0.5);
+    return f;
+}
+
+}  // namespace gc::tools

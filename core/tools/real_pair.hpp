@@ -1,0 +1,50 @@
+// The tracker on a real calibrated stereo recording with reference key points (the pair in
+// tests/data/handpose3d: two cameras 0.5 m apart, a hand pointing in frames 14-212): how far
+// each view's fingertip is from the reference, how often a 3D ray comes out and at what
+// angle to the reference's, how often pointing is claimed where the hand does not point,
+// and what a frame costs. Shared by gesturecam-bench and the regression test.
+#pragma once
+
+#include "tracker/hand_tracker.hpp"
+
+#include <string>
+
+namespace gc::tools {
+
+struct RealPairOptions {
+    std::string dir;      // holds handpose3d_cam{0,1}.mp4, *.mediapipe.json, _ref3d.json, _calib.yml
+    int first_frame = 0;  // frames [first_frame, last_frame) are tracked
+    int last_frame = 1 << 30;
+    TrackerParams params;
+};
+
+struct ViewFigures {
+    int reference_frames = 0;  // frames where the reference has the hand in this view
+    double coverage = 0.0;     // share of them with a tracked fingertip
+    double within_30px = 0.0;  // share of them with the fingertip within 30 px of the reference
+    double median_px = 0.0;    // fingertip error, over the covered frames
+    double median_px_models = 0.0;     // ... on frames where the learned models ran
+    double median_px_carried = 0.0;    // ... on frames the contour carried alone
+    double models_share = 0.0;         // share of tracked frames where the models ran
+    int pointing_frames = 0;           // reference pointing frames with the hand in this view
+    double pointing_coverage = 0.0;    // share of them with a tracked fingertip
+    double pointing_median_px = 0.0;   // fingertip error over those
+};
+
+struct RealPairFigures {
+    int frames = 0;
+    ViewFigures left, right;
+    int pointing_frames = 0;      // reference frames where the hand points (3D reference)
+    double ray_coverage = 0.0;    // share of them with a 3D ray
+    double angle_median_deg = 0.0;
+    double angle_p90_deg = 0.0;
+    int other_frames = 0;         // reference frames where it does not point
+    double false_pointing = 0.0;  // share of them with a 3D ray
+    double ms_per_frame = 0.0;    // median wall time of one stereo frame
+};
+
+// Decodes both recordings (frame i = the i-th decoded frame), tracks them in stereo and
+// scores the result. Throws std::runtime_error on missing or unreadable files.
+RealPairFigures measure_real_pair(const RealPairOptions& options);
+
+}  // namespace gc::tools

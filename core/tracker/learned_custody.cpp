@@ -1,0 +1,193 @@
+// The learned models' part in the tracker: the palm detector finds the hand (any pose, any
+// background), its key points shape the first template and teach the skin model; while the
+// contour is tracked, the landmark model checks it now and then, gives the key points and
+// the gesture, and starts the contour again where it has drifted off the hand. Between its
+// checks the contour's state carries the key points.
+#include "tracker/hand_tracker_impl.hpp"
+
+#include "measure/edge_search.hpp"
+
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace gc {
+
+namespace {
+
+// Mean key-point distance to the landmark model's, in palm sizes (wrist to middle
+// knuckle), above which the contour has left the hand and starts again from the models.
+constexpr double kDriftedError = 0.35;
+// ... below which the contour agrees with the models and the next check may wait longer.
+constexpr double kAgreedError = 0.12;
+// Without a hand, the palm detector looks at every frame for this many frames, then at
+// every kSlowSearchEvery-th: an empty room costs less.
+constexpr int kEagerSearchFrames = 15;
+constexpr int kSlowSearchEvery = 3;
+
+// The bones drawn between key points (MediaPipe's hand topology).
+constexpr int kBones[][2] = {{0, 1},   {1, 2},   {2, 3},   {3, 4},   {0, 5},   {5, 6},  {6, 7},
+                             {7, 8},   {5, 9},   {9, 10},  {10, 11}, {11, 12}, {9, 13}, {13, 14},
+                             {14, 15}, {15, 16}, {13, 17}, {17, 18}, {18, 19}, {19, 20}, {0, 17}};
+constexpr int kPalmOutline[] = {0, 1, 5, 9, 13, 17};
+
+double palm_size(const std::array<cv::Point2f, 21>& p) { return cv::norm(p[9] - p[0]); }
+
+std::vector<cv::Point> palm_polygon(const std::array<cv::Point2f, 21>& p) {
+    std::vector<cv::Point> palm;
+    for (const int i : kPalmOutline) palm.emplace_back(cvRound(p[i].x), cvRound(p[i].y));
+    std::vector<cv::Point> hull;
+    cv::convexHull(palm, hull);
+    return hull;
+}
+
+// Where the hand may be: the palm filled and every bone drawn as thick as a finger.
+cv::Mat1b hand_region(const std::array<cv::Point2f, 21>& p, cv::Size size) {
+    cv::Mat1b region(size, uchar(0));
+    cv::fillConvexPoly(region, palm_polygon(p), 255);
+    const int finger = std::max(3, cvRound(0.32 * palm_size(p)));
+    for (const auto& bone : kBones)
+        cv::line(region, p[bone[0]], p[bone[1]], 255, finger, cv::LINE_8);
+    return region;
+}
+
+// The skin of the region's connected part that holds the palm centre; empty if the skin
+// model does not see most of the region as skin (then the region itself stands in).
+cv::Mat1b skin_of_hand(const cv::Mat1b& region, const cv::Mat1b& membership, cv::Point palm) {
+    cv::Mat1b mask = (membership >= kSkinEdgeLevel) & region;
+    cv::morphologyEx(mask, mask, cv::MORPH_CLOSE, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(5, 5)));
+    cv::Mat1i labels;
+    cv::connectedComponents(mask, labels, 8, CV_32S);
+    const cv::Rect frame(0, 0, mask.cols, mask.rows);
+    const int label = palm.inside(frame) ? labels(palm) : 0;
+    if (label == 0) return {};
+    mask = labels == label;
+    if (cv::countNonZero(mask) < 0.5 * cv::countNonZero(region)) return {};
+    return mask;
+}
+
+bool touches_border(const cv::Mat1b& mask) {
+    const cv::Rect box = cv::boundingRect(mask);
+    return box.x <= 1 || box.y <= 1 || box.br().x >= mask.cols - 1 || box.br().y >= mask.rows - 1;
+}
+
+// The template point that `s` places at `p` (the inverse of place()).
+cv::Point2f unplace(const HandState& s, const cv::Point2f& p) {
+    const double dx = (p.x - s.x) / s.squash, dy = p.y - s.y;
+    const double c = std::cos(s.rotation), sn = std::sin(s.rotation);
+    return {float((c * dx + sn * dy) / s.scale), float((-sn * dx + c * dy) / s.scale)};
+}
+
+}  // namespace
+
+// No hand is tracked: the palm detector looks (every frame at first, then less often), and
+// a hand it finds with key points the landmark model confirms becomes the template.
+void HandTracker::Impl::search_with_models(const cv::Mat& bgr) {
+    const int turn = search_turn++;
+    const std::optional<FoundHand> proposed = propose_by_motion(bgr);
+    if (turn >= kEagerSearchFrames && turn % kSlowSearchEvery != 0 && !proposed) return;
+    estimate.models_ran = true;
+    std::optional<FoundHand> hand = finder->find(bgr);
+    if (!hand) hand = proposed;
+    if (hand && adopt_found(bgr, *hand)) search_turn = 0;
+}
+
+// The thesis's detector proposes a waving skin-coloured blob; the landmark model, given
+// the blob's palm and fingertip, says whether it is a hand. This finds hands the palm
+// detector misses (a dark hand against clutter, a hand seen edge-on) without trusting
+// colour and motion alone.
+std::optional<FoundHand> HandTracker::Impl::propose_by_motion(const cv::Mat& bgr) {
+    const SkinModel prior = skin ? *skin : SkinModel::generic();
+    const auto found = detector.process(bgr, prior, true, static_scene(bgr, true, {}));
+    if (!found) return std::nullopt;
+    HandLandmarks shape_points;
+    try {
+        shape_points = find_hand_landmarks(found->mask, found->motion);
+    } catch (const std::invalid_argument&) {
+        return std::nullopt;
+    }
+    estimate.models_ran = true;
+    return finder->confirm(bgr, cv::Point2f(shape_points.palm), cv::Point2f(shape_points.fingertip));
+}
+
+// A tracked frame: the landmark model checks the contour when the check is due or the
+// edges are weak. No hand where the contour is: lost. Key points far from where the
+// contour carried them: a new template from this frame. Else the key points and gesture
+// are the model's, re-expressed on the template, and the next check waits longer while
+// the two agree.
+void HandTracker::Impl::check_with_models(const cv::Mat& bgr) {
+    ++frames_since_check;
+    const bool doubt = estimate.confidence < params.lost_ratio;
+    if (!doubt && frames_since_check < check_interval) return;
+    frames_since_check = 0;
+    estimate.models_ran = true;
+    std::array<cv::Point2f, 21> carried;
+    std::copy(estimate.landmarks.begin(), estimate.landmarks.end(), carried.begin());
+    std::optional<FoundHand> hand = finder->follow(bgr, carried);
+    if (!hand) hand = finder->find(bgr);
+    if (!hand) {
+        lose();
+        return;
+    }
+    double error = 0.0;
+    for (std::size_t i = 0; i < carried.size(); ++i) error += cv::norm(carried[i] - hand->points[i]);
+    error /= carried.size() * std::max(1.0, palm_size(hand->points));
+    if (error > kDriftedError) {
+        if (!adopt_found(bgr, *hand)) lose();
+        return;
+    }
+    check_interval = error < kAgreedError ? std::min(2 * check_interval, params.max_model_interval) : 1;
+    for (std::size_t i = 0; i < key_points.size(); ++i) key_points[i] = unplace(previous, hand->points[i]);
+    gesture = hand->gesture;
+    report(previous);
+}
+
+// A template from a hand the models found: the skin model learnt from its palm, the mask
+// the skin inside the region its key points span. False (nothing changed) when the hand is
+// cut by the frame's border or no template can be made of it.
+bool HandTracker::Impl::adopt_found(const cv::Mat& bgr, const FoundHand& hand) {
+    const cv::Mat1b region = hand_region(hand.points, bgr.size());
+    if (touches_border(region)) return false;
+    cv::Mat1b palm(bgr.size(), uchar(0));
+    cv::fillConvexPoly(palm, palm_polygon(hand.points), 255);
+    SkinModel model = SkinModel::generic();
+    try {
+        model = SkinModel::fit(bgr, palm);
+    } catch (const std::invalid_argument&) {
+        return false;  // too few or too uniform palm pixels to learn from
+    }
+    cv::Mat1b membership_map(bgr.size(), uchar(0));
+    model.membership(bgr, cv::Rect(0, 0, bgr.cols, bgr.rows), membership_map);
+    const cv::Point centre = palm_centre(hand.points);
+    cv::Mat1b mask = skin_of_hand(region, membership_map, centre);
+    if (mask.empty()) mask = region;
+    std::optional<HandTemplate> shaped;
+    try {
+        shaped = HandTemplate::from_mask(mask, membership_map, TemplateOptions{}, bgr);
+    } catch (const std::invalid_argument&) {
+        return false;
+    }
+    const HandState at{shaped->origin_px.x, shaped->origin_px.y, 0.0, 1.0};
+    for (std::size_t i = 0; i < key_points.size(); ++i) key_points[i] = unplace(at, hand.points[i]);
+    has_key_points = true;
+    gesture = hand.gesture;
+    frames_since_check = 0;
+    check_interval = 1;
+    adopt(std::move(*shaped), model, CaptureQuality::Clean, at);
+    estimate.models_ran = true;
+    return true;
+}
+
+// estimate.landmarks: the template's key points placed by `s`; the fingertip and palm
+// reported are theirs (index tip; mean of wrist and knuckles).
+void HandTracker::Impl::place_key_points(const HandState& s) {
+    estimate.landmarks.resize(key_points.size());
+    std::array<cv::Point2f, 21> placed;
+    for (std::size_t i = 0; i < key_points.size(); ++i) placed[i] = estimate.landmarks[i] = cv::Point2f(place(s, key_points[i]));
+    estimate.fingertip = placed[8];
+    estimate.palm = palm_centre(placed);
+}
+
+}  // namespace gc
