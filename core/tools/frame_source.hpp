@@ -63,9 +63,11 @@ public:
         if (std::filesystem::is_directory(path_, ec))
             throw InputError(describe() + ": is a directory, expected a video file or an "
                                           "image-sequence pattern such as dir/%05d.png");
-        // A single image given as the input: its declared size is checked before decoding.
-        if (const std::optional<cv::Size> declared = image_file_size(path_))
-            check_frame_size(*declared, describe());
+        // A single image given as the input: its declared size is checked before decoding (not
+        // in a FIFO, whose bytes the reading would take from the decoder).
+        if (std::filesystem::is_regular_file(path_, ec))
+            if (const std::optional<cv::Size> declared = image_file_size(path_))
+                check_frame_size(*declared, describe());
         if (!capture_.open(path_, cv::CAP_ANY))
             throw InputError(describe() + ": cannot be opened as a video");
         check_frame_size(cv::Size(static_cast<int>(capture_.get(cv::CAP_PROP_FRAME_WIDTH)),
