@@ -10,6 +10,8 @@
 #include "tracking_overlay.hpp"
 #include "video_bgr.hpp"
 
+#include "common/frame_limits.hpp"
+#include "common/line_output.hpp"
 #include "headctl/head_link.hpp"
 #include "headctl/uri.hpp"
 #include "stereo/calibration.hpp"
@@ -22,7 +24,6 @@
 
 #include <array>
 #include <atomic>
-#include <cstdio>
 #include <exception>
 #include <memory>
 #include <optional>
@@ -96,7 +97,8 @@ struct Engine {
     std::vector<float> contour_scratch;
     gc::gst::AttentionWindow attention;
     gc::gst::TrackingOverlay overlay;
-    std::FILE* json = nullptr;
+    std::optional<gc::LineOutput> json;  // json-location: one whole line per write, each checked
+    std::string json_path;
     std::string json_line;
     std::optional<gc::TrackState> last_posted_state;
     std::unique_ptr<gc::HeadLink> head;
@@ -106,13 +108,6 @@ struct Engine {
     // The input timestamps of the views tracked last (packed or left, right).
     std::array<GstClockTime, 2> tracked_inputs = {GST_CLOCK_TIME_NONE, GST_CLOCK_TIME_NONE};
 
-    ~Engine() { close_json(); }
-    void close_json()
-    {
-        if (json)
-            std::fclose(json);
-        json = nullptr;
-    }
     void forget()
     {
         if (tracker)
@@ -203,9 +198,11 @@ static GType gst_hand_tracker_detector_get_type()
     return type;
 }
 
+// The frame-size limit spelt out, as static caps need a literal.
+static_assert(gc::kMaxFrameSide == 8192, "VIDEO_CAPS states gc::kMaxFrameSide");
 #define VIDEO_CAPS(formats)                                                                        \
-    "video/x-raw, format = (string) { " formats " }, width = (int) [ 32, 16384 ], "              \
-    "height = (int) [ 32, 16384 ], framerate = (fraction) [ 0/1, 2147483647/1 ]"
+    "video/x-raw, format = (string) { " formats " }, width = (int) [ 32, 8192 ], "               \
+    "height = (int) [ 32, 8192 ], framerate = (fraction) [ 0/1, 2147483647/1 ]"
 
 static GstStaticPadTemplate sink_left_template =
     GST_STATIC_PAD_TEMPLATE("sink_left", GST_PAD_SINK, GST_PAD_REQUEST, GST_STATIC_CAPS(VIDEO_CAPS(GC_INPUT_FORMATS)));
@@ -250,6 +247,21 @@ static GstAggregatorPad* gst_hand_tracker_create_new_pad(GstAggregator* agg, Gst
                                            GST_PAD_SINK, "template", templ, nullptr));
 }
 
+// Upstream reports refused caps only as not-negotiated: a frame size over the limit is named
+// on the bus (a warning, since upstream may still choose smaller caps).
+static void warn_if_too_large(GstHandTracker* self, GstPad* pad, GstCaps* caps)
+{
+    const GstStructure* s = gst_caps_is_fixed(caps) ? gst_caps_get_structure(caps, 0) : nullptr;
+    int width = 0, height = 0;
+    if (!s || !gst_structure_get_int(s, "width", &width) || !gst_structure_get_int(s, "height", &height) ||
+        (width <= gc::kMaxFrameSide && height <= gc::kMaxFrameSide))
+        return;
+    GST_ELEMENT_WARNING(self, STREAM, FORMAT,
+                        ("%s: frames of %dx%d are larger than the limit of %dx%d pixels.", GST_PAD_NAME(pad), width,
+                         height, gc::kMaxFrameSide, gc::kMaxFrameSide),
+                        ("the caps are refused"));
+}
+
 // Any size and format of the template on every sink pad, whatever downstream wants: the
 // element converts itself, and a size mismatch between the views is reported in words
 // when the frames meet instead of failing upstream's negotiation without a reason.
@@ -273,8 +285,11 @@ static gboolean gst_hand_tracker_sink_query(GstAggregator* agg, GstAggregatorPad
         GstCaps* caps = nullptr;
         gst_query_parse_accept_caps(query, &caps);
         GstCaps* templ = gst_pad_get_pad_template_caps(GST_PAD(pad));
-        gst_query_set_accept_caps_result(query, gst_caps_is_subset(caps, templ));
+        const gboolean accepted = gst_caps_is_subset(caps, templ);
         gst_caps_unref(templ);
+        if (!accepted)
+            warn_if_too_large(GST_HAND_TRACKER(agg), GST_PAD(pad), caps);
+        gst_query_set_accept_caps_result(query, accepted);
         return TRUE;
     }
     default:
@@ -693,9 +708,11 @@ static GstFlowReturn gst_hand_tracker_aggregate_frames(GstVideoAggregator* vagg,
     if (tracked && e.json) {
         e.json_line = gc::to_json_line(result);
         e.json_line += '\n';
-        if (std::fwrite(e.json_line.data(), 1, e.json_line.size(), e.json) != e.json_line.size()) {
-            GST_ELEMENT_ERROR(self, RESOURCE, WRITE, ("Cannot write to \"%s\".", settings.json_location.c_str()),
-                              GST_ERROR_SYSTEM);
+        try {
+            e.json->write_line(e.json_line);
+        } catch (const gc::OutputError& err) {
+            GST_ELEMENT_ERROR(self, RESOURCE, WRITE, ("Cannot write to \"%s\".", e.json_path.c_str()),
+                              ("%s", err.what()));
             return GST_FLOW_ERROR;
         }
     }
@@ -724,12 +741,14 @@ static gboolean gst_hand_tracker_start(GstAggregator* agg)
             return FALSE;
         }
     }
-    e.close_json();
+    e.json.reset();
+    e.json_path = settings.json_location;
     if (!settings.json_location.empty()) {
-        e.json = std::fopen(settings.json_location.c_str(), "w");
-        if (!e.json) {
-            GST_ELEMENT_ERROR(self, RESOURCE, OPEN_WRITE,
-                              ("Cannot open \"%s\" for writing.", settings.json_location.c_str()), GST_ERROR_SYSTEM);
+        try {
+            e.json = gc::LineOutput::create(settings.json_location);
+        } catch (const gc::OutputError& err) {
+            GST_ELEMENT_ERROR(self, RESOURCE, OPEN_WRITE, ("Cannot open \"%s\" for writing.", e.json_path.c_str()),
+                              ("%s", err.what()));
             return FALSE;
         }
     }
@@ -743,7 +762,14 @@ static gboolean gst_hand_tracker_stop(GstAggregator* agg)
     Engine& e = *self->engine;
     e.tracker.reset();
     e.head.reset();  // joins the head client's thread
-    e.close_json();
+    if (e.json) {
+        try {
+            e.json->close();
+        } catch (const gc::OutputError& err) {
+            GST_ELEMENT_ERROR(self, RESOURCE, CLOSE, ("Cannot close \"%s\".", e.json_path.c_str()), ("%s", err.what()));
+        }
+        e.json.reset();
+    }
     e.attention.reset();
     e.view_size = {};
     e.tracked_inputs = {GST_CLOCK_TIME_NONE, GST_CLOCK_TIME_NONE};

@@ -1,4 +1,4 @@
-// The stereo calibration file (OpenCV FileStorage, YAML or XML), fixed in DESIGN.md:
+// The stereo calibration file (OpenCV FileStorage, YAML or XML; docs/calibration.md):
 // image_width, image_height, M1, D1, M2, D2, R, T (X_right = R X_left + T, millimetres),
 // as cv::stereoCalibrate writes them; head geometry optional.
 #pragma once
@@ -32,8 +32,11 @@ public:
 };
 
 // Reads a calibration file (YAML or XML, told apart by the first line) and validates
-// it fully: every required key present, matrices of the right shape and finite, R a proper
-// rotation, a positive image size, distortion of a length OpenCV accepts. The optional head
+// it fully: a regular file of at most 1 MiB (a FIFO or device is refused without blocking),
+// every required key present, matrices of the right shape and finite, R a proper rotation, a
+// positive image size, distortion of a length OpenCV accepts, and physically plausible values
+// (focal lengths 0.1 to 20 image widths, the principal point inside the image, a baseline of
+// 10 mm to 10 m, distortion coefficients within +-100). The optional head
 // geometry keys are head_left_eye, head_right_eye, head_tilt_centre, head_nodal_offset
 // (3x1, millimetres, head frame); when absent, the geometry is derived from T (eyes at
 // -/+ |T| / 2 on the x axis). Throws CalibrationError naming the file and the key.

@@ -1,7 +1,7 @@
-// Loading, validating and saving the stereo calibration file (format in DESIGN.md and
-// docs/calibration.md).
+// Loading, validating and saving the stereo calibration file (format in docs/calibration.md).
 #include "stereo/calibration_io.hpp"
 
+#include "common/small_file.hpp"
 #include "stereo/calibration_text.hpp"
 
 #include <opencv2/core/persistence.hpp>
@@ -9,8 +9,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <fstream>
-#include <iterator>
 #include <sstream>
 #include <string_view>
 #include <variant>
@@ -25,6 +23,19 @@ constexpr int kMaxMatrixSide = 16;
 constexpr int kMaxImageSide = 1 << 15;
 // Tolerance on R^T R - I: files written with six significant digits stay well inside it.
 constexpr double kRotationTolerance = 1e-4;
+// A calibration file is a few kilobytes; the cap keeps /dev/zero or a huge file of unknown
+// keys from being read into memory.
+constexpr std::size_t kMaxFileBytes = std::size_t{1} << 20;
+// Physical plausibility. Focal lengths relative to the image width: 0.1 is a field of view
+// of 157 degrees, 20 one of 2.9 degrees; no camera that can track a hand lies outside.
+constexpr double kMinFocalPerWidth = 0.1;
+constexpr double kMaxFocalPerWidth = 20.0;
+// Baseline |T|: a stereo pair closer than 10 mm cannot triangulate a hand, one wider than
+// 10 m is a unit error (T is in millimetres).
+constexpr double kMinBaselineMm = 10.0;
+constexpr double kMaxBaselineMm = 10000.0;
+// Distortion coefficients of real lenses stay within a few tens even in the rational model.
+constexpr double kMaxDistortionCoefficient = 100.0;
 
 [[noreturn]] void fail(const std::string& source, std::string_view key, const std::string& what)
 {
@@ -95,13 +106,35 @@ int read_positive_int(const CalibrationEntries& entries, const char* key, const 
     return static_cast<int>(v);
 }
 
-void check_intrinsics(const cv::Matx33d& M, const char* key, const std::string& source)
+std::string number_text(double v)
+{
+    std::ostringstream text;
+    text << v;
+    return text.str();
+}
+
+// `name` = `v` must lie in [lo, hi]; the message gives the value and the range.
+void check_range(double v, double lo, double hi, const char* key, const std::string& name,
+                 const std::string& source, const std::string& why)
+{
+    if (v >= lo && v <= hi) return;
+    fail(source, key, name + " = " + number_text(v) + " is implausible: expected " + number_text(lo) + " to " +
+                          number_text(hi) + " " + why);
+}
+
+void check_intrinsics(const cv::Matx33d& M, const char* key, const std::string& source, cv::Size image)
 {
     for (double v : M.val)
         if (!std::isfinite(v)) fail(source, key, "non-finite value");
-    if (!(M(0, 0) > 0.0) || !(M(1, 1) > 0.0))
-        fail(source, key, "focal lengths must be positive (fx = " + std::to_string(M(0, 0)) +
-                              ", fy = " + std::to_string(M(1, 1)) + ")");
+    const std::string size = " for " + std::to_string(image.width) + "x" + std::to_string(image.height) + " images";
+    const double w = image.width;
+    check_range(M(0, 0), kMinFocalPerWidth * w, kMaxFocalPerWidth * w, key, "focal length fx", source,
+                "px (0.1 to 20 image widths)" + size);
+    check_range(M(1, 1), kMinFocalPerWidth * w, kMaxFocalPerWidth * w, key, "focal length fy", source,
+                "px (0.1 to 20 image widths)" + size);
+    check_range(M(0, 2), 0.0, w, key, "principal point cx", source, "px (inside the image)" + size);
+    check_range(M(1, 2), 0.0, image.height, key, "principal point cy", source, "px (inside the image)" + size);
+    check_range(M(0, 1), -M(0, 0), M(0, 0), key, "skew", source, "px (at most fx in magnitude)");
     if (M(1, 0) != 0.0 || M(2, 0) != 0.0 || M(2, 1) != 0.0 || M(2, 2) != 1.0)
         fail(source, key, "not an intrinsic matrix (expected [fx s cx; 0 fy cy; 0 0 1])");
 }
@@ -114,6 +147,10 @@ void check_distortion(const cv::Mat& D, const char* key, const std::string& sour
         fail(source, key, "wrong shape " + shape_string(D.rows, D.cols) +
                               ", expected 1xN with N = 4, 5, 8, 12 or 14");
     if (D.type() != CV_64F || !all_finite(D)) fail(source, key, "non-finite value");
+    for (int i = 0; i < n; ++i)
+        check_range(D.at<double>(i), -kMaxDistortionCoefficient, kMaxDistortionCoefficient, key,
+                    "coefficient " + std::to_string(i + 1) + " of " + std::to_string(n), source,
+                    "(OpenCV order k1 k2 p1 p2 k3 ...)");
 }
 
 // Distortion as stored (a row or a column), checked, then as the 1xN row OpenCV expects.
@@ -141,7 +178,8 @@ void check_translation(const cv::Vec3d& T, const std::string& source)
 {
     for (double v : T.val)
         if (!std::isfinite(v)) fail(source, "T", "non-finite value");
-    if (cv::norm(T) < 1.0) fail(source, "T", "baseline shorter than 1 mm (T is in millimetres)");
+    check_range(cv::norm(T), kMinBaselineMm, kMaxBaselineMm, "T", "baseline |T|", source,
+                "mm (T is in millimetres)");
 }
 
 constexpr std::array<const char*, 4> kHeadKeys{"head_left_eye", "head_right_eye", "head_tilt_centre",
@@ -163,10 +201,10 @@ StereoCalibration read_fields(const CalibrationEntries& root, const std::string&
     c.image_size.width = read_positive_int(root, "image_width", source);
     c.image_size.height = read_positive_int(root, "image_height", source);
     c.M1 = cv::Matx33d(expect_shape(read_matrix(root, "M1", source), "M1", source, 3, 3));
-    check_intrinsics(c.M1, "M1", source);
+    check_intrinsics(c.M1, "M1", source, c.image_size);
     c.D1 = read_distortion(root, "D1", source);
     c.M2 = cv::Matx33d(expect_shape(read_matrix(root, "M2", source), "M2", source, 3, 3));
-    check_intrinsics(c.M2, "M2", source);
+    check_intrinsics(c.M2, "M2", source, c.image_size);
     c.D2 = read_distortion(root, "D2", source);
     c.R = cv::Matx33d(expect_shape(read_matrix(root, "R", source), "R", source, 3, 3));
     check_rotation(c.R, source);
@@ -207,10 +245,12 @@ StereoCalibration parse_calibration(const std::string& content, const std::strin
 
 StereoCalibration load_calibration(const std::string& path)
 {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail(path, "", "cannot be opened for reading");
-    std::string content{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-    if (in.bad()) fail(path, "", "read error");
+    std::string content;
+    try {
+        content = read_small_file(path, kMaxFileBytes);
+    } catch (const SmallFileError& e) {
+        fail(path, "", e.what());
+    }
     return parse_calibration(content, path);
 }
 
@@ -219,9 +259,9 @@ void validate_calibration(const StereoCalibration& c)
     const std::string& source = c.source;
     if (c.image_size.width <= 0 || c.image_size.width > kMaxImageSide) fail(source, "image_width", "out of range");
     if (c.image_size.height <= 0 || c.image_size.height > kMaxImageSide) fail(source, "image_height", "out of range");
-    check_intrinsics(c.M1, "M1", source);
+    check_intrinsics(c.M1, "M1", source, c.image_size);
     check_distortion(c.D1, "D1", source);
-    check_intrinsics(c.M2, "M2", source);
+    check_intrinsics(c.M2, "M2", source, c.image_size);
     check_distortion(c.D2, "D2", source);
     check_rotation(c.R, source);
     check_translation(c.T, source);

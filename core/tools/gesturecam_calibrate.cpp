@@ -1,8 +1,9 @@
 // gesturecam-calibrate: stereo calibration of the camera pair from chessboard image pairs.
-// Writes the calibration file of DESIGN.md and prints the RMS reprojection error and the
+// Writes the calibration file of docs/calibration.md and prints the RMS reprojection error and the
 // mean epipolar error of the detected corners.
 #include "stereo/calibration.hpp"
 #include "stereo/calibration_io.hpp"
+#include "tools/image_file.hpp"
 
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -209,7 +210,8 @@ int run(const Options& o)
     cv::Size size;
     std::vector<cv::Point2f> cl, cr;
     for (const auto& [lf, rf] : pairs) {
-        const cv::Mat l = cv::imread(lf, cv::IMREAD_GRAYSCALE), r = cv::imread(rf, cv::IMREAD_GRAYSCALE);
+        const cv::Mat l = gc::tools::read_image_file(lf, cv::IMREAD_GRAYSCALE, "image '" + lf + "'");
+        const cv::Mat r = gc::tools::read_image_file(rf, cv::IMREAD_GRAYSCALE, "image '" + rf + "'");
         if (l.empty()) throw std::runtime_error("cannot read image '" + lf + "'");
         if (r.empty()) throw std::runtime_error("cannot read image '" + rf + "'");
         if (l.size() != r.size())

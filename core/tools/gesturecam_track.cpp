@@ -1,8 +1,9 @@
 // gesturecam-track: tracks the pointing hand through a recorded stereo pair (or one view) and
 // writes one JSON line per frame (schema: docs/track-tool.md).
 //
-// Exit status: 0 success (warnings may be printed), 1 an input or calibration problem,
-// 2 a wrong command line.
+// Exit status: 0 success (warnings may be printed), 1 an input, calibration or output problem
+// (an undecodable frame included, unless --skip-bad-frames), 2 a wrong command line.
+#include "common/line_output.hpp"
 #include "tools/cli_args.hpp"
 #include "tools/frame_source.hpp"
 #include "tracker/pointing_tracker.hpp"
@@ -10,7 +11,6 @@
 #include <opencv2/core/utils/logger.hpp>
 
 #include <cstdint>
-#include <fstream>
 #include <iostream>
 #include <limits>
 #include <optional>
@@ -39,10 +39,15 @@ options:
   --out FILE            output file (default: standard output)
   --fps F               frame rate for pts_ns when the left input carries no timestamps
                         (image sequences); without it pts_ns is null there
-  --max-frames N        stop after N frames
+  --max-frames N        stop after the first N frames of the input
+  --skip-bad-frames     skip a frame that cannot be decoded (with a warning) instead of
+                        stopping with an error
   --help                this text
 
-exit status: 0 success, 1 input or calibration error, 2 bad command line
+Frames larger than 8192 pixels a side are refused.
+
+exit status: 0 success, 1 input, calibration or output error (an undecodable frame
+included, unless --skip-bad-frames), 2 bad command line
 )";
 
 struct Options {
@@ -53,6 +58,7 @@ struct Options {
     std::optional<std::string> out;
     std::optional<double> fps;
     std::int64_t max_frames = std::numeric_limits<std::int64_t>::max();
+    bool skip_bad_frames = false;
     bool help = false;
 };
 
@@ -87,6 +93,9 @@ Options parse_options(int argc, char** argv)
             o.out = std::string(args.value());
         } else if (name == "--fps") {
             o.fps = parse_number<double>(name, args.value(), 1e-3, 1e4);
+        } else if (name == "--skip-bad-frames") {
+            args.no_value();
+            o.skip_bad_frames = true;
         } else if (name == "--max-frames") {
             o.max_frames = parse_number<std::int64_t>(name, args.value(), 1,
                                                       std::numeric_limits<std::int64_t>::max());
@@ -108,90 +117,148 @@ std::string size_text(const cv::Size& s)
     return std::to_string(s.width) + "x" + std::to_string(s.height);
 }
 
-// Reads the next frame of each input into `l` / `r`; false when either input has ended (with
-// a warning when the other has not, since the pair is then incomplete).
-bool read_pair(gc::tools::FrameSource& left, std::optional<gc::tools::FrameSource>& right,
-               std::int64_t frame, cv::Mat& l, cv::Mat& r)
+void warn(const std::string& text) { std::cerr << "gesturecam-track: warning: " << text << '\n'; }
+
+// The inputs read pair by pair (mono: the left alone); frames are paired by their index.
+class PairReader {
+public:
+    explicit PairReader(const Options& o) : left_(o.left, "left"), skip_bad_frames_(o.skip_bad_frames)
+    {
+        if (o.right)
+            right_.emplace(*o.right, "right");
+    }
+
+    // The next pair whose frames both decode, into `l` and `r`; false when either input has
+    // ended (with a warning when the other has not, since the pair is then incomplete). An
+    // undecodable frame throws InputError, or is skipped with a warning.
+    bool next(cv::Mat& l, cv::Mat& r)
+    {
+        while (true) {
+            const std::int64_t index = left_.next_index();
+            const gc::tools::FrameStatus left = left_.read(l);
+            if (left == gc::tools::FrameStatus::End)
+                return left_ended(index, r);
+            auto right = gc::tools::FrameStatus::Frame;
+            if (right_ && (right = right_->read(r)) == gc::tools::FrameStatus::End)
+                return right_ended(index);
+            if (left == gc::tools::FrameStatus::Frame && right == gc::tools::FrameStatus::Frame) {
+                if (right_ && l.size() != r.size())
+                    throw gc::tools::InputError("frame " + std::to_string(index) + ": left frames are " +
+                                                size_text(l.size()) + " but right frames are " +
+                                                size_text(r.size()));
+                index_ = index;
+                ++pairs_;
+                return true;
+            }
+            undecodable(left == gc::tools::FrameStatus::Frame ? *right_ : left_, index);
+        }
+    }
+
+    bool stereo() const { return right_.has_value(); }
+    std::int64_t index() const { return index_; }  // of the pair given last
+    std::int64_t next_index() const { return left_.next_index(); }
+    std::int64_t skipped() const { return skipped_; }
+    std::int64_t timestamp_ns() const { return left_.timestamp_ns(); }
+
+private:
+    static constexpr std::int64_t kListedBadFrames = 10;
+
+    bool left_ended(std::int64_t index, cv::Mat& r)
+    {
+        if (pairs_ == 0)
+            throw gc::tools::InputError(left_.describe() + ": no frame could be read");
+        if (right_ && right_->read(r) != gc::tools::FrameStatus::End)
+            warn("left input ended after " + std::to_string(index) +
+                 " frames but the right input has more; stopped at the shorter");
+        return false;
+    }
+
+    bool right_ended(std::int64_t index)
+    {
+        if (pairs_ == 0)
+            throw gc::tools::InputError(right_->describe() + ": no frame could be read");
+        warn("right input ended at frame " + std::to_string(index) + " before the left; stopped at the shorter");
+        return false;
+    }
+
+    void undecodable(const gc::tools::FrameSource& source, std::int64_t index)
+    {
+        const std::string what = source.describe() + ": " + source.frame_text(index) + " cannot be decoded";
+        if (!skip_bad_frames_)
+            throw gc::tools::InputError(what + " (--skip-bad-frames skips such frames)");
+        ++skipped_;
+        if (skipped_ <= kListedBadFrames)
+            warn(what + "; skipped");
+        else if (skipped_ == kListedBadFrames + 1)
+            warn("further undecodable frames are skipped without a warning; the summary counts them");
+    }
+
+    gc::tools::FrameSource left_;
+    std::optional<gc::tools::FrameSource> right_;
+    bool skip_bad_frames_ = false;
+    std::int64_t index_ = -1;
+    std::int64_t pairs_ = 0;
+    std::int64_t skipped_ = 0;
+};
+
+// The JSON line of `result`, numbered with the frame's index in the input (which differs from
+// the tracker's count once frames were skipped).
+std::string json_line(const gc::FrameResult& result, std::int64_t index)
 {
-    if (!left.read(l)) {
-        if (frame == 0)
-            throw gc::tools::InputError(left.describe() + ": no frame could be read");
-        if (right && right->read(r))
-            std::cerr << "gesturecam-track: warning: left input ended after " << frame
-                      << " frames but the right input has more; stopped at the shorter\n";
-        return false;
+    std::string line;
+    if (result.frame == index) {
+        line = gc::to_json_line(result);
+    } else {
+        gc::FrameResult renumbered = result;
+        renumbered.frame = index;
+        line = gc::to_json_line(renumbered);
     }
-    if (right && !right->read(r)) {
-        if (frame == 0)
-            throw gc::tools::InputError(right->describe() + ": no frame could be read");
-        std::cerr << "gesturecam-track: warning: right input ended at frame " << frame
-                  << " before the left; stopped at the shorter\n";
-        return false;
-    }
-    if (right && l.size() != r.size())
-        throw gc::tools::InputError("frame " + std::to_string(frame) + ": left frames are " +
-                                    size_text(l.size()) + " but right frames are " +
-                                    size_text(r.size()));
-    return true;
+    line += '\n';
+    return line;
 }
 
-// Opens the inputs and checks the first frames before opening the output, so that a bad
-// input leaves no empty output file behind; then tracks frame by frame.
+// Reads and checks the first pair before opening the output, so that a bad input leaves no
+// empty output file behind; then tracks pair by pair, one whole line written per frame.
 void run(const Options& o)
 {
-    gc::tools::FrameSource left(o.left, "left");
-    std::optional<gc::tools::FrameSource> right;
-    if (o.right)
-        right.emplace(*o.right, "right");
-
+    PairReader input(o);
     cv::Mat left_frame;
     cv::Mat right_frame;
-    read_pair(left, right, 0, left_frame, right_frame);
+    input.next(left_frame, right_frame);
 
-    // Checked before the output is opened, so a rejected input leaves no output file.
-    if (right && left_frame.size() != right_frame.size())
-        throw std::invalid_argument("the left input is " + std::to_string(left_frame.cols) + "x" +
-                                    std::to_string(left_frame.rows) + " but the right input is " +
-                                    std::to_string(right_frame.cols) + "x" + std::to_string(right_frame.rows));
     std::optional<gc::StereoCalibration> calibration;
     if (o.calibration) {
-        if (right) {
+        if (input.stereo()) {
             calibration = gc::load_calibration(*o.calibration);
             gc::validate_calibration_size(*calibration, left_frame.size());
         } else {
-            std::cerr << "gesturecam-track: warning: --calibration is ignored in mono mode\n";
+            warn("--calibration is ignored in mono mode");
         }
     }
     gc::PointingTracker tracker(o.params, calibration);
+    gc::LineOutput out = o.out ? gc::LineOutput::create(*o.out) : gc::LineOutput::standard_output();
 
-    std::ofstream file;
-    if (o.out) {
-        file.open(*o.out, std::ios::out | std::ios::trunc);
-        if (!file)
-            throw std::runtime_error("cannot open output file '" + *o.out + "'");
-    }
-    std::ostream& out = o.out ? static_cast<std::ostream&>(file) : std::cout;
-
-    std::int64_t frame = 0;
+    std::int64_t frames = 0;
     std::int64_t tracked = 0;
     do {
+        const std::int64_t index = input.index();
         // The container's time when it has one, else the frame index at --fps.
-        std::int64_t pts = left.timestamp_ns();
+        std::int64_t pts = input.timestamp_ns();
         if (pts < 0 && o.fps)
-            pts = static_cast<std::int64_t>(static_cast<double>(frame) * 1e9 / *o.fps + 0.5);
+            pts = static_cast<std::int64_t>(static_cast<double>(index) * 1e9 / *o.fps + 0.5);
 
-        const gc::FrameResult& r = right ? tracker.process_stereo(left_frame, right_frame, pts)
-                                         : tracker.process_mono(left_frame, pts);
+        const gc::FrameResult& r = input.stereo() ? tracker.process_stereo(left_frame, right_frame, pts)
+                                                  : tracker.process_mono(left_frame, pts);
         tracked += r.state == gc::TrackState::Tracking ? 1 : 0;
-        out << gc::to_json_line(r) << '\n';
-        if (!out)
-            throw std::runtime_error("cannot write the output");
-        ++frame;
-    } while (frame < o.max_frames && read_pair(left, right, frame, left_frame, right_frame));
-    out.flush();
-    if (!out)
-        throw std::runtime_error("cannot write the output");
-    std::cerr << "gesturecam-track: " << frame << " frames, " << tracked << " tracking\n";
+        out.write_line(json_line(r, index));
+        ++frames;
+    } while (input.next_index() < o.max_frames && input.next(left_frame, right_frame) &&
+             input.index() < o.max_frames);
+    out.close();
+    std::cerr << "gesturecam-track: " << frames << " frames, " << tracked << " tracking";
+    if (input.skipped() > 0)
+        std::cerr << ", " << input.skipped() << " undecodable skipped";
+    std::cerr << '\n';
 }
 
 }  // namespace

@@ -1,11 +1,13 @@
 // gesturecam-track end to end: a rendered stereo sequence written as PNG files goes in, JSON
 // lines come out; wrong inputs and options give a non-zero status and a message naming them.
+#include "line_watch.hpp"
 #include "sim/scene.hpp"
 #include "stereo/calibration.hpp"
 #include "tools/json_reader.hpp"
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
 
 #include <gtest/gtest.h>
 
@@ -56,10 +58,45 @@ bool write_png(const std::filesystem::path& p, const cv::Mat& image)
     return cv::imwrite(p.string(), image, {cv::IMWRITE_PNG_COMPRESSION, 1});
 }
 
+void write_bytes(const fs::path& p, const std::string& bytes) { std::ofstream(p, std::ios::binary) << bytes; }
+
+// Keeps the first `fraction` of a file, as a copy cut short would.
+void truncate_file(const fs::path& p, double fraction)
+{
+    fs::resize_file(p, static_cast<std::uintmax_t>(static_cast<double>(fs::file_size(p)) * fraction));
+}
+
+std::string big_endian(std::uint32_t v, int bytes)
+{
+    std::string out;
+    for (int i = bytes - 1; i >= 0; --i)
+        out += static_cast<char>((v >> (8 * i)) & 0xFF);
+    return out;
+}
+
+// A PNG that declares a width x height RGB image and then holds nothing that decodes.
+std::string png_claiming(std::uint32_t width, std::uint32_t height)
+{
+    return std::string("\x89PNG\r\n\x1a\n", 8) + big_endian(13, 4) + "IHDR" + big_endian(width, 4) +
+           big_endian(height, 4) + std::string("\x08\x02\x00\x00\x00", 5) + big_endian(0, 4) +
+           big_endian(64, 4) + "IDAT" + std::string(64, '\x5a');
+}
+
+// A JPEG (SOI, a JFIF segment, a baseline frame header) that declares width x height.
+std::string jpeg_claiming(std::uint16_t width, std::uint16_t height)
+{
+    const std::string jfif = std::string("\xFF\xE0", 2) + big_endian(16, 2) + std::string("JFIF\0\x01\x01\0\0\x01\0\x01\0\0", 14);
+    const std::string frame = std::string("\xFF\xC0", 2) + big_endian(17, 2) + "\x08" + big_endian(height, 2) +
+                              big_endian(width, 2) + std::string("\x03\x01\x22\x00\x02\x11\x01\x03\x11\x01", 10);
+    return std::string("\xFF\xD8", 2) + jfif + frame + std::string(64, '\x5a');
+}
+
 class TrackTool : public ::testing::Test {
 protected:
     static constexpr int kFrames = 45;
     static constexpr int kFormatFrames = 20;
+    static constexpr int kCorruptFrames = 12;  // frame 5 of them is a PNG cut short
+    static constexpr int kVideoFrames = 24;
 
     static void SetUpTestSuite()
     {
@@ -70,6 +107,11 @@ protected:
         fs::create_directories(dir_ / "small");
         fs::create_directories(dir_ / "bgra");
         fs::create_directories(dir_ / "grey16");
+        fs::create_directories(dir_ / "corrupt");
+        fs::create_directories(dir_ / "wide");
+        cv::VideoWriter video((dir_ / "cut.avi").string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 30.0,
+                              cv::Size(640, 480));
+        ASSERT_TRUE(video.isOpened());
         gc::sim::SceneConfig config;
         config.preset = gc::sim::Preset::Clean;
         config.motion = gc::sim::Motion::Translate;
@@ -96,12 +138,25 @@ protected:
                 cv::resize(frame, small, cv::Size(320, 240));
                 ASSERT_TRUE(write_png(dir_ / "small" / name, small));
             }
+            if (f < kCorruptFrames) {
+                ASSERT_TRUE(write_png(dir_ / "corrupt" / name, frame));
+            }
+            if (f < kVideoFrames)
+                video.write(frame);
             scene.render(f, gc::Eye::Right, {}, frame);
             ASSERT_TRUE(write_png(dir_ / "right" / name, frame));
             if (f < 5) {
                 ASSERT_TRUE(write_png(dir_ / "short" / name, frame));
             }
         }
+        video.release();
+        truncate_file(dir_ / "cut.avi", 0.5);
+        truncate_file(dir_ / "corrupt" / "005.png", 0.3);
+        // One pixel wider than the limit: a real image that decodes.
+        cv::Mat wide(40, 8193, CV_8UC3, cv::Scalar(90, 120, 160));
+        ASSERT_TRUE(write_png(dir_ / "wide" / "000.png", wide));
+        write_bytes(dir_ / "claims.png", png_claiming(30000, 30000));
+        write_bytes(dir_ / "claims.jpg", jpeg_claiming(30000, 20000));
     }
 
     static void TearDownTestSuite()
@@ -112,8 +167,9 @@ protected:
 
     static std::string pattern(const char* folder) { return (dir_ / folder / "%03d.png").string(); }
 
-    // Runs the tool with `args` (already shell-quoted where needed).
-    static RunResult run(const std::string& args)
+    // Runs the tool with `args` (already shell-quoted where needed); its standard output goes
+    // to `stdout_path` when given, else it is captured.
+    static RunResult run(const std::string& args, const std::string& stdout_path = "")
     {
         const char* exe = std::getenv("GESTURECAM_GESTURECAM_TRACK_EXE");
         if (exe == nullptr) {
@@ -122,14 +178,24 @@ protected:
         }
         const fs::path out = dir_ / "stdout.txt";
         const fs::path err = dir_ / "stderr.txt";
-        const std::string cmd = quoted(exe) + " " + args + " > " + quoted(out.string()) + " 2> " +
+        const std::string cmd = quoted(exe) + " " + args + " > " +
+                                quoted(stdout_path.empty() ? out.string() : stdout_path) + " 2> " +
                                 quoted(err.string());
         const int raw = std::system(cmd.c_str());
         RunResult r;
         r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-        r.out = read_text(out);
+        r.out = stdout_path.empty() ? read_text(out) : "";
         r.err = read_text(err);
         return r;
+    }
+
+    // The "frame" values of JSON lines.
+    static std::vector<int> frame_numbers(const std::string& text)
+    {
+        std::vector<int> frames;
+        for (const std::string& line : lines_of(text))
+            frames.push_back(static_cast<int>(JsonReader::parse(line)["frame"].number()));
+        return frames;
     }
 
     static inline fs::path dir_;
@@ -281,6 +347,104 @@ TEST_F(TrackTool, BadCommandLinesExitWithStatusTwo)
     const RunResult help = run("--help");
     EXPECT_EQ(help.status, 0);
     EXPECT_NE(help.out.find("--left"), std::string::npos);
+}
+
+}  // namespace
+
+namespace {
+
+TEST_F(TrackTool, UndecodableImageIsAnErrorUnlessSkipped)
+{
+    const std::string mono = "--left " + quoted(pattern("corrupt")) + " --particles 50";
+    const RunResult stopped = run(mono);
+    EXPECT_EQ(stopped.status, 1) << stopped.err;
+    EXPECT_NE(stopped.err.find("frame 5 of 12"), std::string::npos) << stopped.err;
+    EXPECT_NE(stopped.err.find("005.png"), std::string::npos) << stopped.err;
+    EXPECT_NE(stopped.err.find("cannot be decoded"), std::string::npos) << stopped.err;
+
+    const RunResult skipped = run(mono + " --skip-bad-frames");
+    ASSERT_EQ(skipped.status, 0) << skipped.err;
+    const std::vector<int> expected{0, 1, 2, 3, 4, 6, 7, 8, 9, 10, 11};
+    EXPECT_EQ(frame_numbers(skipped.out), expected) << "lines keep the input's frame numbers";
+    EXPECT_NE(skipped.err.find("frame 5 of 12"), std::string::npos) << skipped.err;
+    EXPECT_NE(skipped.err.find("1 undecodable skipped"), std::string::npos) << skipped.err;
+
+    // In stereo the pair is skipped, so the views stay paired by index.
+    const RunResult stereo = run("--left " + quoted(pattern("corrupt")) + " --right " + quoted(pattern("right")) +
+                                 " --particles 50 --max-frames 12 --skip-bad-frames");
+    ASSERT_EQ(stereo.status, 0) << stereo.err;
+    EXPECT_EQ(frame_numbers(stereo.out), expected);
+    const RunResult stereo_stopped = run("--left " + quoted(pattern("right")) + " --right " +
+                                         quoted(pattern("corrupt")) + " --particles 50");
+    EXPECT_EQ(stereo_stopped.status, 1);
+    EXPECT_NE(stereo_stopped.err.find("right input"), std::string::npos) << stereo_stopped.err;
+    EXPECT_NE(stereo_stopped.err.find("frame 5 of 12"), std::string::npos) << stereo_stopped.err;
+}
+
+TEST_F(TrackTool, TruncatedVideoIsAnErrorUnlessSkipped)
+{
+    const std::string video = "--left " + quoted((dir_ / "cut.avi").string()) + " --particles 50";
+    const RunResult stopped = run(video);
+    EXPECT_EQ(stopped.status, 1) << stopped.err;
+    EXPECT_NE(stopped.err.find("of " + std::to_string(kVideoFrames) + " cannot be decoded"), std::string::npos)
+        << stopped.err;
+
+    const RunResult skipped = run(video + " --skip-bad-frames");
+    ASSERT_EQ(skipped.status, 0) << skipped.err;
+    const std::size_t lines = lines_of(skipped.out).size();
+    EXPECT_GT(lines, 0u);
+    EXPECT_LT(lines, static_cast<std::size_t>(kVideoFrames));
+    EXPECT_NE(skipped.err.find(std::to_string(kVideoFrames - lines) + " undecodable skipped"), std::string::npos)
+        << skipped.err;
+}
+
+TEST_F(TrackTool, OversizedFramesAreRefusedWithTheirSize)
+{
+    const RunResult wide = run("--left " + quoted(pattern("wide")));
+    EXPECT_EQ(wide.status, 1);
+    EXPECT_NE(wide.err.find("8193x40"), std::string::npos) << wide.err;
+    EXPECT_NE(wide.err.find("8192x8192"), std::string::npos) << wide.err;
+    EXPECT_TRUE(wide.out.empty());
+    // Small files that declare huge images: refused from their headers, by the declared size.
+    const RunResult png = run("--left " + quoted((dir_ / "claims.png").string()));
+    EXPECT_EQ(png.status, 1);
+    EXPECT_NE(png.err.find("30000x30000"), std::string::npos) << png.err;
+    fs::create_directories(dir_ / "claims");
+    fs::copy_file(dir_ / "claims.jpg", dir_ / "claims" / "000.jpg", fs::copy_options::overwrite_existing);
+    const RunResult jpeg = run("--left " + quoted((dir_ / "claims" / "%03d.jpg").string()));
+    EXPECT_EQ(jpeg.status, 1);
+    EXPECT_NE(jpeg.err.find("30000x20000"), std::string::npos) << jpeg.err;
+}
+
+TEST_F(TrackTool, OutputErrorsNameTheOutput)
+{
+    const std::string input = "--left " + quoted(pattern("left")) + " --particles 50 --max-frames 3";
+    const RunResult file = run(input + " --out /dev/full");
+    EXPECT_EQ(file.status, 1);
+    EXPECT_NE(file.err.find("'/dev/full'"), std::string::npos) << file.err;
+    const RunResult piped = run(input, "/dev/full");
+    EXPECT_EQ(piped.status, 1);
+    EXPECT_NE(piped.err.find("standard output"), std::string::npos) << piped.err;
+}
+
+TEST_F(TrackTool, LinesAreWrittenWholeAsTheyAreMade)
+{
+    const char* exe = std::getenv("GESTURECAM_GESTURECAM_TRACK_EXE");
+    ASSERT_NE(exe, nullptr);
+    const fs::path out = dir_ / "watched.jsonl";
+    const gc::test::LineWatch w = gc::test::watch_lines(
+        {exe, "--left", pattern("left"), "--right", pattern("right"),
+         "--particles", "2000", "--out", out.string()},
+        out.string(), 8, std::chrono::seconds(60));
+    ASSERT_TRUE(w.started);
+    EXPECT_GT(w.looks, 0);
+    EXPECT_TRUE(w.partial.empty()) << "a reader following the file saw part of a line, ending '"
+                                   << w.partial.substr(w.partial.size() - std::min<std::size_t>(w.partial.size(), 40))
+                                   << "'";
+    ASSERT_FALSE(w.final_content.empty());
+    EXPECT_EQ(w.final_content.back(), '\n') << "terminated: " << w.terminated;
+    for (const std::string& line : lines_of(w.final_content))
+        EXPECT_NO_THROW((void)JsonReader::parse(line)) << line;
 }
 
 }  // namespace

@@ -171,6 +171,19 @@ inline std::vector<SamplePtr> drain(GstElement* pipeline, const char* appsink_na
     return out;
 }
 
+// Calls `callback` with `data` for every buffer through `pad` of the element `element`.
+inline void probe_buffers(GstElement* pipeline, const char* element, const char* pad, GstPadProbeCallback callback,
+                          gpointer data)
+{
+    GstElement* e = gst_bin_get_by_name(GST_BIN(pipeline), element);
+    ASSERT_NE(e, nullptr) << "no element " << element;
+    GstPad* p = gst_element_get_static_pad(e, pad);
+    ASSERT_NE(p, nullptr) << "no pad " << element << "." << pad;
+    gst_pad_add_probe(p, GST_PAD_PROBE_TYPE_BUFFER, callback, data, nullptr);
+    gst_object_unref(p);
+    gst_object_unref(e);
+}
+
 inline double get_double(const GstStructure* s, const char* field)
 {
     double v = 0.0;

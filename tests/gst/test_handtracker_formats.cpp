@@ -2,9 +2,13 @@
 // padded strides (odd widths), without a videoconvert; mismatched views fail in words.
 #include "gst_fixture.hpp"
 
+#include <glib/gstdio.h>
 #include <gst/video/video.h>
 #include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <unistd.h>
 
+#include <algorithm>
 #include <string>
 
 namespace {
@@ -106,6 +110,33 @@ TEST(Negotiation, MismatchedViewsFailWithBothSizes)
         20 * GST_SECOND);
     EXPECT_FALSE(r.eos);
     EXPECT_NE(r.error.find("sink_left is 640x480 but sink_right is 320x240"), std::string::npos) << r.error;
+}
+
+// A decoder learns the frame size from the stream, so the refusal comes at run time and
+// names the size.
+TEST(Negotiation, FramesOverTheSizeLimitAreRefusedWithTheirSize)
+{
+    gc::test::init_gstreamer();
+    const std::string dir = g_get_tmp_dir();
+    const std::string wide = dir + "/gesturecam-wide-" + std::to_string(::getpid()) + ".png";
+    const std::string largest = dir + "/gesturecam-largest-" + std::to_string(::getpid()) + ".png";
+    ASSERT_TRUE(cv::imwrite(wide, cv::Mat(32, 8193, CV_8UC3, cv::Scalar(40, 90, 160))));
+    ASSERT_TRUE(cv::imwrite(largest, cv::Mat(32, 8192, CV_8UC3, cv::Scalar(40, 90, 160))));
+    const auto decoded = [](const std::string& png) {
+        return run_pipeline("filesrc location=" + png + " ! pngdec ! t.sink_left handtracker name=t particles=50 ! "
+                            "fakesink",
+                            20 * GST_SECOND);
+    };
+    const gc::test::RunResult refused = decoded(wide);
+    EXPECT_FALSE(refused.eos);
+    const bool named = std::any_of(refused.warnings.begin(), refused.warnings.end(), [](const std::string& w) {
+        return w.find("8193x32") != std::string::npos && w.find("8192x8192") != std::string::npos;
+    });
+    EXPECT_TRUE(named) << refused.warnings.size() << " warnings; error: " << refused.error;
+    const gc::test::RunResult accepted = decoded(largest);
+    EXPECT_TRUE(accepted.eos) << accepted.error;
+    g_remove(wide.c_str());
+    g_remove(largest.c_str());
 }
 
 TEST(Negotiation, DownstreamChoosesTheOutputSize)

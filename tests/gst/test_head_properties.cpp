@@ -161,11 +161,7 @@ TEST(HeadProperties, ALiveFrameIsStampedWithTheTimeItsPoseWasReadAt)
         "handscenesrc name=l is-live=true num-buffers=6 ! video/x-raw,width=320,height=240 ! fakesink name=k async=false");
     ASSERT_TRUE(pipeline);
     std::vector<GstClockTime> seen;
-    GstElement* sink = gst_bin_get_by_name(GST_BIN(pipeline.get()), "k");
-    GstPad* pad = gst_element_get_static_pad(sink, "sink");
-    gst_pad_add_probe(pad, GST_PAD_PROBE_TYPE_BUFFER, record_pts, &seen, nullptr);
-    gst_object_unref(pad);
-    gst_object_unref(sink);
+    gc::test::probe_buffers(pipeline.get(), "k", "sink", record_pts, &seen);
     // PLAYING, but the source's first frame only after 300 ms of running time.
     GstElement* source = gst_bin_get_by_name(GST_BIN(pipeline.get()), "l");
     gst_element_set_locked_state(source, TRUE);

@@ -55,11 +55,7 @@ TEST(ScenePipeline, MetaAndMessagesFollowTheGroundTruth)
                                                      "video/x-raw,width=320,height=240 ! fakesink sync=false");
     ASSERT_TRUE(pipeline);
     Captured captured;
-    GstElement* tracker = gst_bin_get_by_name(GST_BIN(pipeline.get()), "t");
-    GstPad* src = gst_element_get_static_pad(tracker, "src");
-    gst_pad_add_probe(src, GST_PAD_PROBE_TYPE_BUFFER, capture_meta, &captured, nullptr);
-    gst_object_unref(src);
-    gst_object_unref(tracker);
+    gc::test::probe_buffers(pipeline.get(), "t", "src", capture_meta, &captured);
 
     const gc::test::RunResult r = gc::test::run_pipeline(pipeline.get(), 60 * GST_SECOND);
     ASSERT_TRUE(r.eos) << r.error;

@@ -11,6 +11,7 @@
 #include <map>
 #include <numbers>
 #include <string>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace {
@@ -245,6 +246,31 @@ TEST_P(CalibrationFile, ImplausibleValuesAreNamed)
     expect_error(scalar, "M1", "not a matrix");
 }
 
+TEST_P(CalibrationFile, PhysicallyAbsurdValuesAreNamed)
+{
+    // Each value is finite and parses, yet no camera has it; each names its key and quantity.
+    const struct {
+        const char* key;
+        const char* data;
+        const char* what;
+    } cases[] = {
+        {"M1", "1e-300 0 319.5 0 554.3 239.5 0 0 1", "fx"},
+        {"M1", "1e11 0 319.5 0 554.3 239.5 0 0 1", "fx"},
+        {"M2", "550 0 320 0 1e11 240 0 0 1", "fy"},
+        {"M1", "554.3 0 -1e9 0 554.3 239.5 0 0 1", "cx"},
+        {"M2", "550 0 320 0 551 4800 0 0 1", "cy"},
+        {"T", "1e11 0 0", "baseline"},
+        {"T", "-5 0 0", "baseline"},
+        {"D1", "1e11 0.01 0 0 0", "coefficient 1"},
+        {"D2", "-0.12 0.02 0 0 -500", "coefficient 5"},
+    };
+    for (const auto& c : cases) {
+        Entries e = valid_entries();
+        e[c.key].data = c.data;
+        expect_error(e, c.key, c.what);
+    }
+}
+
 TEST_P(CalibrationFile, TruncatedFilesFailCleanly)
 {
     const std::string full = is_xml() ? xml(valid_entries()) : yaml(valid_entries());
@@ -313,6 +339,45 @@ TEST(Calibration, MissingFileIsNamed)
     } catch (const gc::CalibrationError& err) {
         EXPECT_NE(std::string(err.what()).find(path), std::string::npos) << err.what();
     }
+}
+
+// Loading must fail at once with a CalibrationError naming `path` and saying `what`.
+void expect_refused(const std::string& path, const std::string& what)
+{
+    try {
+        (void)gc::load_calibration(path);
+        ADD_FAILURE() << "no error for " << path;
+    } catch (const gc::CalibrationError& err) {
+        const std::string msg = err.what();
+        EXPECT_NE(msg.find("'" + path + "'"), std::string::npos) << msg;
+        EXPECT_NE(msg.find(what), std::string::npos) << msg;
+    }
+}
+
+TEST(Calibration, OnlySmallRegularFilesAreRead)
+{
+    const fs::path dir = fs::path(::testing::TempDir()) / ("gc_calib_kinds_" + std::to_string(::getpid()));
+    fs::create_directories(dir / "rig.yml");
+    expect_refused((dir / "rig.yml").string(), "directory");
+    // A FIFO without a writer: opening it for reading would wait for one forever.
+    const fs::path fifo = dir / "fifo.yml";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    expect_refused(fifo.string(), "FIFO");
+    expect_refused("/dev/zero", "character device");
+
+    // A valid calibration followed by unknown keys: read below 1 MiB, refused above it.
+    std::string text = yaml(valid_entries());
+    for (int i = 0; text.size() < 1000000; ++i)
+        text += "unknown_" + std::to_string(i) + ": 1\n";
+    const fs::path below = dir / "below.yml";
+    std::ofstream(below, std::ios::binary) << text;
+    EXPECT_NO_THROW((void)gc::load_calibration(below.string()));
+    for (int i = 0; text.size() < 2000000; ++i)
+        text += "more_" + std::to_string(i) + ": 1\n";
+    const fs::path above = dir / "above.yml";
+    std::ofstream(above, std::ios::binary) << text;
+    expect_refused(above.string(), "limit");
+    fs::remove_all(dir);
 }
 
 TEST(Calibration, EmptyAndBinaryContentFailCleanly)

@@ -119,6 +119,18 @@ TEST_F(Chessboard, AcceptsFileLists)
     EXPECT_NO_THROW((void)gc::load_calibration(out.string()));
 }
 
+TEST_F(Chessboard, OversizedImagesAreRefusedWithTheirSize)
+{
+    const fs::path wide = dir_ / "wide.png";
+    ASSERT_TRUE(cv::imwrite(wide.string(), cv::Mat(40, 8193, CV_8UC1, cv::Scalar(128))));
+    const ToolRun r = run("--left '" + wide.string() + "' --right '" + wide.string() + "' --out '" +
+                              (dir_ / "x.yml").string() + "'",
+                          dir_ / "log.txt");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.out.find("8193x40"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("8192x8192"), std::string::npos) << r.out;
+}
+
 TEST_F(Chessboard, BadArgumentsAreReported)
 {
     const std::string l = (kData / "left01.jpg").string(), r = (kData / "right01.jpg").string();
