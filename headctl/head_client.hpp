@@ -27,6 +27,10 @@ struct HeadClientConfig {
     std::chrono::milliseconds request_timeout{500};
     std::chrono::milliseconds backoff_initial{100};  // doubles after each failed attempt...
     std::chrono::milliseconds backoff_max{5000};     // ...up to this
+    // A connection that lasted this long sets the backoff back to its start; a shorter one
+    // counts as a failed attempt, so a head that accepts and then fails is not called
+    // every backoff_initial.
+    std::chrono::milliseconds backoff_reset_after{2000};
     std::chrono::milliseconds min_command_interval{20};  // rate limit of commands sent
     std::chrono::milliseconds status_interval{20};       // how often the state is sampled
     std::size_t history_capacity = 256;

@@ -2,6 +2,7 @@
 // single command slot, the rate limit, reconnection with backoff, and a caller that never waits.
 #include "test_support.hpp"
 
+#include "headctl/gchp_backend.hpp"
 #include "headctl/head_client.hpp"
 
 #include <netinet/in.h>
@@ -9,6 +10,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <mutex>
 #include <vector>
 
@@ -161,6 +163,25 @@ TEST(HeadClient, ReconnectsWithExponentialBackoff) {
     EXPECT_EQ(seen.back(), ConnectionState::Connected);
 }
 
+// A head that greets and then hangs up, every time: each connection "succeeds", so a client
+// that forgets its backoff on connecting would call again every initial backoff.
+TEST(HeadClient, BackoffGrowsAcrossConnectThenFailCycles) {
+    ScriptedServer flaky("HELLO GCHP/1 axes=pan,tilt,verge_l,verge_r caps=abs,rel,vel\n");
+    HeadClientConfig config;
+    config.uri = flaky.uri();
+    config.backoff_initial = 20ms;
+    config.backoff_max = 160ms;
+    config.status_interval = 10ms;
+    HeadClient client(config);
+    std::this_thread::sleep_for(1000ms);
+    // Waits of 20, 40, 80, then 160 ms, as for a head that refuses outright: not one per 20 ms.
+    const HeadClientStats stats = client.stats();
+    std::printf("a head that connects and fails: %llu attempts in 1 s\n",
+                static_cast<unsigned long long>(stats.connect_attempts));
+    EXPECT_GE(stats.connections, 3u);
+    EXPECT_LE(stats.connect_attempts, 12u);
+}
+
 TEST(HeadClient, AuthenticatesWithItsToken) {
     HeadServerConfig server_config;
     server_config.token = "opensesame";
@@ -203,6 +224,29 @@ TEST(HeadClient, CallerNeverWaitsOnAStuckHead) {
     EXPECT_LT(worst_us, 100000.0);  // scheduling noise only: far below the 2 s connect timeout
     EXPECT_EQ(client.state(), ConnectionState::Connecting);
     EXPECT_FALSE(client.pose_at(client.now()));
+}
+
+// A GCHP line may hold 512 bytes before its '\n' (and a '\r' that does not count); a head
+// sending a longer one is refused, and the message names the limit.
+TEST(GchpBackend, TakesLinesOfUpTo512BytesAndNamesTheLimitBeyond) {
+    const std::string greeting = "HELLO GCHP/1 axes=pan,tilt,verge_l,verge_r caps=abs,rel,vel,";
+    const std::string longest = greeting + std::string(kMaxLineLength - greeting.size(), 'x');
+    ASSERT_EQ(longest.size(), 512u);
+    for (const std::string& ending : {std::string("\n"), std::string("\r\n")}) {
+        ScriptedServer fits(longest + ending);
+        GchpBackend head("127.0.0.1", fits.port(), "");
+        EXPECT_NO_THROW(head.open(net::Clock::now() + 2s));
+    }
+    for (const std::size_t extra : {1u, 400u, 4000u}) {
+        ScriptedServer too_long(longest + std::string(extra, 'y') + "\n");
+        GchpBackend head("127.0.0.1", too_long.port(), "");
+        try {
+            head.open(net::Clock::now() + 2s);
+            ADD_FAILURE() << "a line of " << 512 + extra << " bytes was taken";
+        } catch (const net::NetError& e) {
+            EXPECT_NE(std::string(e.what()).find("longer than 512 bytes"), std::string::npos) << e.what();
+        }
+    }
 }
 
 TEST(HeadClient, RejectsBadConfigurationAndCommands) {
