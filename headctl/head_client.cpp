@@ -141,8 +141,7 @@ void HeadClient::run() {
                 std::lock_guard lock(mutex_);
                 ++stats_.connections;
             }
-            set_state(ConnectionState::Connected, {});
-            serve(*backend);
+            serve(*backend);  // reports Connected once the head has answered a first STATUS
         } catch (const std::exception& e) {
             error = e.what();
         }
@@ -201,10 +200,15 @@ void HeadClient::serve(HeadBackend& backend) {
             const Timestamp before = config_.clock();
             const HeadState s = backend.query_state(deadline());
             const Timestamp after = config_.clock();
-            std::lock_guard lock(mutex_);
-            history_.push(StateSample{before + (after - before) / 2, s});
-            ++stats_.state_samples;
+            {
+                std::lock_guard lock(mutex_);
+                history_.push(StateSample{before + (after - before) / 2, s});
+                ++stats_.state_samples;
+            }
             next_status = SteadyClock::now() + config_.status_interval;
+            // Only a head that answers counts as connected: one that greets and hangs up
+            // makes one outage, not a "connected" and a "disconnected" per attempt.
+            set_state(ConnectionState::Connected, {});
         }
     }
 }

@@ -17,6 +17,7 @@
 
 namespace gc::headctl {
 
+// Connected: the head has answered a STATUS on the current connection.
 enum class ConnectionState { Connecting, Connected, Disconnected, Stopped };
 std::string_view to_string(ConnectionState s);
 

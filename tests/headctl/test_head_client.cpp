@@ -8,6 +8,7 @@
 #include <netinet/in.h>
 #include <sys/socket.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -224,6 +225,28 @@ TEST(HeadClient, CallerNeverWaitsOnAStuckHead) {
     EXPECT_LT(worst_us, 100000.0);  // scheduling noise only: far below the 2 s connect timeout
     EXPECT_EQ(client.state(), ConnectionState::Connecting);
     EXPECT_FALSE(client.pose_at(client.now()));
+}
+
+// A head that greets and hangs up before it reports a state never counts as connected, so
+// whoever reports connection changes (the element's warnings) sees one outage, not one per
+// attempt.
+TEST(HeadClient, AHeadThatHangsUpBeforeItsFirstStateIsNeverReportedConnected) {
+    ScriptedServer flaky("HELLO GCHP/1 axes=pan,tilt,verge_l,verge_r caps=abs,rel,vel\n");
+    std::mutex mutex;
+    std::vector<ConnectionState> seen;
+    HeadClientConfig config;
+    config.uri = flaky.uri();
+    config.backoff_initial = 20ms;
+    config.backoff_max = 40ms;
+    config.on_state_change = [&](ConnectionState s, const std::string&) {
+        std::lock_guard lock(mutex);
+        seen.push_back(s);
+    };
+    HeadClient client(config);
+    ASSERT_TRUE(eventually([&] { return client.stats().connections >= 3; }));
+    std::lock_guard lock(mutex);
+    EXPECT_EQ(std::count(seen.begin(), seen.end(), ConnectionState::Connected), 0);
+    EXPECT_GE(std::count(seen.begin(), seen.end(), ConnectionState::Disconnected), 3);
 }
 
 // A GCHP line may hold 512 bytes before its '\n' (and a '\r' that does not count); a head
