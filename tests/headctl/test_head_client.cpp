@@ -12,6 +12,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <mutex>
 #include <vector>
 
@@ -35,14 +36,36 @@ HeadCommand absolute_pan(double deg) {
     return c;
 }
 
-HeadClientConfig config_for(const RunningServer& server) {
+// A client that samples every 10 ms and retries after 20 ms, doubling up to 160 ms.
+HeadClientConfig config_for(const std::string& uri) {
     HeadClientConfig c;
-    c.uri = server.uri();
+    c.uri = uri;
     c.status_interval = 10ms;
     c.backoff_initial = 20ms;
     c.backoff_max = 160ms;
     return c;
 }
+
+HeadClientConfig config_for(const RunningServer& server) { return config_for(server.uri()); }
+
+// The state changes a client reports, as its callback records them.
+class StateLog {
+public:
+    std::function<void(ConnectionState, const std::string&)> recorder() {
+        return [this](ConnectionState s, const std::string&) {
+            std::lock_guard lock(mutex_);
+            seen_.push_back(s);
+        };
+    }
+    std::vector<ConnectionState> seen() const {
+        std::lock_guard lock(mutex_);
+        return seen_;
+    }
+
+private:
+    mutable std::mutex mutex_;
+    std::vector<ConnectionState> seen_;
+};
 
 TEST(HeadClient, ConnectsSamplesAndInterpolates) {
     RunningServer server;
@@ -129,17 +152,9 @@ TEST(HeadClient, ReconnectsWithExponentialBackoff) {
         RunningServer probe;  // a port that was free a moment ago
         port = probe.port();
     }
-    std::mutex mutex;
-    std::vector<ConnectionState> seen;
-    HeadClientConfig config;
-    config.uri = "tcp://127.0.0.1:" + std::to_string(port);
-    config.backoff_initial = 20ms;
-    config.backoff_max = 160ms;
-    config.status_interval = 10ms;
-    config.on_state_change = [&](ConnectionState s, const std::string&) {
-        std::lock_guard lock(mutex);
-        seen.push_back(s);
-    };
+    StateLog log;
+    HeadClientConfig config = config_for("tcp://127.0.0.1:" + std::to_string(port));
+    config.on_state_change = log.recorder();
     HeadClient client(config);
     std::this_thread::sleep_for(1000ms);
     // Waits of 20, 40, 80, then 160 ms: about 8 attempts in the first second, not 50.
@@ -159,7 +174,7 @@ TEST(HeadClient, ReconnectsWithExponentialBackoff) {
     server = std::make_unique<RunningServer>(server_config);
     ASSERT_TRUE(eventually([&] { return client.state() == ConnectionState::Connected; }, 3000ms));
     EXPECT_EQ(client.stats().connections, 2u);
-    std::lock_guard lock(mutex);
+    const std::vector<ConnectionState> seen = log.seen();
     EXPECT_NE(std::find(seen.begin(), seen.end(), ConnectionState::Disconnected), seen.end());
     EXPECT_EQ(seen.back(), ConnectionState::Connected);
 }
@@ -168,12 +183,7 @@ TEST(HeadClient, ReconnectsWithExponentialBackoff) {
 // that forgets its backoff on connecting would call again every initial backoff.
 TEST(HeadClient, BackoffGrowsAcrossConnectThenFailCycles) {
     ScriptedServer flaky("HELLO GCHP/1 axes=pan,tilt,verge_l,verge_r caps=abs,rel,vel\n");
-    HeadClientConfig config;
-    config.uri = flaky.uri();
-    config.backoff_initial = 20ms;
-    config.backoff_max = 160ms;
-    config.status_interval = 10ms;
-    HeadClient client(config);
+    HeadClient client(config_for(flaky.uri()));
     std::this_thread::sleep_for(1000ms);
     // Waits of 20, 40, 80, then 160 ms, as for a head that refuses outright: not one per 20 ms.
     const HeadClientStats stats = client.stats();
@@ -232,19 +242,12 @@ TEST(HeadClient, CallerNeverWaitsOnAStuckHead) {
 // attempt.
 TEST(HeadClient, AHeadThatHangsUpBeforeItsFirstStateIsNeverReportedConnected) {
     ScriptedServer flaky("HELLO GCHP/1 axes=pan,tilt,verge_l,verge_r caps=abs,rel,vel\n");
-    std::mutex mutex;
-    std::vector<ConnectionState> seen;
-    HeadClientConfig config;
-    config.uri = flaky.uri();
-    config.backoff_initial = 20ms;
-    config.backoff_max = 40ms;
-    config.on_state_change = [&](ConnectionState s, const std::string&) {
-        std::lock_guard lock(mutex);
-        seen.push_back(s);
-    };
+    StateLog log;
+    HeadClientConfig config = config_for(flaky.uri());
+    config.on_state_change = log.recorder();
     HeadClient client(config);
     ASSERT_TRUE(eventually([&] { return client.stats().connections >= 3; }));
-    std::lock_guard lock(mutex);
+    const std::vector<ConnectionState> seen = log.seen();
     EXPECT_EQ(std::count(seen.begin(), seen.end(), ConnectionState::Connected), 0);
     EXPECT_GE(std::count(seen.begin(), seen.end(), ConnectionState::Disconnected), 3);
 }
