@@ -462,7 +462,8 @@ static gboolean gst_hand_scene_src_start(GstBaseSrc* src)
         gc::headctl::parse_head_uri(uri);
         st.head = std::make_unique<gc::headctl::HeadClient>(std::move(config));
     } catch (const std::exception& err) {
-        GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("Invalid head URI \"%s\".", uri.c_str()), ("%s", err.what()));
+        GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("Invalid head URI \"%s\".", gc::headctl::redact_uri(uri).c_str()),
+                          ("%s", err.what()));
         return FALSE;
     }
     return TRUE;

@@ -13,6 +13,7 @@
 #include "common/frame_limits.hpp"
 #include "common/line_output.hpp"
 #include "headctl/head_link.hpp"
+#include "headctl/token.hpp"
 #include "headctl/uri.hpp"
 #include "stereo/calibration.hpp"
 #include "tracker/pointing_tracker.hpp"
@@ -58,6 +59,7 @@ enum {
     PROP_MESSAGE_UPDATES,
     PROP_JSON_LOCATION,
     PROP_HEAD,
+    PROP_HEAD_TOKEN_FILE,
     PROP_STEER,
     PROP_TARGET_DISTANCE,
     PROP_DETECTOR,
@@ -76,6 +78,7 @@ struct Settings {
     GstHandTrackerMessageUpdates message_updates = kDefaultMessageUpdates;
     std::string json_location;
     std::string head;  // the head's URI; empty: no head
+    std::string head_token_file;  // empty: the URI's token, if any
     gc::SteerMode steer = kDefaultSteer;
     double target_distance_mm = kDefaultTargetDistanceMm;
     gc::HandDetector detector = gc::HandDetector::Learned;
@@ -102,6 +105,7 @@ struct Engine {
     std::string json_line;
     std::optional<gc::TrackState> last_posted_state;
     std::unique_ptr<gc::HeadLink> head;
+    std::string head_token;           // read from head-token-file at start
     cv::Size head_view_size;          // the view size of the head link's calibration
     bool warned_stale_views = false;  // the current run of too-old views was reported
     guint64 failed_frames = 0;        // frames the tracker failed on and that were passed on untracked
@@ -490,6 +494,7 @@ static bool ensure_head_link(GstHandTracker* self, const Settings& settings, cv:
     e.head.reset();
     gc::HeadLinkConfig config;
     config.uri = settings.head;
+    config.token = e.head_token;
     config.steer = settings.steer;
     config.target_distance_mm = settings.target_distance_mm;
     config.clock = gc::gst::element_clock(GST_ELEMENT(self));
@@ -502,7 +507,8 @@ static bool ensure_head_link(GstHandTracker* self, const Settings& settings, cv:
         e.head = std::make_unique<gc::HeadLink>(std::move(config),
                                                 e.calibration ? *e.calibration : gc::default_calibration(size));
     } catch (const std::exception& err) {
-        GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("Cannot use the head at \"%s\".", settings.head.c_str()),
+        GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
+                          ("Cannot use the head at \"%s\".", gc::headctl::redact_uri(settings.head).c_str()),
                           ("%s", err.what()));
         return false;
     }
@@ -736,7 +742,19 @@ static gboolean gst_hand_tracker_start(GstAggregator* agg)
         try {
             gc::headctl::parse_head_uri(settings.head);
         } catch (const std::exception& err) {
-            GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("Invalid head URI \"%s\".", settings.head.c_str()),
+            GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
+                              ("Invalid head URI \"%s\".", gc::headctl::redact_uri(settings.head).c_str()),
+                              ("%s", err.what()));
+            return FALSE;
+        }
+    }
+    e.head_token.clear();
+    if (!settings.head_token_file.empty()) {
+        try {
+            e.head_token = gc::headctl::read_token_file(settings.head_token_file);
+        } catch (const std::exception& err) {
+            GST_ELEMENT_ERROR(self, RESOURCE, OPEN_READ,
+                              ("Cannot read the head token file \"%s\".", settings.head_token_file.c_str()),
                               ("%s", err.what()));
             return FALSE;
         }
@@ -833,8 +851,15 @@ static void gst_hand_tracker_set_property(GObject* object, guint prop_id, const 
         break;
     }
     case PROP_HEAD: {
+        // What reading the property gave (the token hidden) leaves the URI as it is.
         const gchar* uri = g_value_get_string(value);
-        s.head = uri ? uri : "";
+        if (std::string(uri ? uri : "") != gc::headctl::redact_uri(s.head))
+            s.head = uri ? uri : "";
+        break;
+    }
+    case PROP_HEAD_TOKEN_FILE: {
+        const gchar* path = g_value_get_string(value);
+        s.head_token_file = path ? path : "";
         break;
     }
     case PROP_STEER:
@@ -896,7 +921,10 @@ static void gst_hand_tracker_get_property(GObject* object, guint prop_id, GValue
         g_value_set_string(value, s.json_location.empty() ? nullptr : s.json_location.c_str());
         break;
     case PROP_HEAD:
-        g_value_set_string(value, s.head.empty() ? nullptr : s.head.c_str());
+        g_value_set_string(value, s.head.empty() ? nullptr : gc::headctl::redact_uri(s.head).c_str());
+        break;
+    case PROP_HEAD_TOKEN_FILE:
+        g_value_set_string(value, s.head_token_file.empty() ? nullptr : s.head_token_file.c_str());
         break;
     case PROP_STEER:
         g_value_set_enum(value, int(s.steer));
@@ -996,7 +1024,13 @@ static void gst_hand_tracker_class_init(GstHandTrackerClass* klass)
                             "protocol, e.g. headsim), visca-udp://host[:port] or visca-tcp://host[:port]; unset: "
                             "static cameras. Its pose at each frame's capture enters the tracker as camera motion; "
                             "`steer` says how it is moved. Connection changes are posted as head-connection "
-                            "messages and a warning",
+                            "messages and a warning. A token reads back as token=***: prefer head-token-file",
+                            nullptr, GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
+    g_object_class_install_property(
+        gobject_class, PROP_HEAD_TOKEN_FILE,
+        g_param_spec_string("head-token-file", "Head token file",
+                            "A file whose first line is the head's token (GCHP), read at start; it replaces a "
+                            "token in the head URI. Unset: the URI's token, if any",
                             nullptr, GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
     g_object_class_install_property(gobject_class, PROP_STEER,
                                     g_param_spec_enum("steer", "Steer", "How the head is moved (needs head)",

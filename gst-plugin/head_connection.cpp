@@ -1,5 +1,7 @@
 #include "head_connection.hpp"
 
+#include "headctl/uri.hpp"
+
 #include <chrono>
 #include <memory>
 #include <mutex>
@@ -46,7 +48,7 @@ std::function<void(headctl::ConnectionState, const std::string&)> connection_rep
                                                                                      const std::string& uri)
 {
     auto reported = std::make_shared<ReportedState>();
-    return [element, uri, reported](headctl::ConnectionState state, const std::string& error) {
+    return [element, uri = headctl::redact_uri(uri), reported](headctl::ConnectionState state, const std::string& error) {
         bool post_change = false, warn = false, back = false;
         {
             std::lock_guard lock(reported->mutex);

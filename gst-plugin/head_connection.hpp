@@ -23,7 +23,8 @@ headctl::Timestamp capture_time(GstElement* element, GstClockTime running_time);
 // A connection-change callback for the head client (called on its thread) that posts on
 // the element's bus: a `head-connection` element message (uri, state, error) for every
 // change between connected and not, a warning when the head is lost or cannot be reached
-// (once per outage, not once per retry) and an info message when it is back.
+// (once per outage, not once per retry) and an info message when it is back. The URI is
+// shown with its token hidden.
 std::function<void(headctl::ConnectionState, const std::string&)> connection_reporter(GstElement* element,
                                                                                      const std::string& uri);
 

@@ -32,6 +32,8 @@ void GchpBackend::open(Deadline deadline) {
         auth.command = Command::Auth;
         auth.token = token_;
         const Reply r = transact(auth, deadline);
+        // A head that has all the clients it serves says so only once the token is known.
+        if (!r.ok && r.error == ErrorCode::Busy) throw net::NetError(name() + " refused the connection: " + r.message);
         if (!r.ok) throw net::NetError(name() + " refused the token: " + r.message);
     }
 }

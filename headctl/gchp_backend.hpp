@@ -26,7 +26,7 @@ private:
     std::uint16_t port_;
     std::string token_;
     net::Fd fd_;
-    net::LineReader reader_{kMaxLineLength + 1};
+    net::LineReader reader_{kMaxLineLength};
     Greeting greeting_;
     std::uint32_t next_id_ = 1;
 };

@@ -26,6 +26,7 @@ HeadClient::HeadClient(HeadClientConfig config)
     positive(config_.request_timeout, "request timeout");
     positive(config_.backoff_initial, "initial backoff");
     positive(config_.status_interval, "status interval");
+    positive(config_.backoff_reset_after, "backoff reset time");
     if (config_.backoff_max < config_.backoff_initial)
         throw std::invalid_argument("head client: maximum backoff must be >= the initial backoff");
     if (config_.min_command_interval < milliseconds{0} || config_.max_extrapolation < milliseconds{0})
@@ -131,16 +132,16 @@ void HeadClient::run() {
         set_state(ConnectionState::Connecting, {});
         std::unique_ptr<HeadBackend> backend;
         std::string error;
+        std::optional<SteadyClock::time_point> connected_at;
         try {
             backend = config_.backend_factory();
             backend->open(SteadyClock::now() + config_.connect_timeout);
-            backoff = config_.backoff_initial;
+            connected_at = SteadyClock::now();
             {
                 std::lock_guard lock(mutex_);
                 ++stats_.connections;
             }
-            set_state(ConnectionState::Connected, {});
-            serve(*backend);
+            serve(*backend);  // reports Connected once the head has answered a first STATUS
         } catch (const std::exception& e) {
             error = e.what();
         }
@@ -150,6 +151,8 @@ void HeadClient::run() {
             if (stopping_) break;
         }
         set_state(ConnectionState::Disconnected, error);
+        if (connected_at && SteadyClock::now() - *connected_at >= config_.backoff_reset_after)
+            backoff = config_.backoff_initial;
         wait_for(backoff);
         backoff = std::min(backoff * 2, config_.backoff_max);
     }
@@ -197,10 +200,15 @@ void HeadClient::serve(HeadBackend& backend) {
             const Timestamp before = config_.clock();
             const HeadState s = backend.query_state(deadline());
             const Timestamp after = config_.clock();
-            std::lock_guard lock(mutex_);
-            history_.push(StateSample{before + (after - before) / 2, s});
-            ++stats_.state_samples;
+            {
+                std::lock_guard lock(mutex_);
+                history_.push(StateSample{before + (after - before) / 2, s});
+                ++stats_.state_samples;
+            }
             next_status = SteadyClock::now() + config_.status_interval;
+            // Only a head that answers counts as connected: one that greets and hangs up
+            // makes one outage, not a "connected" and a "disconnected" per attempt.
+            set_state(ConnectionState::Connected, {});
         }
     }
 }

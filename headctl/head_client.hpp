@@ -17,6 +17,7 @@
 
 namespace gc::headctl {
 
+// Connected: the head has answered a STATUS on the current connection.
 enum class ConnectionState { Connecting, Connected, Disconnected, Stopped };
 std::string_view to_string(ConnectionState s);
 
@@ -27,6 +28,10 @@ struct HeadClientConfig {
     std::chrono::milliseconds request_timeout{500};
     std::chrono::milliseconds backoff_initial{100};  // doubles after each failed attempt...
     std::chrono::milliseconds backoff_max{5000};     // ...up to this
+    // A connection that lasted this long sets the backoff back to its start; a shorter one
+    // counts as a failed attempt, so a head that accepts and then fails is not called
+    // every backoff_initial.
+    std::chrono::milliseconds backoff_reset_after{2000};
     std::chrono::milliseconds min_command_interval{20};  // rate limit of commands sent
     std::chrono::milliseconds status_interval{20};       // how often the state is sampled
     std::size_t history_capacity = 256;

@@ -1,5 +1,7 @@
 #include "headctl/head_server.hpp"
 
+#include "headctl/token.hpp"
+
 #include <arpa/inet.h>
 #include <cerrno>
 #include <cstring>
@@ -12,22 +14,30 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <unordered_map>
 
 namespace gc::headctl {
 
 struct HeadServer::Client {
     net::Fd fd;
-    std::string peer;
+    std::string peer;        // address:port, for the log
+    std::string address;     // what it is counted and throttled under (address_key)
+    std::string unread;      // received, not yet handled (the rest of a chunk behind a waiting AUTH)
     std::string input;       // the unfinished line
     std::string output;      // replies not yet accepted by the socket
     bool discarding = false; // inside an over-long line: drop bytes until its '\n'
     bool authenticated = false;
     int auth_failures = 0;
+    Clock::time_point auth_deadline;   // not authenticated by then: dropped
+    std::optional<Request> held_auth;  // an AUTH waiting for its address's delay to pass
     bool closing = false;    // close once output is flushed
     bool dead = false;       // close now
 };
 
 namespace {
+
+constexpr int kMaxAcceptsPerWakeUp = 16;  // then the served clients get their turn
+constexpr auto kAcceptPause = std::chrono::milliseconds(100);
 
 std::string errno_text(const char* what) { return std::string(what) + ": " + std::strerror(errno); }
 
@@ -38,14 +48,43 @@ bool same_token(std::string_view a, std::string_view b) {
     return diff == 0;
 }
 
+std::string peer_text(const sockaddr_storage& addr) {
+    char text[INET6_ADDRSTRLEN] = "?";
+    std::uint16_t port = 0;
+    if (addr.ss_family == AF_INET) {
+        const auto& a = reinterpret_cast<const sockaddr_in&>(addr);
+        ::inet_ntop(AF_INET, &a.sin_addr, text, sizeof text);
+        port = ntohs(a.sin_port);
+    } else if (addr.ss_family == AF_INET6) {
+        const auto& a = reinterpret_cast<const sockaddr_in6&>(addr);
+        ::inet_ntop(AF_INET6, &a.sin6_addr, text, sizeof text);
+        port = ntohs(a.sin6_port);
+    }
+    return std::string(text) + ":" + std::to_string(port);
+}
+
 }  // namespace
 
+bool is_loopback_address(const std::string& host) {
+    in_addr v4{};
+    in6_addr v6{};
+    if (::inet_pton(AF_INET, host.c_str(), &v4) == 1) return (ntohl(v4.s_addr) >> 24) == 127;
+    if (::inet_pton(AF_INET6, host.c_str(), &v6) == 1)
+        return IN6_IS_ADDR_LOOPBACK(&v6) || (IN6_IS_ADDR_V4MAPPED(&v6) && v6.s6_addr[12] == 127);
+    return false;
+}
+
 HeadServer::HeadServer(const HeadServerConfig& config)
-    : config_(config), model_(config.model), start_(Clock::now()) {
+    : config_(config),
+      model_(config.model),
+      throttle_(config.auth_delay_initial, config.auth_delay_max),
+      start_(Clock::now()) {
     if (config_.max_clients == 0) throw std::invalid_argument("the client cap must be at least 1");
-    if (config_.token.size() > kMaxTokenLength ||
-        std::any_of(config_.token.begin(), config_.token.end(), [](char c) { return c <= 0x20 || c >= 0x7f; }))
-        throw std::invalid_argument("a token is 1 to 64 printable characters without blanks");
+    if (config_.max_unauthenticated == 0 || config_.max_unauthenticated_per_address == 0)
+        throw std::invalid_argument("the caps on unauthenticated connections must be at least 1");
+    if (config_.auth_timeout.count() <= 0 || config_.auth_delay_initial.count() <= 0)
+        throw std::invalid_argument("the authentication timeout and delay must be > 0");
+    if (!config_.token.empty()) check_token(config_.token);
 
     sockaddr_storage addr{};
     socklen_t addr_len = 0;
@@ -62,6 +101,10 @@ HeadServer::HeadServer(const HeadServerConfig& config)
     } else {
         throw std::invalid_argument("listen address '" + config_.host + "' is not a numeric IPv4 or IPv6 address");
     }
+    if (config_.token.empty() && !config_.allow_remote_without_token && !is_loopback_address(config_.host))
+        throw std::invalid_argument("refusing to listen on " + config_.host +
+                                    " without a token: anyone who reaches it could move the head (give a token, "
+                                    "or allow remote clients without one: headsim --allow-remote)");
     listener_ = net::Fd(::socket(addr.ss_family, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0));
     if (!listener_) throw std::runtime_error(errno_text("socket"));
     const int one = 1;
@@ -69,7 +112,8 @@ HeadServer::HeadServer(const HeadServerConfig& config)
     if (::bind(listener_.get(), reinterpret_cast<sockaddr*>(&addr), addr_len) != 0)
         throw std::runtime_error("cannot bind " + config_.host + ":" + std::to_string(config_.port) + ": " +
                                  std::strerror(errno));
-    if (::listen(listener_.get(), 64) != 0) throw std::runtime_error(errno_text("listen"));
+    // A deep queue: a crowd of connections must not keep a client out before it is accepted.
+    if (::listen(listener_.get(), SOMAXCONN) != 0) throw std::runtime_error(errno_text("listen"));
     socklen_t len = sizeof addr;
     ::getsockname(listener_.get(), reinterpret_cast<sockaddr*>(&addr), &len);
     port_ = ntohs(addr.ss_family == AF_INET ? v4->sin_port : v6->sin6_port);
@@ -89,19 +133,45 @@ void HeadServer::request_stop() noexcept {
 
 double HeadServer::now_s() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
 
+void HeadServer::log(const std::string& peer, const std::string& what) const {
+    if (config_.verbose) std::cerr << "headsim: " << peer << " " << what << "\n";
+}
+
+std::size_t HeadServer::count_clients(bool authenticated, const std::string* address) const {
+    return static_cast<std::size_t>(std::count_if(clients_.begin(), clients_.end(), [&](const auto& c) {
+        return !c->dead && c->authenticated == authenticated && (!address || c->address == *address);
+    }));
+}
+
+// Until the next authentication deadline, held AUTH or end of an accept pause; -1: none.
+int HeadServer::poll_timeout_ms(Clock::time_point now) const {
+    auto next = Clock::time_point::max();
+    if (accept_paused_until_ > now) next = accept_paused_until_;
+    for (const auto& c : clients_) {
+        if (c->authenticated) continue;
+        next = std::min(next, c->auth_deadline);
+        if (c->held_auth) next = std::min(next, throttle_.next_check(c->address));
+    }
+    if (next == Clock::time_point::max()) return -1;
+    const auto ms = std::chrono::ceil<std::chrono::milliseconds>(next - now).count();
+    return static_cast<int>(std::clamp<long long>(ms, 0, 60'000));
+}
+
 void HeadServer::run() {
     for (;;) {
         poll_set_.clear();
         poll_set_.push_back({wake_read_.get(), POLLIN, 0});
-        poll_set_.push_back({listener_.get(), POLLIN, 0});
+        poll_set_.push_back({listener_.get(), static_cast<short>(Clock::now() >= accept_paused_until_ ? POLLIN : 0), 0});
         for (const auto& c : clients_) {
             short events = 0;
-            // A client that does not read its replies is not read either (back-pressure).
-            if (!c->closing && c->output.size() < config_.max_pending_output) events |= POLLIN;
+            // A client that does not read its replies is not read either (back-pressure); one
+            // whose AUTH waits is not read until it is checked, only watched for hanging up.
+            if (c->held_auth) events |= POLLRDHUP;
+            else if (!c->closing && c->output.size() < config_.max_pending_output) events |= POLLIN;
             if (!c->output.empty()) events |= POLLOUT;
             poll_set_.push_back({c->fd.get(), events, 0});
         }
-        const int n = ::poll(poll_set_.data(), poll_set_.size(), -1);
+        const int n = ::poll(poll_set_.data(), poll_set_.size(), poll_timeout_ms(Clock::now()));
         if (n < 0) {
             if (errno == EINTR) continue;
             throw std::runtime_error(errno_text("poll"));
@@ -111,12 +181,14 @@ void HeadServer::run() {
             Client& c = *clients_[i];
             const short ev = poll_set_[i + 2].revents;
             if (ev & (POLLERR | POLLNVAL)) c.dead = true;
-            if (!c.dead && (ev & (POLLIN | POLLHUP))) read_from(c);
+            if (c.held_auth && (ev & (POLLRDHUP | POLLHUP))) c.dead = true;
+            if (!c.dead && !c.held_auth && (ev & (POLLIN | POLLHUP))) read_from(c);
             if (!c.dead && (ev & POLLOUT)) flush(c);
         }
+        expire_and_release(Clock::now());
         const auto gone = std::remove_if(clients_.begin(), clients_.end(), [this](const auto& c) {
             const bool remove = c->dead || (c->closing && c->output.empty());
-            if (remove && config_.verbose) std::cerr << "headsim: " << c->peer << " disconnected\n";
+            if (remove) log(c->peer, "disconnected");
             return remove;
         });
         clients_.erase(gone, clients_.end());
@@ -125,47 +197,100 @@ void HeadServer::run() {
     clients_.clear();
 }
 
+// Drops the connections whose time to authenticate is up, and checks the AUTHs whose
+// address's delay has passed (one per address: a failure starts the next delay).
+void HeadServer::expire_and_release(Clock::time_point now) {
+    for (const auto& client : clients_) {
+        Client& c = *client;
+        if (c.dead || c.authenticated) continue;
+        if (now >= c.auth_deadline) {
+            reply(c, make_error_reply(std::nullopt, ErrorCode::AuthRequired,
+                                      "not authenticated within " + std::to_string(config_.auth_timeout.count()) +
+                                          " ms; closing"));
+            flush(c);
+            c.dead = true;
+            log(c.peer, "dropped: not authenticated in time");
+            continue;
+        }
+        if (c.held_auth && now >= throttle_.next_check(c.address)) {
+            const Request auth = *c.held_auth;
+            c.held_auth.reset();
+            authenticate(c, auth);
+            process_input(c);
+            flush(c);
+        }
+    }
+}
+
 void HeadServer::accept_clients() {
-    for (;;) {
+    for (int accepted = 0; accepted < kMaxAcceptsPerWakeUp; ++accepted) {
         sockaddr_storage addr{};
         socklen_t len = sizeof addr;
         net::Fd fd(::accept4(listener_.get(), reinterpret_cast<sockaddr*>(&addr), &len, SOCK_NONBLOCK | SOCK_CLOEXEC));
         if (!fd) {
             if (errno == EINTR || errno == ECONNABORTED) continue;
-            return;  // EAGAIN, or out of descriptors: try again on the next wake-up
+            // Out of descriptors: the pending connection stays queued; polling the listener
+            // again at once would only spin.
+            if (errno == EMFILE || errno == ENFILE || errno == ENOBUFS || errno == ENOMEM) {
+                accept_paused_until_ = Clock::now() + kAcceptPause;
+                log("listener", errno_text("accept"));
+            }
+            return;
         }
-        char text[INET6_ADDRSTRLEN] = "?";
-        std::uint16_t peer_port = 0;
-        if (addr.ss_family == AF_INET) {
-            const auto* a = reinterpret_cast<sockaddr_in*>(&addr);
-            ::inet_ntop(AF_INET, &a->sin_addr, text, sizeof text);
-            peer_port = ntohs(a->sin_port);
-        } else if (addr.ss_family == AF_INET6) {
-            const auto* a = reinterpret_cast<sockaddr_in6*>(&addr);
-            ::inet_ntop(AF_INET6, &a->sin6_addr, text, sizeof text);
-            peer_port = ntohs(a->sin6_port);
-        }
-        const std::string peer = std::string(text) + ":" + std::to_string(peer_port);
-        if (clients_.size() >= config_.max_clients) {
-            const std::string line = format_reply(make_error_reply(
-                                         std::nullopt, ErrorCode::Busy,
-                                         "too many clients (at most " + std::to_string(config_.max_clients) + ")")) +
-                                     "\n";
-            [[maybe_unused]] const ssize_t n = ::send(fd.get(), line.data(), line.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
-            if (config_.verbose) std::cerr << "headsim: refused " << peer << ": too many clients\n";
-            continue;
-        }
-        auto c = std::make_unique<Client>();
-        c->fd = std::move(fd);
-        c->peer = peer;
-        c->authenticated = config_.token.empty();
-        Greeting g;
-        g.caps.auth_required = !config_.token.empty();
-        c->output = format_greeting(g) + "\n";
-        flush(*c);
-        if (config_.verbose) std::cerr << "headsim: " << peer << " connected\n";
-        clients_.push_back(std::move(c));
+        admit(fd, address_key(addr), peer_text(addr));
     }
+}
+
+void HeadServer::admit(net::Fd& fd, const std::string& address, const std::string& peer) {
+    if (count_clients(true) >= config_.max_clients) {
+        refuse(fd, peer, "too many clients (at most " + std::to_string(config_.max_clients) + ")");
+        return;
+    }
+    const bool needs_auth = !config_.token.empty();
+    if (needs_auth) {
+        const std::size_t per_address = config_.max_unauthenticated_per_address;
+        if (count_clients(false, &address) >= per_address) {
+            refuse(fd, peer, "too many unauthenticated connections from " + address + " (at most " +
+                                 std::to_string(per_address) + ")");
+            return;
+        }
+        if (count_clients(false) >= config_.max_unauthenticated) drop_one_unauthenticated();
+    }
+    auto c = std::make_unique<Client>();
+    c->fd = std::move(fd);
+    c->peer = peer;
+    c->address = address;
+    c->authenticated = !needs_auth;
+    c->auth_deadline = Clock::now() + config_.auth_timeout;
+    Greeting g;
+    g.caps.auth_required = needs_auth;
+    c->output = format_greeting(g) + "\n";
+    flush(*c);
+    log(peer, "connected");
+    clients_.push_back(std::move(c));
+}
+
+// Makes room for a newcomer: the oldest connection of the address holding the most
+// unauthenticated ones goes, so a crowd from a few addresses pushes out its own members
+// first and a client arriving alone keeps its few seconds to authenticate.
+void HeadServer::drop_one_unauthenticated() {
+    std::unordered_map<std::string, std::size_t> per_address;
+    for (const auto& c : clients_)
+        if (!c->dead && !c->authenticated) ++per_address[c->address];
+    if (per_address.empty()) return;
+    const auto crowded = std::max_element(per_address.begin(), per_address.end(),
+                                          [](const auto& a, const auto& b) { return a.second < b.second; });
+    const auto victim = std::find_if(clients_.begin(), clients_.end(), [&](const auto& c) {
+        return !c->dead && !c->authenticated && c->address == crowded->first;
+    });
+    log((*victim)->peer, "dropped: too many unauthenticated connections");
+    clients_.erase(victim);
+}
+
+void HeadServer::refuse(net::Fd& fd, const std::string& peer, const std::string& why) {
+    const std::string line = format_reply(make_error_reply(std::nullopt, ErrorCode::Busy, why)) + "\n";
+    [[maybe_unused]] const ssize_t n = ::send(fd.get(), line.data(), line.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
+    log(peer, "refused: " + why);
 }
 
 void HeadServer::read_from(Client& c) {
@@ -176,10 +301,18 @@ void HeadServer::read_from(Client& c) {
         return;
     }
     if (n < 0) return;
-    std::string_view data(chunk, static_cast<std::size_t>(n));
-    while (!data.empty() && !c.closing) {
-        const auto nl = data.find('\n');
-        const std::string_view piece = data.substr(0, nl);
+    c.unread.append(chunk, static_cast<std::size_t>(n));
+    process_input(c);
+    flush(c);
+}
+
+// Handles the complete lines received, up to an AUTH that has to wait (the rest waits with it).
+void HeadServer::process_input(Client& c) {
+    const std::string_view data(c.unread);
+    std::size_t used = 0;
+    while (used < data.size() && !c.closing && !c.held_auth) {
+        const auto nl = data.find('\n', used);
+        const std::string_view piece = data.substr(used, nl == std::string_view::npos ? std::string_view::npos : nl - used);
         if (c.discarding) {
             if (nl != std::string_view::npos) c.discarding = false;
         } else if (c.input.size() + piece.size() > kMaxLineLength + 1) {  // +1: a trailing '\r'
@@ -194,9 +327,9 @@ void HeadServer::read_from(Client& c) {
                 c.input.clear();
             }
         }
-        data = nl == std::string_view::npos ? std::string_view{} : data.substr(nl + 1);
+        used = nl == std::string_view::npos ? data.size() : nl + 1;
     }
-    flush(c);
+    c.unread.erase(0, used);
 }
 
 void HeadServer::handle_line(Client& c, std::string_view line) {
@@ -220,13 +353,10 @@ void HeadServer::handle_line(Client& c, std::string_view line) {
     try {
         switch (req.command) {
             case Command::Auth:
-                if (!config_.token.empty() && !same_token(req.token, config_.token)) {
-                    if (++c.auth_failures >= config_.max_auth_failures) c.closing = true;
-                    reply(c, make_error_reply(req.id, ErrorCode::AuthFailed, "wrong token"));
-                    return;
-                }
-                c.authenticated = true;
-                break;
+                if (config_.token.empty()) break;
+                if (!c.authenticated && Clock::now() < throttle_.next_check(c.address)) c.held_auth = req;
+                else authenticate(c, req);
+                return;
             case Command::Status:
                 r.body = ReplyBody::State;
                 r.state = model_.state(now);
@@ -250,6 +380,28 @@ void HeadServer::handle_line(Client& c, std::string_view line) {
         return;
     }
     reply(c, r);
+}
+
+// Checks an AUTH now; a wrong token makes the next one from that address wait.
+void HeadServer::authenticate(Client& c, const Request& auth) {
+    if (!same_token(auth.token, config_.token)) {
+        throttle_.failed(c.address, Clock::now());
+        if (++c.auth_failures >= config_.max_auth_failures) c.closing = true;
+        reply(c, make_error_reply(auth.id, ErrorCode::AuthFailed, "wrong token"));
+        log(c.peer, "sent a wrong token");
+        return;
+    }
+    throttle_.succeeded(c.address);
+    if (!c.authenticated && count_clients(true) >= config_.max_clients) {
+        reply(c, make_error_reply(auth.id, ErrorCode::Busy,
+                                  "too many clients (at most " + std::to_string(config_.max_clients) + ")"));
+        c.closing = true;
+        return;
+    }
+    c.authenticated = true;
+    Reply ok;
+    ok.id = auth.id;
+    reply(c, ok);
 }
 
 void HeadServer::reply(Client& c, const Reply& r) {

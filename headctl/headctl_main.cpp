@@ -1,6 +1,7 @@
 // headctl: command-line client of a head (GCHP/1 or VISCA).
 #include "headctl/head_backend.hpp"
 #include "headctl/protocol.hpp"
+#include "headctl/token.hpp"
 
 #include <getopt.h>
 #include <signal.h>
@@ -24,7 +25,7 @@ constexpr int kExitRefused = 4;
 std::atomic<bool> g_interrupted{false};
 void on_signal(int) { g_interrupted = true; }
 
-const char* kUsage = R"(usage: headctl [--uri URI] [--token TOKEN] [--timeout MS] COMMAND [ARGS]
+const char* kUsage = R"(usage: headctl [--uri URI] [--token-file FILE | --token TOKEN] [--timeout MS] COMMAND [ARGS]
 Commands:
   status                         print every axis's angle and motion
   limits                         print soft limits, maximum velocity and acceleration
@@ -34,6 +35,8 @@ Commands:
   watch [INTERVAL_MS [COUNT]]    print the status repeatedly (default 200 ms, until Ctrl-C)
 URI: tcp://HOST:PORT (GCHP, default tcp://127.0.0.1:5050), visca-udp://HOST[:52381],
      visca-tcp://HOST[:5678]. Axes: pan, tilt, verge_l, verge_r.
+Token (GCHP): --token-file FILE (its first line), else --token, else the URI's ?token=,
+     else GESTURECAM_HEAD_TOKEN. A token on the command line is blanked there once read.
 Exit status: 0 done, 2 usage error, 3 head unreachable, 4 head refused the command.
 )";
 
@@ -88,6 +91,7 @@ int main(int argc, char** argv) {
     const option options[] = {
         {"uri", required_argument, nullptr, 'u'},
         {"token", required_argument, nullptr, 't'},
+        {"token-file", required_argument, nullptr, 'f'},
         {"timeout", required_argument, nullptr, 'T'},
         {"help", no_argument, nullptr, 'h'},
         {nullptr, 0, nullptr, 0},
@@ -100,8 +104,16 @@ int main(int argc, char** argv) {
         // '+': options end at the command, so "move rel pan=-5" keeps its minus sign.
         while ((opt = getopt_long(argc, argv, "+h", options, nullptr)) != -1) {
             switch (opt) {
-                case 'u': uri_text = optarg; break;
-                case 't': token = optarg; break;
+                case 'u':
+                    uri_text = optarg;
+                    hide_token_in_uri_argument(optarg);
+                    break;
+                case 't':
+                case 'f':
+                    if (!token.empty()) throw UsageError("give one of --token and --token-file");
+                    token = opt == 'f' ? read_token_file(optarg) : optarg;
+                    if (opt == 't') hide_argument(optarg);
+                    break;
                 case 'T':
                     timeout_ms = number("--timeout", optarg);
                     if (timeout_ms <= 0 || timeout_ms > 600'000) throw UsageError("--timeout: must be in (0, 600000] ms");
@@ -113,7 +125,9 @@ int main(int argc, char** argv) {
         if (optind >= argc) throw UsageError("no command given");
         command = argv[optind];
         first_arg = optind + 1;
-        head = make_backend(parse_head_uri(uri_text), token);
+        const HeadUri uri = parse_head_uri(uri_text);
+        if (token.empty() && !uri.param("token")) token = token_from_environment();
+        head = make_backend(uri, token);
     } catch (const std::invalid_argument& e) {
         std::cerr << "headctl: " << e.what() << "\n" << kUsage;
         return kExitUsage;

@@ -1,5 +1,6 @@
 // headsim: the simulated head server (GCHP/1 over TCP).
 #include "headctl/head_server.hpp"
+#include "headctl/token.hpp"
 
 #include <getopt.h>
 #include <signal.h>
@@ -22,7 +23,12 @@ void on_signal(int) {
 const char* kUsage = R"(usage: headsim [options]
 Simulated motorised head serving GCHP/1 (docs/head-protocol.md).
   --listen ADDR:PORT     address to bind (default 127.0.0.1:5050; port 0 = any free port)
-  --token TOKEN          require AUTH TOKEN before any other request
+  --token-file FILE      require AUTH with the token in FILE's first line before any other
+                         request (or set GESTURECAM_HEAD_TOKEN)
+  --token TOKEN          the same, given on the command line (blanked there once read, but
+                         visible to other users until then: prefer the file)
+  --allow-remote         listen beyond loopback without a token (anyone reaching the port
+                         moves the head)
   --max-clients N        connections served at once (default 16)
   --latency-ms MS        delay from a command's arrival to its effect (default 0)
   --angle-error DEG      std. deviation of the reached angle around a target (default 0)
@@ -76,6 +82,7 @@ int main(int argc, char** argv) {
     HeadServerConfig config;
     const option options[] = {
         {"listen", required_argument, nullptr, 'l'},     {"token", required_argument, nullptr, 't'},
+        {"token-file", required_argument, nullptr, 'f'}, {"allow-remote", no_argument, nullptr, 'r'},
         {"max-clients", required_argument, nullptr, 'c'}, {"latency-ms", required_argument, nullptr, 'L'},
         {"angle-error", required_argument, nullptr, 'e'}, {"seed", required_argument, nullptr, 's'},
         {"limits", required_argument, nullptr, 'm'},      {"velocity-timeout", required_argument, nullptr, 'v'},
@@ -88,9 +95,16 @@ int main(int argc, char** argv) {
             switch (opt) {
                 case 'l': parse_listen(optarg, config); break;
                 case 't':
+                    if (!config.token.empty()) throw std::invalid_argument("give one of --token and --token-file");
                     config.token = optarg;
+                    hide_argument(optarg);
                     if (config.token.empty()) throw std::invalid_argument("--token: must not be empty");
                     break;
+                case 'f':
+                    if (!config.token.empty()) throw std::invalid_argument("give one of --token and --token-file");
+                    config.token = read_token_file(optarg);
+                    break;
+                case 'r': config.allow_remote_without_token = true; break;
                 case 'c': {
                     const double n = number("--max-clients", optarg);
                     if (n < 1 || n > 10000 || n != std::floor(n)) throw std::invalid_argument("--max-clients: must be 1..10000");
@@ -113,6 +127,7 @@ int main(int argc, char** argv) {
             }
         }
         if (optind < argc) throw std::invalid_argument(std::string("unexpected argument '") + argv[optind] + "'");
+        if (config.token.empty()) config.token = token_from_environment();
         config.model.validate();
     } catch (const std::exception& e) {
         std::cerr << "headsim: " << e.what() << "\n";
@@ -121,6 +136,9 @@ int main(int argc, char** argv) {
 
     try {
         HeadServer server(config);
+        if (config.token.empty() && !is_loopback_address(config.host))
+            std::cerr << "headsim: warning: listening on " << config.host
+                      << " without a token: anyone who can reach this port can move the head\n";
         g_server = &server;
         struct sigaction sa{};
         sa.sa_handler = on_signal;
@@ -134,6 +152,9 @@ int main(int argc, char** argv) {
         server.run();
         g_server = nullptr;
         std::cerr << "headsim: stopped\n";
+    } catch (const std::invalid_argument& e) {
+        std::cerr << "headsim: " << e.what() << "\n";
+        return 2;
     } catch (const std::exception& e) {
         std::cerr << "headsim: " << e.what() << "\n";
         return 1;

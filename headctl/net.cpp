@@ -147,14 +147,18 @@ std::optional<std::size_t> receive_some(int fd, std::span<std::uint8_t> buffer, 
 }
 
 std::optional<std::string> LineReader::read_line(int fd, Clock::time_point deadline) {
+    auto too_long = [this] {
+        return NetError("the head sent a line longer than " + std::to_string(max_length_) + " bytes");
+    };
     for (;;) {
         if (const auto nl = buffer_.find('\n'); nl != std::string::npos) {
             std::string line = buffer_.substr(0, nl);
             buffer_.erase(0, nl + 1);
             if (!line.empty() && line.back() == '\r') line.pop_back();
+            if (line.size() > max_length_) throw too_long();
             return line;
         }
-        if (buffer_.size() > max_length_ + 1) throw NetError("the head sent a line longer than " + std::to_string(max_length_) + " bytes");
+        if (buffer_.size() > max_length_ + 1) throw too_long();  // +1: a '\r' may still end it
         char chunk[1024];
         const ssize_t n = ::read(fd, chunk, sizeof chunk);  // read(): pipes work too
         if (n > 0) {

@@ -67,12 +67,13 @@ void send_all(int fd, std::span<const std::uint8_t> data, Clock::time_point dead
 // Receives one datagram (or whatever a stream has) before the deadline; nullopt on timeout.
 std::optional<std::size_t> receive_some(int fd, std::span<std::uint8_t> buffer, Clock::time_point deadline);
 
-// Splits a byte stream into lines of at most max_length bytes.
+// Splits a byte stream into lines of at most max_length bytes, not counting the '\n' and a
+// '\r' before it.
 class LineReader {
 public:
     explicit LineReader(std::size_t max_length) : max_length_(max_length) {}
-    // The next line without '\n', or nullopt on timeout. Throws NetError on close, error or
-    // an over-long line.
+    // The next line without its '\r\n' or '\n', or nullopt on timeout. Throws NetError on
+    // close, error or an over-long line.
     std::optional<std::string> read_line(int fd, Clock::time_point deadline);
     void clear() { buffer_.clear(); }
 

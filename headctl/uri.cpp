@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <stdexcept>
@@ -27,9 +28,11 @@ constexpr std::array<std::string_view, 6> kViscaKeys{"address",           "pan_u
 
 [[noreturn]] void fail(const std::string& message) { throw std::invalid_argument("head URI: " + message); }
 
-std::string shown(std::string_view s) {
+// A piece of the URI quoted for an error message: a token in it hidden, at most 64 characters.
+std::string shown(std::string_view text) {
+    const std::string s = redact_uri(text);
     std::string out;
-    for (char c : s.substr(0, 64)) out += (c >= 0x20 && c < 0x7f) ? c : '?';
+    for (char c : std::string_view(s).substr(0, 64)) out += (c >= 0x20 && c < 0x7f) ? c : '?';
     return "'" + out + (s.size() > 64 ? "...'" : "'");
 }
 
@@ -150,6 +153,38 @@ HeadUri parse_head_uri(std::string_view text) {
         uri.params.emplace_back(std::string(key), std::string(value));
     }
     return uri;
+}
+
+std::vector<TextSpan> token_values(std::string_view text) {
+    // Every "token=" wherever it stands (a malformed URI may carry it outside its query),
+    // in any case, up to the next separator.
+    constexpr std::string_view kKey = "token=";
+    auto is_key_at = [&](std::size_t i) {
+        for (std::size_t k = 0; k < kKey.size(); ++k)
+            if (std::tolower(static_cast<unsigned char>(text[i + k])) != kKey[k]) return false;
+        return true;
+    };
+    auto ends_value = [](char c) { return c == '&' || c == '#' || c == '?' || c == '"' || c == '\'' || c <= 0x20; };
+    std::vector<TextSpan> spans;
+    for (std::size_t i = 0; i + kKey.size() <= text.size(); ++i) {
+        if (!is_key_at(i)) continue;
+        TextSpan value{i + kKey.size(), 0};
+        while (value.offset + value.length < text.size() && !ends_value(text[value.offset + value.length]))
+            ++value.length;
+        spans.push_back(value);
+        i = value.offset + value.length - 1;
+    }
+    return spans;
+}
+
+std::string redact_uri(std::string_view text) {
+    std::string out;
+    std::size_t from = 0;
+    for (const TextSpan& value : token_values(text)) {
+        out.append(text.substr(from, value.offset - from)).append("***");
+        from = value.offset + value.length;
+    }
+    return out.append(text.substr(from));
 }
 
 std::string to_string(const HeadUri& uri) {

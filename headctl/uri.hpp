@@ -32,6 +32,20 @@ std::uint16_t default_port(HeadScheme scheme);
 // against those the scheme knows (tcp: token; visca-*: address, pan_units_per_deg,
 // tilt_units_per_deg, pan_max_speed_dps, tilt_max_speed_dps, timeout_ms).
 HeadUri parse_head_uri(std::string_view text);
+// The full URI, token included: for connecting, never for showing.
 std::string to_string(const HeadUri& uri);
+
+// Where the value of each token= parameter lies in a head URI's text, in order; found in
+// any text, even one that does not parse, and whatever the key's case.
+struct TextSpan {
+    std::size_t offset = 0;
+    std::size_t length = 0;
+};
+std::vector<TextSpan> token_values(std::string_view text);
+
+// The text of a head URI as it may be shown (logs, messages, errors, property values): the
+// value of every token= query parameter replaced by "***". Works on any text, even one
+// that does not parse.
+std::string redact_uri(std::string_view text);
 
 }  // namespace gc::headctl

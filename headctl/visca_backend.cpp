@@ -88,8 +88,11 @@ std::optional<visca::Bytes> ViscaBackend::receive_message(Deadline deadline, std
             auto m = visca::unwrap_ip(got);
             if (m.payload_type == visca::kIpReply && m.sequence == expected_sequence) return m.payload;
         } catch (const visca::ViscaError&) {
-            // a malformed datagram is skipped; the deadline bounds the wait
+            // a malformed datagram is skipped like one that is not ours
         }
+        // Datagrams that are not the reply may keep coming faster than they are read: the
+        // deadline is looked at after each, not only when none waits.
+        if (net::Clock::now() >= deadline) return std::nullopt;
     }
 }
 

@@ -2,13 +2,17 @@
 // single command slot, the rate limit, reconnection with backoff, and a caller that never waits.
 #include "test_support.hpp"
 
+#include "headctl/gchp_backend.hpp"
 #include "headctl/head_client.hpp"
 
 #include <netinet/in.h>
 #include <sys/socket.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
+#include <functional>
 #include <mutex>
 #include <vector>
 
@@ -32,14 +36,36 @@ HeadCommand absolute_pan(double deg) {
     return c;
 }
 
-HeadClientConfig config_for(const RunningServer& server) {
+// A client that samples every 10 ms and retries after 20 ms, doubling up to 160 ms.
+HeadClientConfig config_for(const std::string& uri) {
     HeadClientConfig c;
-    c.uri = server.uri();
+    c.uri = uri;
     c.status_interval = 10ms;
     c.backoff_initial = 20ms;
     c.backoff_max = 160ms;
     return c;
 }
+
+HeadClientConfig config_for(const RunningServer& server) { return config_for(server.uri()); }
+
+// The state changes a client reports, as its callback records them.
+class StateLog {
+public:
+    std::function<void(ConnectionState, const std::string&)> recorder() {
+        return [this](ConnectionState s, const std::string&) {
+            std::lock_guard lock(mutex_);
+            seen_.push_back(s);
+        };
+    }
+    std::vector<ConnectionState> seen() const {
+        std::lock_guard lock(mutex_);
+        return seen_;
+    }
+
+private:
+    mutable std::mutex mutex_;
+    std::vector<ConnectionState> seen_;
+};
 
 TEST(HeadClient, ConnectsSamplesAndInterpolates) {
     RunningServer server;
@@ -126,17 +152,9 @@ TEST(HeadClient, ReconnectsWithExponentialBackoff) {
         RunningServer probe;  // a port that was free a moment ago
         port = probe.port();
     }
-    std::mutex mutex;
-    std::vector<ConnectionState> seen;
-    HeadClientConfig config;
-    config.uri = "tcp://127.0.0.1:" + std::to_string(port);
-    config.backoff_initial = 20ms;
-    config.backoff_max = 160ms;
-    config.status_interval = 10ms;
-    config.on_state_change = [&](ConnectionState s, const std::string&) {
-        std::lock_guard lock(mutex);
-        seen.push_back(s);
-    };
+    StateLog log;
+    HeadClientConfig config = config_for("tcp://127.0.0.1:" + std::to_string(port));
+    config.on_state_change = log.recorder();
     HeadClient client(config);
     std::this_thread::sleep_for(1000ms);
     // Waits of 20, 40, 80, then 160 ms: about 8 attempts in the first second, not 50.
@@ -156,9 +174,23 @@ TEST(HeadClient, ReconnectsWithExponentialBackoff) {
     server = std::make_unique<RunningServer>(server_config);
     ASSERT_TRUE(eventually([&] { return client.state() == ConnectionState::Connected; }, 3000ms));
     EXPECT_EQ(client.stats().connections, 2u);
-    std::lock_guard lock(mutex);
+    const std::vector<ConnectionState> seen = log.seen();
     EXPECT_NE(std::find(seen.begin(), seen.end(), ConnectionState::Disconnected), seen.end());
     EXPECT_EQ(seen.back(), ConnectionState::Connected);
+}
+
+// A head that greets and then hangs up, every time: each connection "succeeds", so a client
+// that forgets its backoff on connecting would call again every initial backoff.
+TEST(HeadClient, BackoffGrowsAcrossConnectThenFailCycles) {
+    ScriptedServer flaky("HELLO GCHP/1 axes=pan,tilt,verge_l,verge_r caps=abs,rel,vel\n");
+    HeadClient client(config_for(flaky.uri()));
+    std::this_thread::sleep_for(1000ms);
+    // Waits of 20, 40, 80, then 160 ms, as for a head that refuses outright: not one per 20 ms.
+    const HeadClientStats stats = client.stats();
+    std::printf("a head that connects and fails: %llu attempts in 1 s\n",
+                static_cast<unsigned long long>(stats.connect_attempts));
+    EXPECT_GE(stats.connections, 3u);
+    EXPECT_LE(stats.connect_attempts, 12u);
 }
 
 TEST(HeadClient, AuthenticatesWithItsToken) {
@@ -203,6 +235,44 @@ TEST(HeadClient, CallerNeverWaitsOnAStuckHead) {
     EXPECT_LT(worst_us, 100000.0);  // scheduling noise only: far below the 2 s connect timeout
     EXPECT_EQ(client.state(), ConnectionState::Connecting);
     EXPECT_FALSE(client.pose_at(client.now()));
+}
+
+// A head that greets and hangs up before it reports a state never counts as connected, so
+// whoever reports connection changes (the element's warnings) sees one outage, not one per
+// attempt.
+TEST(HeadClient, AHeadThatHangsUpBeforeItsFirstStateIsNeverReportedConnected) {
+    ScriptedServer flaky("HELLO GCHP/1 axes=pan,tilt,verge_l,verge_r caps=abs,rel,vel\n");
+    StateLog log;
+    HeadClientConfig config = config_for(flaky.uri());
+    config.on_state_change = log.recorder();
+    HeadClient client(config);
+    ASSERT_TRUE(eventually([&] { return client.stats().connections >= 3; }));
+    const std::vector<ConnectionState> seen = log.seen();
+    EXPECT_EQ(std::count(seen.begin(), seen.end(), ConnectionState::Connected), 0);
+    EXPECT_GE(std::count(seen.begin(), seen.end(), ConnectionState::Disconnected), 3);
+}
+
+// A GCHP line may hold 512 bytes before its '\n' (and a '\r' that does not count); a head
+// sending a longer one is refused, and the message names the limit.
+TEST(GchpBackend, TakesLinesOfUpTo512BytesAndNamesTheLimitBeyond) {
+    const std::string greeting = "HELLO GCHP/1 axes=pan,tilt,verge_l,verge_r caps=abs,rel,vel,";
+    const std::string longest = greeting + std::string(kMaxLineLength - greeting.size(), 'x');
+    ASSERT_EQ(longest.size(), 512u);
+    for (const std::string& ending : {std::string("\n"), std::string("\r\n")}) {
+        ScriptedServer fits(longest + ending);
+        GchpBackend head("127.0.0.1", fits.port(), "");
+        EXPECT_NO_THROW(head.open(net::Clock::now() + 2s));
+    }
+    for (const std::size_t extra : {1u, 400u, 4000u}) {
+        ScriptedServer too_long(longest + std::string(extra, 'y') + "\n");
+        GchpBackend head("127.0.0.1", too_long.port(), "");
+        try {
+            head.open(net::Clock::now() + 2s);
+            ADD_FAILURE() << "a line of " << 512 + extra << " bytes was taken";
+        } catch (const net::NetError& e) {
+            EXPECT_NE(std::string(e.what()).find("longer than 512 bytes"), std::string::npos) << e.what();
+        }
+    }
 }
 
 TEST(HeadClient, RejectsBadConfigurationAndCommands) {

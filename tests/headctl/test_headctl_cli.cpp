@@ -2,14 +2,11 @@
 #include "test_support.hpp"
 
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <vector>
-
-extern char** environ;
 
 namespace gc::headctl::testing {
 namespace {
@@ -19,43 +16,31 @@ struct Outcome {
     std::string out;
 };
 
-// Runs the headctl executable with args; bounded to 10 s.
-Outcome run_headctl(std::vector<std::string> args) {
+// Runs the headctl executable with args (and `env` added to the environment); bounded to 10 s.
+Outcome run_headctl(std::vector<std::string> args, const std::vector<std::string>& env = {}) {
     const char* root = std::getenv("GESTURECAM_BUILD_ROOT");
     const std::string path = std::string(root ? root : ".") + "/headctl/headctl";
-    args.insert(args.begin(), path);
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    int pipe_fds[2];
-    if (::pipe(pipe_fds) != 0) return {};
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_adddup2(&actions, pipe_fds[1], STDOUT_FILENO);
-    posix_spawn_file_actions_addclose(&actions, pipe_fds[0]);
-    pid_t pid = 0;
-    const int rc = ::posix_spawn(&pid, path.c_str(), &actions, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    ::close(pipe_fds[1]);
     Outcome o;
-    if (rc != 0) {
-        ::close(pipe_fds[0]);
+    Spawned child;
+    try {
+        child = spawn(path, std::move(args), env, false);
+    } catch (const std::exception&) {
         ADD_FAILURE() << "cannot run " << path;
         return o;
     }
-    net::set_nonblocking(pipe_fds[0]);
+    const pid_t pid = child.pid;
     const auto end = net::Clock::now() + 10s;
     std::array<std::uint8_t, 4096> buf{};
     try {
         while (net::Clock::now() < end) {
-            const auto n = net::receive_some(pipe_fds[0], buf, end);
+            const auto n = net::receive_some(child.out.get(), buf, end);
             if (!n) break;
             o.out.append(reinterpret_cast<const char*>(buf.data()), *n);
         }
     } catch (const net::NetError&) {
         // end of output
     }
-    ::close(pipe_fds[0]);
+    child.out.reset();
     int status = 0;
     pid_t done = 0;
     for (int i = 0; i < 500 && done == 0; ++i) {
@@ -103,6 +88,25 @@ TEST(HeadctlCli, ExitCodesTellUsageConnectionAndRefusal) {
     EXPECT_EQ(run_headctl({}).exit_code, 2);
     server.stop();
     EXPECT_EQ(run_headctl({"--uri", server.uri(), "--timeout", "500", "status"}).exit_code, 3);
+}
+
+TEST(HeadctlCli, TakesTheTokenFromAFileOrTheEnvironment) {
+    HeadServerConfig config;
+    config.token = "k3y-in-a-file";
+    RunningServer server(config);
+    char name[] = "/tmp/gesturecam-token-XXXXXX";
+    const int fd = ::mkstemp(name);
+    ASSERT_GE(fd, 0);
+    const std::string text = "k3y-in-a-file\n";
+    ASSERT_EQ(::write(fd, text.data(), text.size()), static_cast<ssize_t>(text.size()));
+    ::close(fd);
+    EXPECT_EQ(run_headctl({"--uri", server.uri(), "--token-file", name, "status"}).exit_code, 0);
+    EXPECT_EQ(run_headctl({"--uri", server.uri(), "status"}, {"GESTURECAM_HEAD_TOKEN=k3y-in-a-file"}).exit_code, 0);
+    EXPECT_EQ(run_headctl({"--uri", server.uri(), "status"}, {"GESTURECAM_HEAD_TOKEN=wrong"}).exit_code, 3);
+    // One source at a time; a file that cannot be read is a usage error.
+    EXPECT_EQ(run_headctl({"--uri", server.uri(), "--token-file", name, "--token", "x", "status"}).exit_code, 2);
+    EXPECT_EQ(run_headctl({"--uri", server.uri(), "--token-file", "/nonexistent/token", "status"}).exit_code, 2);
+    ::unlink(name);
 }
 
 }  // namespace

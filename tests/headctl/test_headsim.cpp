@@ -6,14 +6,14 @@
 
 #include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <fstream>
+#include <iterator>
 #include <vector>
-
-extern char** environ;
 
 namespace gc::headctl::testing {
 namespace {
@@ -167,62 +167,145 @@ std::string headsim_path() {
     return std::string(root ? root : ".") + "/headctl/headsim";
 }
 
-TEST(HeadSim, ExecutableShutsDownCleanlyOnSigterm) {
-    int out[2];
-    ASSERT_EQ(::pipe(out), 0);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_adddup2(&actions, out[1], STDOUT_FILENO);
-    posix_spawn_file_actions_addclose(&actions, out[0]);
-    const std::string path = headsim_path();
-    std::vector<std::string> args{path, "--listen", "127.0.0.1:0", "--token", "t0k"};
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    pid_t pid = 0;
-    ASSERT_EQ(::posix_spawn(&pid, path.c_str(), &actions, nullptr, argv.data(), environ), 0) << path;
-    posix_spawn_file_actions_destroy(&actions);
-    ::close(out[1]);
-    // Whatever fails below, the child does not outlive the test.
-    struct Reaper {
-        pid_t pid;
-        bool reaped = false;
-        ~Reaper() {
-            if (reaped) return;
-            ::kill(pid, SIGKILL);
-            ::waitpid(pid, nullptr, 0);
+// The headsim executable run with `args` (and `env` added to the environment); its stdout
+// and stderr are read through pipes. Whatever fails, the child does not outlive the test.
+class HeadsimProcess {
+public:
+    explicit HeadsimProcess(std::vector<std::string> args, const std::vector<std::string>& env = {}) {
+        Spawned s = spawn(headsim_path(), std::move(args), env, true);
+        pid_ = s.pid;
+        out_ = std::move(s.out);
+        err_ = std::move(s.err);
+    }
+    ~HeadsimProcess() {
+        if (reaped_) return;
+        ::kill(pid_, SIGKILL);
+        ::waitpid(pid_, nullptr, 0);
+    }
+    pid_t pid() const { return pid_; }
+    // The next line on stdout, or nullopt after 5 s or at its end.
+    std::optional<std::string> out_line() {
+        try {
+            return out_reader_.read_line(out_.get(), net::Clock::now() + 5s);
+        } catch (const net::NetError&) {
+            return std::nullopt;
         }
-    } reaper{pid};
+    }
+    // The port of the "listening ADDR:PORT" line, or 0 when it does not come.
+    std::uint16_t listening_port() {
+        const auto first = out_line();
+        EXPECT_TRUE(first && starts_with(*first, "listening 127.0.0.1:")) << first.value_or("<nothing>");
+        if (!first || first->rfind(':') == std::string::npos) return 0;
+        return static_cast<std::uint16_t>(std::stoi(first->substr(first->rfind(':') + 1)));
+    }
+    // The exit status, or -1 when it runs on after `limit`.
+    int exit_status(std::chrono::milliseconds limit = 5000ms) {
+        int status = 0;
+        pid_t done = 0;
+        for (auto end = net::Clock::now() + limit; done == 0 && net::Clock::now() < end;) {
+            done = ::waitpid(pid_, &status, WNOHANG);
+            if (done == 0) std::this_thread::sleep_for(10ms);
+        }
+        if (done == 0) return -1;
+        reaped_ = true;
+        return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    }
+    // What it wrote on stderr so far.
+    std::string err_text() {
+        std::string text;
+        char chunk[1024];
+        for (ssize_t n; (n = ::read(err_.get(), chunk, sizeof chunk)) > 0;) text.append(chunk, static_cast<std::size_t>(n));
+        return text;
+    }
+    // Its command line as other users of the machine read it.
+    std::string command_line() const {
+        std::ifstream in("/proc/" + std::to_string(pid_) + "/cmdline");
+        std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        std::replace(text.begin(), text.end(), '\0', ' ');
+        return text;
+    }
 
-    net::set_nonblocking(out[0]);  // the deadline below must hold
-    net::LineReader reader(256);
-    const auto first = reader.read_line(out[0], net::Clock::now() + 5s);
-    ::close(out[0]);
-    ASSERT_TRUE(first.has_value());
-    ASSERT_TRUE(starts_with(*first, "listening 127.0.0.1:")) << *first;
-    const int port = std::stoi(first->substr(first->rfind(':') + 1));
+private:
+    pid_t pid_ = 0;
+    bool reaped_ = false;
+    net::Fd out_, err_;
+    net::LineReader out_reader_{256};
+};
+
+TEST(HeadSim, ExecutableShutsDownCleanlyOnSigterm) {
+    HeadsimProcess headsim({"--listen", "127.0.0.1:0", "--token", "t0k"});
+    const std::uint16_t port = headsim.listening_port();
+    ASSERT_NE(port, 0);
     {
-        LineClient c(static_cast<std::uint16_t>(port));
+        LineClient c(port);
         EXPECT_TRUE(starts_with(c.line().value_or(""), "HELLO GCHP/1"));
         EXPECT_EQ(c.request("AUTH t0k"), "OK");
         EXPECT_EQ(c.request("MOVE VEL pan=10"), "OK");
-        ASSERT_EQ(::kill(pid, SIGTERM), 0);
+        ASSERT_EQ(::kill(headsim.pid(), SIGTERM), 0);
         EXPECT_THROW(
             {
                 for (int i = 0; i < 100; ++i) c.line(100ms);
             },
             net::NetError);  // the server closes its connections as it exits
     }
-    int status = 0;
-    pid_t done = 0;
-    for (int i = 0; i < 500 && done == 0; ++i) {
-        done = ::waitpid(pid, &status, WNOHANG);
-        if (done == 0) std::this_thread::sleep_for(10ms);
+    const int status = headsim.exit_status();
+    ASSERT_NE(status, -1) << "headsim did not exit within 5 s of SIGTERM";
+    EXPECT_EQ(status, 0);
+}
+
+// A file holding `text`, removed at the end of the scope.
+struct TempFile {
+    explicit TempFile(const std::string& text) {
+        char name[] = "/tmp/gesturecam-token-XXXXXX";
+        const int fd = ::mkstemp(name);
+        path = name;
+        [[maybe_unused]] const ssize_t n = ::write(fd, text.data(), text.size());
+        ::close(fd);
     }
-    ASSERT_NE(done, 0) << "headsim did not exit within 5 s of SIGTERM";
-    reaper.reaped = true;
-    ASSERT_TRUE(WIFEXITED(status));
-    EXPECT_EQ(WEXITSTATUS(status), 0);
+    ~TempFile() { ::unlink(path.c_str()); }
+    std::string path;
+};
+
+// The token holder is served, a wrong token is not.
+void expect_token(std::uint16_t port, const std::string& token) {
+    LineClient c(port);
+    EXPECT_TRUE(starts_with(c.line().value_or(""), "HELLO GCHP/1 axes=pan,tilt,verge_l,verge_r caps=abs,rel,vel,auth"));
+    EXPECT_TRUE(starts_with(c.request("#1 STATUS"), "ERR #1 401 "));
+    EXPECT_EQ(c.request("#2 AUTH " + token), "OK #2");
+    LineClient other(port);
+    other.line();
+    EXPECT_TRUE(starts_with(other.request("#3 AUTH not-" + token), "ERR #3 403 "));
+}
+
+TEST(HeadSim, TakesItsTokenFromAFileOrTheEnvironmentOffItsCommandLine) {
+    const TempFile file("from-a-file\n");
+    HeadsimProcess from_file({"--listen", "127.0.0.1:0", "--token-file", file.path});
+    expect_token(from_file.listening_port(), "from-a-file");
+    EXPECT_EQ(from_file.command_line().find("from-a-file"), std::string::npos);
+
+    HeadsimProcess from_env({"--listen", "127.0.0.1:0"}, {"GESTURECAM_HEAD_TOKEN=from-the-env"});
+    expect_token(from_env.listening_port(), "from-the-env");
+
+    // A token given on the command line still works, and is blanked there once read.
+    HeadsimProcess inline_token({"--listen", "127.0.0.1:0", "--token", "typed-in-clear"});
+    expect_token(inline_token.listening_port(), "typed-in-clear");
+    EXPECT_EQ(inline_token.command_line().find("typed-in-clear"), std::string::npos) << inline_token.command_line();
+}
+
+TEST(HeadSim, AnUnusableTokenFileStopsTheStartAndIsNamed) {
+    const TempFile empty("\n");
+    for (const std::string& path : {std::string("/nonexistent/token"), empty.path}) {
+        HeadsimProcess headsim({"--listen", "127.0.0.1:0", "--token-file", path});
+        EXPECT_EQ(headsim.exit_status(), 2) << path;
+        EXPECT_NE(headsim.err_text().find(path), std::string::npos) << path;
+    }
+}
+
+TEST(HeadSim, ExecutableRefusesToListenBeyondLoopbackWithoutAToken) {
+    HeadsimProcess headsim({"--listen", "0.0.0.0:0"});
+    const int status = headsim.exit_status();
+    EXPECT_EQ(status, 2) << "headsim listens on every interface without a token";
+    EXPECT_NE(headsim.err_text().find("--allow-remote"), std::string::npos);
 }
 
 }  // namespace

@@ -1,4 +1,6 @@
-// Loopback helpers of the head tests: an in-process simulated head and a raw line client.
+// Loopback helpers of the head tests: an in-process simulated head, a raw line client that
+// may speak from any 127.x.y.z address, a server that only says one scripted thing, and
+// the start of a built program with its output on pipes.
 #pragma once
 
 #include "headctl/head_server.hpp"
@@ -6,11 +8,22 @@
 
 #include <gtest/gtest.h>
 
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <spawn.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <atomic>
 #include <chrono>
 #include <memory>
 #include <optional>
 #include <string>
 #include <thread>
+#include <vector>
+
+extern char** environ;
 
 namespace gc::headctl::testing {
 
@@ -38,11 +51,73 @@ private:
     std::thread thread_;
 };
 
+// A program started with its output on pipes, whose read ends are non-blocking.
+struct Spawned {
+    pid_t pid = 0;
+    net::Fd out;
+    net::Fd err;  // only when asked for
+};
+
+// Starts `path` with `args` and `env` added to the environment; throws when it cannot.
+inline Spawned spawn(const std::string& path, std::vector<std::string> args, const std::vector<std::string>& env,
+                     bool capture_err) {
+    args.insert(args.begin(), path);
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    std::vector<std::string> env_text(env);
+    for (char** e = environ; *e; ++e) env_text.emplace_back(*e);
+    std::vector<char*> envp;
+    for (auto& e : env_text) envp.push_back(e.data());
+    envp.push_back(nullptr);
+    int out[2], err[2] = {-1, -1};
+    if (::pipe(out) != 0 || (capture_err && ::pipe(err) != 0)) throw std::runtime_error("pipe");
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_adddup2(&actions, out[1], STDOUT_FILENO);
+    posix_spawn_file_actions_addclose(&actions, out[0]);
+    if (capture_err) {
+        posix_spawn_file_actions_adddup2(&actions, err[1], STDERR_FILENO);
+        posix_spawn_file_actions_addclose(&actions, err[0]);
+    }
+    Spawned s;
+    const int rc = ::posix_spawn(&s.pid, path.c_str(), &actions, nullptr, argv.data(), envp.data());
+    posix_spawn_file_actions_destroy(&actions);
+    ::close(out[1]);
+    s.out = net::Fd(out[0]);
+    if (capture_err) {
+        ::close(err[1]);
+        s.err = net::Fd(err[0]);
+    }
+    if (rc != 0) throw std::runtime_error("cannot run " + path);
+    net::set_nonblocking(s.out.get());
+    if (s.err) net::set_nonblocking(s.err.get());
+    return s;
+}
+
+// A TCP connection to 127.0.0.1:port from the loopback address `source` (any 127.x.y.z
+// works on Linux), so one test can play clients on many addresses.
+inline net::Fd connect_from(const char* source, std::uint16_t port) {
+    net::Fd fd(::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0));
+    sockaddr_in from{};
+    from.sin_family = AF_INET;
+    if (!fd || ::inet_pton(AF_INET, source, &from.sin_addr) != 1 ||
+        ::bind(fd.get(), reinterpret_cast<sockaddr*>(&from), sizeof from) != 0)
+        throw net::NetError(std::string("cannot bind a client socket to ") + source);
+    sockaddr_in to{};
+    to.sin_family = AF_INET;
+    to.sin_port = htons(port);
+    to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    if (::connect(fd.get(), reinterpret_cast<sockaddr*>(&to), sizeof to) != 0)
+        throw net::NetError(std::string("cannot connect from ") + source);
+    net::set_nonblocking(fd.get());
+    return fd;
+}
+
 // A blocking line client with deadlines, to talk to the server byte by byte.
 class LineClient {
 public:
-    explicit LineClient(std::uint16_t port)
-        : fd_(net::connect_to("127.0.0.1", port, net::Transport::Tcp, net::Clock::now() + 2s)) {}
+    explicit LineClient(std::uint16_t port, const char* source = "127.0.0.1") : fd_(connect_from(source, port)) {}
     void send(std::string_view text) {
         net::send_all(fd_.get(), std::span<const char>(text.data(), text.size()), net::Clock::now() + 2s);
     }
@@ -60,6 +135,50 @@ public:
 private:
     net::Fd fd_;
     net::LineReader reader_{8192};
+};
+
+// Accepts connections on 127.0.0.1, sends each one `script` and closes it: a head that
+// connects and then fails, or one that sends a line of a chosen length.
+class ScriptedServer {
+public:
+    explicit ScriptedServer(std::string script) : script_(std::move(script)) {
+        listener_ = net::Fd(::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0));
+        sockaddr_in a{};
+        a.sin_family = AF_INET;
+        a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+        socklen_t len = sizeof a;
+        if (::bind(listener_.get(), reinterpret_cast<sockaddr*>(&a), sizeof a) != 0 || ::listen(listener_.get(), 16) != 0 ||
+            ::getsockname(listener_.get(), reinterpret_cast<sockaddr*>(&a), &len) != 0)
+            throw net::NetError("cannot listen on 127.0.0.1");
+        port_ = ntohs(a.sin_port);
+        thread_ = std::thread([this] { run(); });
+    }
+    ~ScriptedServer() {
+        stop_ = true;
+        thread_.join();
+    }
+    std::string uri() const { return "tcp://127.0.0.1:" + std::to_string(port_); }
+    std::uint16_t port() const { return port_; }
+    int accepted() const { return accepted_; }
+
+private:
+    void run() {
+        while (!stop_) {
+            pollfd p{listener_.get(), POLLIN, 0};
+            if (::poll(&p, 1, 20) <= 0) continue;
+            net::Fd c(::accept4(listener_.get(), nullptr, nullptr, SOCK_CLOEXEC));
+            if (!c) continue;
+            ++accepted_;
+            [[maybe_unused]] const ssize_t n = ::send(c.get(), script_.data(), script_.size(), MSG_NOSIGNAL);
+        }
+    }
+
+    std::string script_;
+    net::Fd listener_;
+    std::uint16_t port_ = 0;
+    std::atomic<bool> stop_{false};
+    std::atomic<int> accepted_{0};
+    std::thread thread_;
 };
 
 }  // namespace gc::headctl::testing

@@ -58,6 +58,30 @@ TEST(HeadUri, ErrorsNameTheOffendingPart) {
     }
 }
 
+// A token in a URI that does not parse stays out of the error, wherever it stands.
+TEST(HeadUri, ErrorsDoNotShowAToken) {
+    for (const char* bad : {"tcp://head:12&token=S3CRET", "127.0.0.1:5050?token=S3CRET", "tcp://?token=S3CRET",
+                            "tcp://head:1?Token=S3CRET&dance=1", "tcp://head:1?token=S3CRET?x", "ftp://token=S3CRET"}) {
+        try {
+            parse_head_uri(bad);
+            ADD_FAILURE() << bad << " parsed";
+        } catch (const std::invalid_argument& e) {
+            EXPECT_EQ(std::string(e.what()).find("S3CRET"), std::string::npos) << e.what();
+        }
+    }
+}
+
+TEST(HeadUri, RedactionHidesEveryTokenValueAndNothingElse) {
+    EXPECT_EQ(redact_uri("tcp://127.0.0.1:5050?token=abc"), "tcp://127.0.0.1:5050?token=***");
+    EXPECT_EQ(redact_uri("tcp://h:1?token=a&token=b"), "tcp://h:1?token=***&token=***");
+    EXPECT_EQ(redact_uri("tcp://h:1?TOKEN=abc#x"), "tcp://h:1?TOKEN=***#x");
+    EXPECT_EQ(redact_uri("visca-udp://cam?address=2&pan_units_per_deg=-14.4"),
+              "visca-udp://cam?address=2&pan_units_per_deg=-14.4");
+    EXPECT_EQ(redact_uri("tcp://h:1"), "tcp://h:1");
+    EXPECT_EQ(redact_uri(""), "");
+    EXPECT_EQ(redact_uri("tcp://h:1?token="), "tcp://h:1?token=***");
+}
+
 TEST(HeadUri, ViscaSettingsComeFromTheQuery) {
     const auto s = ViscaSettings::from_uri(
         parse_head_uri("visca-udp://h?address=3&tilt_units_per_deg=10&pan_max_speed_dps=50&timeout_ms=250"));

@@ -1,0 +1,52 @@
+#include "headctl/token.hpp"
+
+#include "headctl/protocol.hpp"
+#include "headctl/uri.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <stdexcept>
+
+namespace gc::headctl {
+
+void check_token(std::string_view token) {
+    const bool printable = std::all_of(token.begin(), token.end(), [](char c) { return c > 0x20 && c < 0x7f; });
+    if (token.empty() || token.size() > kMaxTokenLength || !printable)
+        throw std::invalid_argument("a token is 1 to 64 printable characters without blanks");
+}
+
+std::string read_token_file(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw std::invalid_argument("cannot read the token file " + path + ": " + std::strerror(errno));
+    std::string token;
+    std::getline(in, token);
+    if (!token.empty() && token.back() == '\r') token.pop_back();
+    try {
+        check_token(token);
+    } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument("the token file " + path + " does not hold a token: " + e.what());
+    }
+    return token;
+}
+
+std::string token_from_environment() {
+    const char* value = std::getenv(kTokenEnvironmentVariable);
+    if (!value || !*value) return {};
+    try {
+        check_token(value);
+    } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(std::string(kTokenEnvironmentVariable) + ": " + e.what());
+    }
+    return value;
+}
+
+void hide_argument(char* argument) { std::fill(argument, argument + std::strlen(argument), '*'); }
+
+void hide_token_in_uri_argument(char* uri) {
+    for (const TextSpan& value : token_values(uri)) std::fill_n(uri + value.offset, value.length, '*');
+}
+
+}  // namespace gc::headctl
