@@ -1,4 +1,4 @@
-// The stereo calibration file (OpenCV FileStorage, YAML or XML), fixed in DESIGN.md:
+// The stereo calibration file (OpenCV FileStorage, YAML or XML; docs/calibration.md):
 // image_width, image_height, M1, D1, M2, D2, R, T (X_right = R X_left + T, millimetres),
 // as cv::stereoCalibrate writes them; head geometry optional.
 #pragma once
