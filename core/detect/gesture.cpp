@@ -7,9 +7,8 @@ namespace gc {
 
 namespace {
 
-// How much farther from the wrist than its PIP an extended finger's tip lies. On the
-// reference hands the ratio is 1.2-1.5 for extended fingers and 0.3-0.9 for curled ones,
-// in both views; the threshold sits between them.
+// How much farther from the wrist than its PIP an extended finger's tip lies: between the
+// ratios of extended and curled fingers on the reference hands (docs/adr/0020).
 constexpr float kExtendedReach = 1.1f;
 
 }  // namespace

@@ -20,9 +20,9 @@ constexpr int kHistBins = 64;  // per normalised channel, for the moving pixels'
 // a fraction of it: wide enough for the shading across a hand (sd 6-13 % of the mean).
 constexpr double kModeBandFraction = 0.3;
 // The largest brightness standard deviation, as a fraction of the mean, that shading
-// across one hand gives: hands measure 0.06-0.13; the moving pixels of heavy seeds 1 and
-// 15, which include a static box of the hand's chromaticity but not its brightness, 0.26
-// and 0.31. Clean scenes (hand edges mixed with a dark background) stay below 0.25.
+// across one hand gives: moving pixels spread wider include a static object of the hand's
+// chromaticity but not its brightness (docs/adr/0003). Hand edges mixed with a dark
+// background stay below it.
 constexpr double kMaxShadingSpread = 0.25;
 // Static-scene skin cleared within 2 px of a blob, as a fraction of its area, beyond which
 // the blob was cut off that skin (a hand in front of a plain background has none).

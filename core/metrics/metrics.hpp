@@ -1,4 +1,4 @@
-// Accuracy measures: the thesis's SNR over a sequence (ALGORITHM.md 9), mask IoU, centre error.
+// Accuracy measures: the thesis's SNR over a sequence (docs/sim.md), mask IoU, centre error.
 #pragma once
 
 #include <opencv2/core.hpp>

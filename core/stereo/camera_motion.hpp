@@ -1,4 +1,4 @@
-// C_t of the dynamics (ALGORITHM.md 5): how a change of head pose moves a static point in
+// C_t of the dynamics (docs/tracker.md): how a change of head pose moves a static point in
 // one eye's image. The eyes rotate about centres off their optical centres (the neck, the
 // tilt axis, the vergence axis), so the image motion depends a little on the point's depth.
 #pragma once

@@ -1,5 +1,6 @@
-// The 3D step (ALGORITHM.md 8): correspondence along epipolar lines inside the tracked hand
-// regions, robust plane fit, triangulation, and the pointing ray.
+// The 3D step (docs/stereo.md): the fingertip and palm triangulated from both views' key
+// points, or else correspondence along epipolar lines inside the tracked hand regions and a
+// robust plane fit; then the pointing ray.
 #pragma once
 
 #include "common/types.hpp"

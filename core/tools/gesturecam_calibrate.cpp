@@ -1,6 +1,6 @@
 // gesturecam-calibrate: stereo calibration of the camera pair from chessboard image pairs.
-// Writes the calibration file of docs/calibration.md and prints the RMS reprojection error and the
-// mean epipolar error of the detected corners.
+// Writes the calibration file of docs/calibration.md and prints the RMS reprojection error
+// and the mean epipolar error of the detected corners.
 #include "stereo/calibration.hpp"
 #include "stereo/calibration_io.hpp"
 #include "tools/image_file.hpp"

@@ -293,9 +293,8 @@ constexpr int kUnitDecimals = 4;    // unit direction vectors
 
 double degrees(double radians) { return radians * 180.0 / std::numbers::pi; }
 
-// An eye with no contour has no estimate yet (acquiring before its first detection): null.
-// Otherwise the estimate is written whatever the state: a lost eye keeps its last contour
-// and its confidence says how much it is worth.
+// An eye with no contour has no estimate (acquiring before its first detection, or lost):
+// null. Otherwise the estimate is written.
 void write_eye(JsonLine& j, const EyeEstimate& e)
 {
     if (e.contour.empty()) {

@@ -53,7 +53,7 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
-// One JSON line (no trailing newline) in the schema fixed in DESIGN.md.
+// One JSON line (no trailing newline) in the schema of docs/interfaces.md.
 std::string to_json_line(const FrameResult& result);
 
 }  // namespace gc

@@ -168,7 +168,7 @@ int main(int argc, char** argv)
                         "from %.3f s, at rest from %.3f s, final error %+.3f deg\n",
                         step.name, a.name, a.target, f.overshoot, f.rise_s, defaults.dead_band_deg, f.settle_s,
                         f.rest_s, f.final_error);
-            // The bound on overshoot; settled inside the dead band, and still for the
+            // At most 2 deg of overshoot; settled inside the dead band, and still for the
             // last second (no oscillation at rest).
             if (!(f.overshoot <= 2.0) || !(f.settle_s <= kDuration - 1.0) || !(f.rest_s <= kDuration - 1.0) ||
                 !(std::abs(f.final_error) <= defaults.dead_band_deg)) {

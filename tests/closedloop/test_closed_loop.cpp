@@ -226,7 +226,8 @@ TEST_F(ClosedLoop, WithoutSteeringTheSameHandLeavesTheMiddle)
 
 TEST_F(ClosedLoop, MovingTheHeadCostsNoTracking)
 {
-    // The bound: tracked with the head following >= tracked with static cameras - 1 %.
+    // Following the hand must not cost tracking: tracked with the head following >= tracked
+    // with static cameras - 1 %.
     const LoopFigures& moving = fixate();
     const LoopFigures& still = at_rest();
     ASSERT_GT(moving.scored, 100);
@@ -256,8 +257,8 @@ TEST_F(ClosedLoop, FixateHoldsStillOnAStillHand)
     ASSERT_GE(f.first_tracked, 0) << "the hand was never acquired";
     ASSERT_GT(f.rest_frames, 45);
     EXPECT_GE(f.tracked_fraction(), 0.95);
-    // Measured 0 (the axes stop in the dead band and stay); 0.2 deg leaves room for a slow
-    // settling at the start of the window on a loaded machine, not for any oscillation.
+    // The axes stop in the dead band and stay; 0.2 deg leaves room for a slow settling at
+    // the start of the window on a loaded machine, not for any oscillation.
     EXPECT_LE(f.rest_pan_travel(), 0.2);
     EXPECT_LE(f.rest_tilt_travel(), 0.2);
 }
@@ -387,18 +388,18 @@ TEST_F(ClosedLoop, PointModeLooksWhereTheHandPoints)
 {
     // Still hands in the clean scene, the first three seeds: in clutter the tracker's 3D
     // pointing may be far off or lock onto skin-coloured background once the head has turned
-    // the hand to the edge of the view (docs/closed-loop.md). The error includes the
-    // tracker's 3D pointing error: over 12 clean seeds the eyes end 0.2 to 1.9 deg off.
+    // the hand to the edge of the view (docs/closed-loop.md, where the measured errors are).
+    // The error includes the tracker's own 3D pointing error.
     for (const std::uint64_t seed : {1, 2, 3}) {
         const PointFigures f = run_point(sim::Preset::Clean, seed, 6.0);
         ASSERT_GE(f.first_tracked, 0) << "the hand was never acquired, seed " << seed;
         ASSERT_GE(f.settled_s, 0.0) << "the head never moved and came to rest, seed " << seed;
-        // The bound, against the truth (measured 0.3, 0.6 and 1.9 deg).
+        // The bound on where the eyes look, against the truth.
         EXPECT_LE(f.eye_error_deg[0], 3.0) << seed;
         EXPECT_LE(f.eye_error_deg[1], 3.0) << seed;
         // The link's own share: the head rests on an aim within the 2 deg re-aim threshold of
         // the tracker's mean target over the last half second (a single frame's target
-        // jitters: the last one was once 3.3 deg off while the eyes were 0.9 deg off the truth).
+        // jitters too much to compare with).
         EXPECT_LE(f.eye_to_estimate_deg, 2.5) << seed;
     }
 }

@@ -175,7 +175,7 @@ TEST(HandTemplate, OutlineIsFaithfulAndDenserOnTheFinger) {
 }
 
 // Curled fingers make knuckle bumps a few pixels apart along the palm: the template's
-// spline must follow them, not cut across them (with points ~10 px apart it cut 2.7 px off).
+// spline must follow them, not cut across them as sparser points would (docs/adr/0006).
 TEST(HandTemplate, OutlineFollowsTheKnuckles) {
     const cv::Point2d palm(160, 120);
     cv::Mat1b mask = drawn_hand({320, 240}, palm, 30.0, 1.2);

@@ -196,7 +196,7 @@ TEST(SkinModel, GenericModelTakesSkinTonesButNotNoisyGrey) {
         for (double g : {0.31, 0.32})
             for (int sum : {200, 400, 600}) EXPECT_TRUE(m.is_skin(pixel_from_rg(r, g, sum))) << r << " " << g;
     // Grey with sensor noise (sd 2.5 levels per channel): a dark sleeve, a wall. Dark, the
-    // noise moves its chromaticity most; a model with grey inside 3 sigma takes 47-70 %.
+    // noise moves its chromaticity most; a model with grey inside 3 sigma takes much of it.
     for (int sum : {120, 150, 300, 600}) {
         cv::Mat3b grey(100, 100, cv::Vec3b::all(cv::saturate_cast<uchar>(sum / 3)));
         cv::Mat3s noise(grey.size());

@@ -207,10 +207,9 @@ TEST(HandTracker, FollowsARenderedSceneAcrossSeeds) {
 
 // The frames as an MJPEG camera or a lossy recording delivers them: JPEG at quality 80,
 // chroma 4:2:0. Quantised chroma leaves holes of non-skin in the hand's membership map and
-// shifts its edges (docs/tracker.md, "Compressed input"); the tracker must still acquire
-// the hand, keep it, and outline it well once settled. The SNR bound is a dB below the
-// uncompressed one: on seed 2 the first template is twisted at the finger and held for 7
-// frames before a clean capture replaces it (SNR 12.95 here; 14.33 on seed 1).
+// shifts its edges (docs/adr/0019); the tracker must still acquire the hand, keep it, and
+// outline it well once settled. The SNR bound is a dB below the uncompressed one: on seed 2
+// the first template is twisted at the finger until a clean capture replaces it.
 TEST(HandTracker, FollowsAJpegCompressedScene) {
     for (std::uint64_t seed : {1u, 2u}) {
         const CleanRun run = track_clean(seed, {.jpeg_quality = 80});
@@ -222,11 +221,9 @@ TEST(HandTracker, FollowsAJpegCompressedScene) {
     }
 }
 
-// A sensor four times noisier than the scenes' own (8 grey levels per channel): at the
-// detector's fixed threshold 10 % of a still frame would count as moving and acquisition
-// would take the wrong thing; the threshold follows the noise instead.
-// Measured: SNR 14.19 and 12.13 dB (seed 2 holds a bad first capture for a few frames),
-// all 90 frames from frame 30 on the hand; before, 1.2 dB over clean 1-10.
+// A sensor four times noisier than the scenes' own (8 grey levels per channel): at a fixed
+// difference threshold much of a still frame would count as moving and acquisition would
+// take the wrong thing; the threshold follows the noise instead (docs/adr/0019).
 TEST(HandTracker, FollowsTheHandThroughHeavySensorNoise) {
     for (std::uint64_t seed : {1u, 2u}) {
         const CleanRun run = track_clean(seed, {.noise_sigma = 8.0});
@@ -262,19 +259,13 @@ FaceCrossing track_face_pass(std::uint64_t seed, gc::Eye eye) {
 // face_pass: the hand passes in front of a face of its own skin colour, where its edges
 // vanish. On every frame where the hand covers the face (>= 5 % of the hand over the face's
 // skin) the tracker must stay on the hand (tracking, IoU >= 0.5): the thesis lost it there.
-// Seeds 10, 17, 30 and 73 are crossings where the hand's own rim is cut by the creases of
-// the curled fingers, or where a capture during the crossing merged the face; each failed
-// before the finger-aware rim and the weak-edge capture rule (docs/tracker.md). Seeds 22
-// and 96 hold the hand over the face for 60-140 frames with few skin edges left; they
-// failed before the grey-level steps measured the normals from skin into skin. On seed 75
-// the first template merged two boxes of the hand's colour and stayed on them as the hand
-// moved off; it failed before a watch that saw the contour hold still covered the frame.
-// On seed 44 the hand was re-captured merged with a strip of a table of its colour, whose
-// far end passed for the finger; it failed (16 crossing frames off the hand, the finger
-// reversed) before the fingertip was looked for where the shape moved. On seeds 278 and
-// 327 the contour, shrinking, was drawn onto the face's eyes and brows as the hand passed
-// over them (12 and 3 crossing frames off); they failed before the learnt scene was
-// blanked from the grey map.
+// Each seed holds a way to lose it (docs/adr/): on 10, 17, 30 and 73 the hand's own rim is
+// cut by the creases of the curled fingers, or a capture during the crossing could merge
+// the face (0005, 0007); 22 and 96 hold the hand over the face with few skin edges left
+// (0008); on 75 the first template merges two boxes of the hand's colour that stay behind
+// as the hand moves off (0009); on 44 a re-capture merges a strip of a table whose far end
+// could pass for the finger (0010); on 278 and 327 a shrinking contour could settle on the
+// face's eyes and brows (0018).
 TEST(HandTracker, KeepsTheHandWhileItCrossesAFace) {
     for (std::uint64_t seed : {1u, 2u, 3u, 4u, 5u, 6u, 12u, 21u, 23u, 25u, 10u, 17u, 30u, 73u,
                                22u, 96u, 75u, 44u, 278u, 327u}) {
@@ -285,11 +276,10 @@ TEST(HandTracker, KeepsTheHandWhileItCrossesAFace) {
     }
 }
 
-// Right-eye face_pass 47: the first templates merged the hand with a box of its colour, and
-// the contour slid onto the box (its inner rim 0.6 the learnt scene) while the hand moved
-// on by it. Until two watches had seen the contour hold still, the captures of the hand
-// apart from it were refused: the hand was found again at frame 91, 13 frames into the
-// crossing of the face. A contour lying on the learnt scene now gives way to them at once.
+// Right-eye face_pass 47: the first templates merge the hand with a box of its colour, and
+// the contour slides onto the box while the hand moves on by it. A contour lying on the
+// learnt scene must give way at once to a capture of the hand apart from it, before the
+// hand reaches the face (docs/adr/0016).
 TEST(HandTracker, LeavesTheLearntSceneForACaptureOfTheHand) {
     const FaceCrossing c = track_face_pass(47, gc::Eye::Right);
     EXPECT_GT(c.frames, 10);

@@ -1,4 +1,4 @@
-// Not a test: the per-seed figures behind docs/tracker.md's tables. For each scene seed it
+// Not a test: the per-seed figures behind the tables of docs/adr/. For each scene seed it
 // tracks one eye (the left unless told) of a 200-frame `mixed` sequence and prints the
 // sequence's SNR and, for face_pass, the frames where the hand covers at least 5 % of the
 // face's skin and, of those, the ones where the tracker was lost or off the hand
