@@ -1049,7 +1049,7 @@ static void gst_hand_tracker_class_init(GstHandTrackerClass* klass)
         gobject_class, PROP_MODEL_DIR,
         g_param_spec_string("model-dir", "Model folder",
                             "Folder of the learned models (palm_detection.onnx, hand_landmark.onnx); unset: "
-                            "GESTURECAM_MODEL_DIR, else the installed models",
+                            "GESTURECAM_MODEL_DIR, else the installed models, else the source tree's core/models",
                             nullptr, GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
 
     gst_element_class_add_static_pad_template_with_gtype(element_class, &sink_left_template,

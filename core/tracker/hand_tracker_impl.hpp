@@ -1,7 +1,8 @@
 // HandTracker's insides, shared by the files that implement it: hand_tracker.cpp (the
 // per-frame loop), condensation_step.cpp (one filter iteration), template_custody.cpp (which
 // template is tracked: captures, re-captures, trials), reacquisition.cpp (finding a lost hand
-// again) and tracker_maps.cpp (the skin, grey and scene maps the others read).
+// again), learned_custody.cpp (the learned models' search and checks) and tracker_maps.cpp
+// (the skin, grey and scene maps the others read).
 #pragma once
 
 #include "tracker/hand_tracker.hpp"
