@@ -1,6 +1,6 @@
 // Not a test: the tracker under a head that jumps. For N stereo frames of a rendered scene
-// the head's pose jumps to a random pan/tilt (up to 70 deg away, as far as the rendered
-// room reaches) every 1-30 frames; the
+// the head's pose jumps to a random pan/tilt (0-180 deg away; past the rendered room's wall
+// the view shows no hand) every 1-30 frames; the
 // tracker gets each jump as the camera motion it causes (as the element's head link does),
 // steering off. Prints, for every jump after which the hand stays in view for 60 frames or
 // more, whether and how fast it was found again, and the process's RSS over the run.
@@ -11,6 +11,7 @@
 #include "tracker/pointing_tracker.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -21,9 +22,22 @@
 
 namespace {
 
-// The rendered room is a wall in front of the head: beyond these the view leaves it.
-constexpr double kMaxPan = 35.0;
-constexpr double kMaxTilt = 20.0;
+// The head turns at most this far each way.
+constexpr double kMaxPan = 90.0;
+constexpr double kMaxTilt = 90.0;
+
+// One eye's view at `pose`: the rendered room, or, where the head looks past the room's
+// wall, a view of somewhere else without the hand (seeded noise).
+void view(const gc::sim::Scene& scene, int frame, gc::Eye eye, const gc::HeadPose& pose, cv::Mat& bgr,
+          gc::sim::EyeTruth& truth) {
+    try {
+        scene.render(frame, eye, pose, bgr, &truth);
+    } catch (const std::invalid_argument&) {
+        cv::theRNG().state = std::uint64_t(frame) * 2 + int(eye) + 1;
+        cv::randu(bgr, cv::Scalar::all(40), cv::Scalar::all(200));
+        truth = gc::sim::EyeTruth{};
+    }
+}
 
 long rss_kib() {
     std::ifstream status("/proc/self/status");
@@ -68,15 +82,15 @@ int main(int argc, char** argv) {
 
     gc::HeadPose pose, home;
     std::vector<Jump> jumps;
-    cv::Mat left, right;
+    cv::Mat left(config.height, config.width, CV_8UC3), right(config.height, config.width, CV_8UC3);
     gc::sim::EyeTruth tl, tr;
     long rss_first = -1, rss_peak = 0;
     int next_jump = gap(rng);
     for (int f = 0; f < frames; ++f) {
         gc::HeadPose before = pose;
         if (f == next_jump) {
-            // A jump of up to `away` degrees split between pan and tilt, within the room's
-            // range; most land near home, so
+            // A jump of up to `away` degrees split between pan and tilt; most land near
+            // home, so
             // that the hand is often still in view afterwards.
             const double size = away(rng) * (share(rng) < 0.7 ? 0.1 : 1.0), split = share(rng);
             pose.pan_deg = std::clamp(home.pan_deg + sign(rng) * size * split, -kMaxPan, kMaxPan);
@@ -85,8 +99,8 @@ int main(int argc, char** argv) {
             next_jump = f + gap(rng);
         }
         const int shown = f % 600;  // the scripted motion repeats
-        scene.render(shown, gc::Eye::Left, pose, left, &tl);
-        scene.render(shown, gc::Eye::Right, pose, right, &tr);
+        view(scene, shown, gc::Eye::Left, pose, left, tl);
+        view(scene, shown, gc::Eye::Right, pose, right, tr);
         const gc::FrameResult& r = tracker.process_stereo(left, right, -1, pose, motion_of(cal, gc::Eye::Left, before, pose),
                                                           motion_of(cal, gc::Eye::Right, before, pose));
         // Later jumps may keep the hand in view: every jump of the last 60 frames is followed.
