@@ -109,6 +109,9 @@ struct Engine {
     cv::Size head_view_size;          // the view size of the head link's calibration
     bool warned_stale_views = false;  // the current run of too-old views was reported
     guint64 failed_frames = 0;        // frames the tracker failed on and that were passed on untracked
+    // What the debug log last said of each view: a line is written when either changes.
+    std::array<gc::TrackState, 2> logged_state = {gc::TrackState::Acquiring, gc::TrackState::Acquiring};
+    std::array<gc::Gesture, 2> logged_gesture = {gc::Gesture::Unknown, gc::Gesture::Unknown};
     // The input timestamps of the views tracked last (packed or left, right).
     std::array<GstClockTime, 2> tracked_inputs = {GST_CLOCK_TIME_NONE, GST_CLOCK_TIME_NONE};
 
@@ -402,6 +405,28 @@ static bool build_tracker(GstHandTracker* self, const Settings& settings)
 
 static bool views_ready(const GstVideoFrame* frame) { return frame && frame->buffer; }
 
+// Logs each view's acquisition, loss, re-acquisition and gesture changes (INFO), and every
+// tracked frame's summary (LOG).
+static void log_result(GstHandTracker* self, Engine& e, const gc::FrameResult& r)
+{
+    const std::array<const gc::EyeEstimate*, 2> eyes = {&r.left, &r.right};
+    for (int i = 0; i < (r.stereo ? 2 : 1); ++i) {
+        const gc::EyeEstimate& eye = *eyes[i];
+        const char* name = i == 0 ? "left" : "right";
+        if (eye.state != e.logged_state[i])
+            GST_INFO_OBJECT(self, "frame %" G_GINT64_FORMAT ": %s view %s -> %s", r.frame, name,
+                            gc::to_string(e.logged_state[i]).data(), gc::to_string(eye.state).data());
+        if (eye.gesture != e.logged_gesture[i])
+            GST_INFO_OBJECT(self, "frame %" G_GINT64_FORMAT ": %s view gesture %s", r.frame, name,
+                            gc::to_string(eye.gesture).data());
+        e.logged_state[i] = eye.state;
+        e.logged_gesture[i] = eye.gesture;
+    }
+    GST_LOG_OBJECT(self, "frame %" G_GINT64_FORMAT ": %s, fingertip (%.1f, %.1f), ray %s", r.frame,
+                   gc::to_string(r.state).data(), r.left.fingertip.x, r.left.fingertip.y,
+                   r.pointing.valid ? "yes" : "no");
+}
+
 static bool should_post(Engine& e, GstHandTrackerMessageUpdates mode, gc::TrackState state)
 {
     switch (mode) {
@@ -638,6 +663,8 @@ static GstFlowReturn gst_hand_tracker_aggregate_frames(GstVideoAggregator* vagg,
         }
     }
     const gc::FrameResult& result = e.tracker->last();
+    if (tracked)
+        log_result(self, e, result);
     if (tracked && e.head) {
         e.head->end_frame(result);  // never waits: the command goes to the link's thread
         // Once per episode: the views come too late to steer from, so the head holds.
