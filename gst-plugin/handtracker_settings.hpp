@@ -1,0 +1,56 @@
+// handtracker's properties: their values, the GParamSpecs that describe them, the enum
+// types they use, and the copy between GValues and the values.
+#pragma once
+
+#include "gsthandtracker.hpp"
+
+#include "headctl/head_link.hpp"
+#include "tracker/hand_tracker.hpp"
+
+#include <glib-object.h>
+
+#include <string>
+
+namespace gc::gst {
+
+constexpr int kDefaultParticles = 1000;
+constexpr int kMaxParticles = 100000;
+constexpr guint64 kDefaultSeed = 1;
+constexpr double kDefaultLostThreshold = 0.6;
+constexpr int kDefaultLostFrames = 3;
+constexpr GstHandTrackerOutput kDefaultOutput = GST_HAND_TRACKER_OUTPUT_LEFT;
+constexpr GstHandTrackerMessageUpdates kDefaultMessageUpdates = GST_HAND_TRACKER_MESSAGES_EVERY_FRAME;
+constexpr gc::SteerMode kDefaultSteer = gc::SteerMode::Fixate;
+constexpr double kDefaultTargetDistanceMm = 2000.0;
+
+// Property values, read and written under the object lock.
+struct TrackerSettings {
+    int particles = kDefaultParticles;
+    guint64 seed = kDefaultSeed;
+    std::string calibration;  // empty: the nominal rig for the stream's size
+    GstHandTrackerOutput output = kDefaultOutput;
+    bool draw = false;
+    double lost_threshold = kDefaultLostThreshold;
+    int lost_frames = kDefaultLostFrames;
+    GstHandTrackerMessageUpdates message_updates = kDefaultMessageUpdates;
+    std::string json_location;
+    std::string head;  // the head's URI; empty: no head
+    std::string head_token_file;  // empty: the URI's token, if any
+    gc::SteerMode steer = kDefaultSteer;
+    double target_distance_mm = kDefaultTargetDistanceMm;
+    gc::HandDetector detector = gc::HandDetector::Learned;
+    std::string model_dir;  // empty: the learned models are found without configuration
+};
+
+// Installs every property of the element's class.
+void install_tracker_properties(GObjectClass* klass);
+// Marks the properties' enum types as plugin API (documented with the element).
+void mark_tracker_enums_as_plugin_api();
+
+// Stores `value` as property `prop_id`; false for an unknown id. `rebuild` is set when the
+// change needs a new tracker.
+bool set_tracker_setting(TrackerSettings& s, guint prop_id, const GValue* value, bool& rebuild);
+// Reads property `prop_id` into `value`; false for an unknown id.
+bool get_tracker_setting(const TrackerSettings& s, guint prop_id, GValue* value);
+
+}  // namespace gc::gst
