@@ -6,6 +6,7 @@
 
 #include "attention_window.hpp"
 #include "handtracker_settings.hpp"
+#include "handtracker_views.hpp"
 #include "head_connection.hpp"
 #include "pointing_report.hpp"
 #include "tracking_overlay.hpp"
@@ -430,12 +431,147 @@ static bool ensure_head_link(GstHandTracker* self, const Settings& settings, cv:
     return true;
 }
 
+// Runs the tracker on the slot's views (`pose_pad`/`pose_frame` give their capture time for
+// the head's pose), with the head's motion when there is a head.
+static GstFlowReturn track_views(GstHandTracker* self, const Settings& settings, const gc::gst::SlotViews& in,
+                                 bool stereo, GstVideoAggregatorPad* pose_pad, const GstVideoFrame* pose_frame,
+                                 GstBuffer* outbuf)
+{
+    Engine& e = *self->engine;
+    const cv::Size size = in.views[0].size();
+    if (!e.view_size.empty() && (size != e.view_size || stereo != e.stereo)) {
+        GST_INFO_OBJECT(self, "views changed to %dx%d: tracking starts over", size.width, size.height);
+        e.tracker->reset();
+        e.attention.reset();
+    }
+    e.view_size = size;
+    e.stereo = stereo;
+    // The head's pose when these views were taken and the image motion it caused; without
+    // a head: no pose, no motion.
+    gc::HeadAtCapture at;
+    if (!settings.head.empty()) {
+        if (!ensure_head_link(self, settings, size))
+            return GST_FLOW_ERROR;
+        e.head->set_steering(settings.steer, settings.target_distance_mm);
+        // The views' own running time, not the output slot's: a live source that started
+        // late, or a pad that is behind, gives the slot older views, and the pose must be
+        // the one they were taken at.
+        const GstClockTime running = input_running_time(pose_pad, pose_frame);
+        GST_LOG_OBJECT(self, "views at running time %" GST_TIME_FORMAT " for output %" GST_TIME_FORMAT,
+                       GST_TIME_ARGS(running), GST_TIME_ARGS(GST_BUFFER_PTS(outbuf)));
+        at = e.head->begin_frame(gc::gst::capture_time(GST_ELEMENT(self), running));
+    }
+    try {
+        const gint64 pts = GST_CLOCK_TIME_IS_VALID(GST_BUFFER_PTS(outbuf)) ? gint64(GST_BUFFER_PTS(outbuf)) : -1;
+        if (stereo)
+            e.tracker->process_stereo(in.views[0], in.views[1], pts, at.pose, at.left_motion, at.right_motion);
+        else
+            e.tracker->process_mono(in.views[0], pts, at.left_motion);
+    } catch (const gc::CalibrationError& err) {
+        GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("The calibration does not fit the stream."), ("%s", err.what()));
+        return GST_FLOW_ERROR;
+    } catch (const std::invalid_argument& err) {
+        GST_ELEMENT_ERROR(self, CORE, NEGOTIATION, ("%s", err.what()), (nullptr));
+        return GST_FLOW_NOT_NEGOTIATED;
+    } catch (const std::exception& err) {
+        // One bad frame must not end the stream: the tracker starts over and the frame goes
+        // on untracked.
+        e.tracker->reset();
+        ++e.failed_frames;
+        GST_ELEMENT_WARNING(self, STREAM, FAILED,
+                            ("Tracking failed on a frame (%" G_GUINT64_FORMAT " so far); the tracker starts over.",
+                             e.failed_frames),
+                            ("%s", err.what()));
+    }
+    return GST_FLOW_OK;
+}
+
+// Hands a tracked frame's result to the head link, warning once per episode when the views
+// come too late to steer from (the head then holds).
+static void steer_head(GstHandTracker* self, const Settings& settings, const gc::FrameResult& result)
+{
+    Engine& e = *self->engine;
+    e.head->end_frame(result);  // never waits: the command goes to the link's thread
+    const bool stale = settings.steer != gc::SteerMode::Off && e.head->last_view_stale();
+    if (stale && !e.warned_stale_views)
+        GST_ELEMENT_WARNING(self, STREAM, FAILED,
+                            ("Views reach the tracker %.0f ms after capture: the head is not steered from "
+                             "them until the pipeline keeps up.",
+                             e.head->last_view_age_ms()),
+                            ("The machine may be too slow for this frame rate, or an element upstream "
+                             "queues frames."));
+    e.warned_stale_views = stale;
+}
+
+// Writes the output view into `outbuf`; `context` receives what it shows.
+static GstFlowReturn compose_output(GstHandTracker* self, const Settings& settings, GstBuffer* outbuf,
+                                    const gc::gst::SlotViews& in, bool stereo, bool complete, int& shown,
+                                    gc::gst::ReportContext& context)
+{
+    Engine& e = *self->engine;
+    const gc::FrameResult& result = e.tracker->last();
+    GstVideoFrame out;
+    if (!gst_video_frame_map(&out, &GST_VIDEO_AGGREGATOR(self)->info, outbuf, GST_MAP_WRITE)) {
+        GST_ELEMENT_ERROR(self, STREAM, FAILED, ("Cannot map the output buffer."), (nullptr));
+        return GST_FLOW_ERROR;
+    }
+    const cv::Size out_size(GST_VIDEO_FRAME_WIDTH(&out), GST_VIDEO_FRAME_HEIGHT(&out));
+    shown = settings.output == GST_HAND_TRACKER_OUTPUT_RIGHT && stereo ? 1 : 0;
+    if (!in.have[shown])
+        shown = in.have[0] ? 0 : 1;  // an incomplete pair shows the view that is there
+    gc::gst::ViewChoice choice;
+    choice.shown = shown;
+    choice.draw = settings.draw;
+    choice.attended = settings.output == GST_HAND_TRACKER_OUTPUT_ATTENDED && shown == 0 && in.have[0];
+    context.incomplete = !complete;
+    context.full_view = !choice.attended;
+    std::span<const gc::Particle> particles;
+    if (settings.draw && complete)
+        particles = e.tracker->particles(shown == 1 ? gc::Eye::Right : gc::Eye::Left);
+    try {
+        context.view = gc::gst::compose_view(in, choice, result, particles, out_size, e.attention, e.overlay,
+                                             e.canvas, e.scaled);
+        gc::gst::write_bgr(e.scaled, out, e.yuv_scratch);
+    } catch (const std::exception& err) {
+        gst_video_frame_unmap(&out);
+        GST_ELEMENT_ERROR(self, STREAM, FAILED, ("Cannot compose the output frame."), ("%s", err.what()));
+        return GST_FLOW_ERROR;
+    }
+    gst_video_frame_unmap(&out);
+    return GST_FLOW_OK;
+}
+
+// The result on the buffer (meta, region of interest), on the bus, and in the JSON lines.
+static GstFlowReturn publish(GstHandTracker* self, const Settings& settings, GstBuffer* outbuf, bool tracked,
+                             int shown, const gc::gst::ReportContext& context)
+{
+    Engine& e = *self->engine;
+    const gc::FrameResult& result = e.tracker->last();
+    const cv::Size out_size(GST_VIDEO_INFO_WIDTH(&GST_VIDEO_AGGREGATOR(self)->info),
+                            GST_VIDEO_INFO_HEIGHT(&GST_VIDEO_AGGREGATOR(self)->info));
+    if (GstHandPointingMeta* meta = gst_buffer_add_hand_pointing_meta(outbuf))
+        gc::gst::fill_meta(*meta, result, context, e.contour_scratch);
+    add_region_of_interest(outbuf, result, shown == 1, context.view, out_size, context);
+    if (should_post(e, settings.message_updates, result.state))
+        post_message(self, outbuf, result, context);
+    if (!tracked || !e.json)
+        return GST_FLOW_OK;
+    e.json_line = gc::to_json_line(result);
+    e.json_line += '\n';
+    try {
+        e.json->write_line(e.json_line);
+    } catch (const gc::OutputError& err) {
+        GST_ELEMENT_ERROR(self, RESOURCE, WRITE, ("Cannot write to \"%s\".", e.json_path.c_str()), ("%s", err.what()));
+        return GST_FLOW_ERROR;
+    }
+    return GST_FLOW_OK;
+}
+
 static GstFlowReturn gst_hand_tracker_aggregate_frames(GstVideoAggregator* vagg, GstBuffer* outbuf)
 {
     GstHandTracker* self = GST_HAND_TRACKER(vagg);
     Engine& e = *self->engine;
     const Settings settings = read_settings(self);
-
     if (self->rebuild->exchange(false) || !e.tracker) {
         if (!build_tracker(self, settings))
             return GST_FLOW_ERROR;
@@ -449,45 +585,14 @@ static GstFlowReturn gst_hand_tracker_aggregate_frames(GstVideoAggregator* vagg,
     const GstVideoFrame* packed = packed_pad ? gst_video_aggregator_pad_get_prepared_frame(packed_pad) : nullptr;
     const GstVideoFrame* left = left_pad ? gst_video_aggregator_pad_get_prepared_frame(left_pad) : nullptr;
     const GstVideoFrame* right = right_pad ? gst_video_aggregator_pad_get_prepared_frame(right_pad) : nullptr;
-
-    // The views of this output slot, as BGR.
-    cv::Mat views[2];
-    bool have[2] = {false, false};
     const bool stereo = packed_pad != nullptr || (left_pad != nullptr && right_pad != nullptr);
+    if (!packed_pad && views_ready(left) && views_ready(right) &&
+        (GST_VIDEO_FRAME_WIDTH(left) != GST_VIDEO_FRAME_WIDTH(right) ||
+         GST_VIDEO_FRAME_HEIGHT(left) != GST_VIDEO_FRAME_HEIGHT(right)))
+        return size_mismatch(self, left, right);
+    gc::gst::SlotViews in;
     try {
-        if (packed_pad) {
-            if (views_ready(packed)) {
-                const cv::Mat& whole = e.readers[0].read(*packed);
-                const bool top_bottom =
-                    GST_VIDEO_INFO_MULTIVIEW_MODE(&packed->info) == GST_VIDEO_MULTIVIEW_MODE_TOP_BOTTOM;
-                const cv::Rect first = top_bottom ? cv::Rect(0, 0, whole.cols, whole.rows / 2)
-                                                  : cv::Rect(0, 0, whole.cols / 2, whole.rows);
-                const cv::Rect second = top_bottom ? cv::Rect(0, whole.rows / 2, whole.cols, whole.rows / 2)
-                                                   : cv::Rect(whole.cols / 2, 0, whole.cols / 2, whole.rows);
-                whole(first).copyTo(e.halves[0]);
-                whole(second).copyTo(e.halves[1]);
-                views[0] = e.halves[0];
-                views[1] = e.halves[1];
-                have[0] = have[1] = true;
-            }
-        } else {
-            if (views_ready(left) && views_ready(right) &&
-                (GST_VIDEO_FRAME_WIDTH(left) != GST_VIDEO_FRAME_WIDTH(right) ||
-                 GST_VIDEO_FRAME_HEIGHT(left) != GST_VIDEO_FRAME_HEIGHT(right)))
-                return size_mismatch(self, left, right);
-            const GstVideoFrame* frames[2] = {left, right};
-            for (int i = 0; i < 2; ++i) {
-                if (!views_ready(frames[i]))
-                    continue;
-                const cv::Mat& bgr = e.readers[i].read(*frames[i]);
-                // The tracker works on whole rows; padded strides are packed first.
-                if (bgr.isContinuous())
-                    views[i] = bgr;
-                else
-                    bgr.copyTo(e.halves[i]), views[i] = e.halves[i];
-                have[i] = true;
-            }
-        }
+        gc::gst::read_views(e.readers, e.halves, packed_pad ? packed : nullptr, left, right, in);
     } catch (const std::exception& err) {
         GST_ELEMENT_ERROR(self, STREAM, FORMAT, ("Cannot read an input frame."), ("%s", err.what()));
         return GST_FLOW_ERROR;
@@ -496,7 +601,7 @@ static GstFlowReturn gst_hand_tracker_aggregate_frames(GstVideoAggregator* vagg,
     // Track when the pair is complete (mono: the left view alone) and not the pair tracked
     // last time: a live aggregator repeats its pads' last frames when a source is late or
     // at EOS, and a frame tracked twice would count as a hand that stood still.
-    const bool complete = stereo ? (have[0] && have[1]) : have[0];
+    const bool complete = stereo ? (in.have[0] && in.have[1]) : in.have[0];
     auto pts_of = [](const GstVideoFrame* f) { return views_ready(f) ? GST_BUFFER_PTS(f->buffer) : GST_CLOCK_TIME_NONE; };
     const std::array<GstClockTime, 2> inputs = {pts_of(packed_pad ? packed : left),
                                                 packed_pad ? GST_CLOCK_TIME_NONE : pts_of(right)};
@@ -504,141 +609,20 @@ static GstFlowReturn gst_hand_tracker_aggregate_frames(GstVideoAggregator* vagg,
     const bool tracked = complete && !repeated;
     if (tracked) {
         e.tracked_inputs = inputs;
-        const cv::Size size = views[0].size();
-        if (!e.view_size.empty() && (size != e.view_size || stereo != e.stereo)) {
-            GST_INFO_OBJECT(self, "views changed to %dx%d: tracking starts over", size.width, size.height);
-            e.tracker->reset();
-            e.attention.reset();
-        }
-        e.view_size = size;
-        e.stereo = stereo;
-        // The head's pose when these views were taken and the image motion it caused;
-        // without a head: no pose, no motion.
-        gc::HeadAtCapture at;
-        if (!settings.head.empty()) {
-            if (!ensure_head_link(self, settings, size))
-                return GST_FLOW_ERROR;
-            e.head->set_steering(settings.steer, settings.target_distance_mm);
-            // The views' own running time, not the output slot's: a live source that started
-            // late, or a pad that is behind, gives the slot older views, and the pose must be
-            // the one they were taken at.
-            const GstClockTime running = input_running_time(packed_pad ? packed_pad : left_pad,
-                                                            packed_pad ? packed : left);
-            GST_LOG_OBJECT(self, "views at running time %" GST_TIME_FORMAT " for output %" GST_TIME_FORMAT,
-                           GST_TIME_ARGS(running), GST_TIME_ARGS(GST_BUFFER_PTS(outbuf)));
-            at = e.head->begin_frame(gc::gst::capture_time(GST_ELEMENT(self), running));
-        }
-        try {
-            const gint64 pts = GST_CLOCK_TIME_IS_VALID(GST_BUFFER_PTS(outbuf)) ? gint64(GST_BUFFER_PTS(outbuf)) : -1;
-            if (stereo)
-                e.tracker->process_stereo(views[0], views[1], pts, at.pose, at.left_motion, at.right_motion);
-            else
-                e.tracker->process_mono(views[0], pts, at.left_motion);
-        } catch (const gc::CalibrationError& err) {
-            GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("The calibration does not fit the stream."), ("%s", err.what()));
-            return GST_FLOW_ERROR;
-        } catch (const std::invalid_argument& err) {
-            GST_ELEMENT_ERROR(self, CORE, NEGOTIATION, ("%s", err.what()), (nullptr));
-            return GST_FLOW_NOT_NEGOTIATED;
-        } catch (const std::exception& err) {
-            // One bad frame must not end the stream: the tracker starts over and the frame
-            // goes on untracked.
-            e.tracker->reset();
-            ++e.failed_frames;
-            GST_ELEMENT_WARNING(self, STREAM, FAILED,
-                                ("Tracking failed on a frame (%" G_GUINT64_FORMAT " so far); the tracker starts over.",
-                                 e.failed_frames),
-                                ("%s", err.what()));
-        }
+        const GstFlowReturn ret = track_views(self, settings, in, stereo, packed_pad ? packed_pad : left_pad,
+                                              packed_pad ? packed : left, outbuf);
+        if (ret != GST_FLOW_OK)
+            return ret;
+        log_result(self, e, e.tracker->last());
+        if (e.head)
+            steer_head(self, settings, e.tracker->last());
     }
-    const gc::FrameResult& result = e.tracker->last();
-    if (tracked)
-        log_result(self, e, result);
-    if (tracked && e.head) {
-        e.head->end_frame(result);  // never waits: the command goes to the link's thread
-        // Once per episode: the views come too late to steer from, so the head holds.
-        const bool stale = settings.steer != gc::SteerMode::Off && e.head->last_view_stale();
-        if (stale && !e.warned_stale_views)
-            GST_ELEMENT_WARNING(self, STREAM, FAILED,
-                                ("Views reach the tracker %.0f ms after capture: the head is not steered from "
-                                 "them until the pipeline keeps up.",
-                                 e.head->last_view_age_ms()),
-                                ("The machine may be too slow for this frame rate, or an element upstream "
-                                 "queues frames."));
-        e.warned_stale_views = stale;
-    }
-
-    // Compose the output view.
-    GstVideoFrame out;
-    if (!gst_video_frame_map(&out, &vagg->info, outbuf, GST_MAP_WRITE)) {
-        GST_ELEMENT_ERROR(self, STREAM, FAILED, ("Cannot map the output buffer."), (nullptr));
-        return GST_FLOW_ERROR;
-    }
-    const cv::Size out_size(GST_VIDEO_FRAME_WIDTH(&out), GST_VIDEO_FRAME_HEIGHT(&out));
-    const bool want_right = settings.output == GST_HAND_TRACKER_OUTPUT_RIGHT && stereo;
-    int shown = want_right ? 1 : 0;
-    if (!have[shown])
-        shown = have[0] ? 0 : 1;  // an incomplete pair shows the view that is there
+    int shown = 0;
     gc::gst::ReportContext context;
-    context.incomplete = !complete;
-    cv::Rect view;
-    try {
-        if (!have[shown]) {
-            e.scaled.create(out_size, CV_8UC3);
-            e.scaled.setTo(cv::Scalar::all(0));
-            view = cv::Rect(0, 0, out_size.width, out_size.height);
-        } else {
-            const cv::Mat& source = views[shown];
-            const gc::EyeEstimate& eye = shown == 1 ? result.right : result.left;
-            cv::Mat base = source;
-            if (settings.draw) {
-                source.copyTo(e.canvas);
-                std::span<const gc::Particle> particles;
-                if (complete)
-                    particles = e.tracker->particles(shown == 1 ? gc::Eye::Right : gc::Eye::Left);
-                e.overlay.draw(e.canvas, eye, particles, result.pointing.valid ? &result.pointing : nullptr);
-                base = e.canvas;
-            }
-            view = cv::Rect(0, 0, source.cols, source.rows);
-            if (settings.output == GST_HAND_TRACKER_OUTPUT_ATTENDED && shown == 0) {
-                view = e.attention.update(source.size(), double(out_size.width) / out_size.height, result.left);
-                context.full_view = false;
-            }
-            const cv::Mat cropped = base(view);
-            if (cropped.size() == out_size) {
-                cropped.copyTo(e.scaled);
-            } else {
-                cv::resize(cropped, e.scaled, out_size, 0, 0,
-                           cropped.cols > out_size.width ? cv::INTER_AREA : cv::INTER_LINEAR);
-            }
-        }
-        context.view = view;
-        gc::gst::write_bgr(e.scaled, out, e.yuv_scratch);
-    } catch (const std::exception& err) {
-        gst_video_frame_unmap(&out);
-        GST_ELEMENT_ERROR(self, STREAM, FAILED, ("Cannot compose the output frame."), ("%s", err.what()));
-        return GST_FLOW_ERROR;
-    }
-    gst_video_frame_unmap(&out);
-
-    // Publish.
-    if (GstHandPointingMeta* meta = gst_buffer_add_hand_pointing_meta(outbuf))
-        gc::gst::fill_meta(*meta, result, context, e.contour_scratch);
-    add_region_of_interest(outbuf, result, shown == 1, view, out_size, context);
-    if (should_post(e, settings.message_updates, result.state))
-        post_message(self, outbuf, result, context);
-    if (tracked && e.json) {
-        e.json_line = gc::to_json_line(result);
-        e.json_line += '\n';
-        try {
-            e.json->write_line(e.json_line);
-        } catch (const gc::OutputError& err) {
-            GST_ELEMENT_ERROR(self, RESOURCE, WRITE, ("Cannot write to \"%s\".", e.json_path.c_str()),
-                              ("%s", err.what()));
-            return GST_FLOW_ERROR;
-        }
-    }
-    return GST_FLOW_OK;
+    const GstFlowReturn ret = compose_output(self, settings, outbuf, in, stereo, complete, shown, context);
+    if (ret != GST_FLOW_OK)
+        return ret;
+    return publish(self, settings, outbuf, tracked, shown, context);
 }
 
 // ---------------------------------------------------------------------------------------

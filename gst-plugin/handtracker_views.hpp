@@ -1,0 +1,44 @@
+// handtracker's pixels: the input views of one output slot read as BGR (two pads, or one
+// side-by-side or top-bottom frame), and the output view composed from one of them.
+#pragma once
+
+#include "attention_window.hpp"
+#include "tracking_overlay.hpp"
+#include "video_bgr.hpp"
+
+#include "tracker/pointing_tracker.hpp"
+
+#include <gst/video/video.h>
+#include <opencv2/core.hpp>
+
+#include <span>
+
+namespace gc::gst {
+
+// The views of one output slot: [0] left, [1] right; `have[i]` when that view has a frame.
+struct SlotViews {
+    cv::Mat views[2];
+    bool have[2] = {false, false};
+};
+
+// Reads `packed` (both views in one frame, per its multiview mode) or `left` and `right`
+// (either may be absent) into `out`, with `halves` as the storage for copies. Throws what
+// the readers throw on a frame they cannot convert.
+void read_views(BgrReader readers[2], cv::Mat halves[2], const GstVideoFrame* packed, const GstVideoFrame* left,
+                const GstVideoFrame* right, SlotViews& out);
+
+// What the output shows and how it is drawn.
+struct ViewChoice {
+    int shown = 0;          // the view shown: 0 left, 1 right
+    bool attended = false;  // the left view cropped to the attention window
+    bool draw = false;      // the tracking drawn over it
+};
+
+// Composes the output (at `out_size`) into `scaled`: the chosen view, drawn on in `canvas`
+// when asked, cropped by `attention` when attended, scaled; black when the view is missing.
+// `particles` are drawn with the estimate. Returns the shown rectangle in input pixels.
+cv::Rect compose_view(const SlotViews& in, const ViewChoice& choice, const FrameResult& result,
+                      std::span<const Particle> particles, cv::Size out_size, AttentionWindow& attention,
+                      TrackingOverlay& overlay, cv::Mat& canvas, cv::Mat& scaled);
+
+}  // namespace gc::gst
