@@ -25,6 +25,8 @@ constexpr double kAgreedError = 0.12;
 // Without a hand, the palm detector looks at every frame for this many frames, then at
 // every kSlowSearchEvery-th: an empty room costs less.
 constexpr int kEagerSearchFrames = 15;
+// How far past the wrist key point the template's region runs, in palm sizes.
+constexpr double kWristReach = 0.6;
 constexpr int kSlowSearchEvery = 3;
 
 // The bones drawn between key points (MediaPipe's hand topology).
@@ -50,6 +52,11 @@ cv::Mat1b hand_region(const std::array<cv::Point2f, 21>& p, cv::Size size) {
     const int finger = std::max(3, cvRound(0.32 * palm_size(p)));
     for (const auto& bone : kBones)
         cv::line(region, p[bone[0]], p[bone[1]], 255, finger, cv::LINE_8);
+    // The wrist beyond its key point, most of the palm's width: a sleeve or the end of the
+    // skin ends it in the mask, so the outline closes where the hand's silhouette does.
+    const cv::Point2f away = (p[0] - p[9]) * float(kWristReach);
+    const int wide = std::max(3, cvRound(0.8 * cv::norm(p[17] - p[1])));
+    cv::line(region, p[0], p[0] + away, 255, wide, cv::LINE_8);
     return region;
 }
 
