@@ -1,0 +1,31 @@
+// gesturecam-bench's command line: what to measure and how often.
+#pragma once
+
+#include "sim/scene.hpp"
+
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+namespace gc::tools {
+
+extern const std::string_view kBenchUsage;
+
+struct BenchOptions {
+    std::vector<int> particles{20, 50, 100, 200, 500, 1000, 2000, 5000};
+    std::vector<gc::sim::Preset> scenes{gc::sim::Preset::Clean, gc::sim::Preset::Light,
+                                        gc::sim::Preset::Heavy, gc::sim::Preset::FacePass};
+    gc::sim::Motion motion = gc::sim::Motion::Mixed;
+    int frames = 150;
+    int runs = 5;
+    std::vector<std::uint64_t> seeds{1, 2, 3};
+    int peer_particles = 1000;
+    bool peers = true;
+    bool json = false;
+    bool help = false;
+};
+
+// Throws gc::cli::UsageError on a wrong command line.
+BenchOptions parse_bench_options(int argc, char** argv);
+
+}  // namespace gc::tools

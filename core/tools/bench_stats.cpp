@@ -1,0 +1,44 @@
+#include "tools/bench_stats.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace gc::tools {
+
+double ms_since(BenchClock::time_point t0)
+{
+    return std::chrono::duration<double, std::milli>(BenchClock::now() - t0).count();
+}
+
+double median(std::vector<double> v)
+{
+    if (v.empty())
+        return std::nan("");
+    const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+    std::nth_element(v.begin(), mid, v.end());
+    if (v.size() % 2 == 1)
+        return *mid;
+    return 0.5 * (*mid + *std::max_element(v.begin(), mid));
+}
+
+double mean(const std::vector<double>& v)
+{
+    if (v.empty())
+        return std::nan("");
+    double s = 0.0;
+    for (double x : v)
+        s += x;
+    return s / static_cast<double>(v.size());
+}
+
+std::string fixed(double v, int decimals)
+{
+    if (!std::isfinite(v))
+        return "n/a";
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+    return buf;
+}
+
+}  // namespace gc::tools
