@@ -5,12 +5,13 @@
 #include "tools/bench_options.hpp"
 #include "tools/machine_info.hpp"
 #include "tools/peer_runs.hpp"
+#include "tools/real_pair_runs.hpp"
 #include "tools/stereo_runs.hpp"
 #include "tools/synthetic_runs.hpp"
 
 #include <map>
 #include <ostream>
-#include <utility>
+#include <tuple>
 #include <vector>
 
 namespace gc::tools {
@@ -18,12 +19,17 @@ namespace gc::tools {
 struct BenchResults {
     MachineInfo machine;
     Baseline baseline;                                // medians over every sequence
-    std::map<std::pair<int, int>, AccuracyRow> accuracy;  // by (scene index, particles)
+    // By (detector index, scene index, particles), the indices into o.detectors, o.scenes.
+    std::map<std::tuple<int, int, int>, AccuracyRow> accuracy;
     std::vector<double> skin_pct;                     // per scene, mean over seeds
-    std::vector<PeerRow> peers;
-    StereoFigures stereo;
+    std::vector<PeerRow> peers;                       // ours with o.detectors.front()
+    std::vector<StereoFigures> stereo;                // one per detector
+    std::vector<RealPairRow> real;                    // one per detector, or none
 };
 
 void print_report(const BenchOptions& o, const BenchResults& r, std::ostream& out);
+
+// The real pair's tables (real_pair_report.cpp).
+void print_real_pair(const BenchOptions& o, const std::vector<RealPairRow>& rows, std::ostream& out);
 
 }  // namespace gc::tools

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 namespace gc::tools {
 
@@ -30,6 +31,12 @@ double mean(const std::vector<double>& v)
     for (double x : v)
         s += x;
     return s / static_cast<double>(v.size());
+}
+
+double angle_deg(const cv::Vec3d& a, const cv::Vec3d& b)
+{
+    const double c = a.dot(b) / (cv::norm(a) * cv::norm(b));
+    return std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / std::numbers::pi;
 }
 
 std::string fixed(double v, int decimals)

@@ -1,6 +1,6 @@
 // gesturecam-bench: the thesis's Tables 4.1 (accuracy) and 4.2 (cost) on the synthetic
-// scenes, OpenCV's own trackers as peers on the same frames, the 3D step's cost and the
-// stereo pipeline's throughput. Output: markdown tables, or JSON lines with --json
+// scenes for each hand detector, OpenCV's own trackers as peers on the same frames, the 3D
+// step's cost, the stereo pipeline's throughput, and the real calibrated pair. Output: markdown tables, or JSON lines with --json
 // (one object per line, "kind" says which table it belongs to; docs/benchmarks.md).
 #include "tools/bench_options.hpp"
 #include "tools/bench_report.hpp"
@@ -9,14 +9,17 @@
 
 #include <opencv2/core/utility.hpp>
 
+#include <filesystem>
 #include <iostream>
+#include <stdexcept>
 #include <string>
 
 namespace {
 
 using namespace gc::tools;
 
-// Every particle count and, unless --no-peers, the peers, on one scene over every seed.
+// Every detector and particle count and, unless --no-peers, the peers, on one scene over
+// every seed.
 void measure_scene(const BenchOptions& o, std::size_t si, BenchResults& r,
                    std::vector<Baseline>& baselines)
 {
@@ -33,18 +36,22 @@ void measure_scene(const BenchOptions& o, std::size_t si, BenchResults& r,
         const Sequence seq = render_sequence(scene, o.frames, gc::Eye::Left);
         skin_fraction.push_back(scene.measured_skin_fraction(0));
         baselines.push_back(measure_baseline(seq, o.runs));
-        for (int particles : o.particles) {
-            gc::TrackerParams params;
-            params.particles = particles;
-            params.seed = seed;
-            AccuracyRow& row = r.accuracy[{static_cast<int>(si), particles}];
-            row.ms.push_back(run_tracker(seq, params, o.runs, &row, nullptr));
+        for (int di = 0; di < static_cast<int>(o.detectors.size()); ++di) {
+            for (int particles : o.particles) {
+                gc::TrackerParams params;
+                params.particles = particles;
+                params.seed = seed;
+                params.detector = o.detectors[di];
+                AccuracyRow& row = r.accuracy[{di, static_cast<int>(si), particles}];
+                row.ms.push_back(run_tracker(seq, params, o.runs, &row, nullptr));
+            }
         }
         if (!o.peers)
             continue;
         gc::TrackerParams params;
         params.particles = o.peer_particles;
         params.seed = seed;
+        params.detector = o.detectors.front();
         compare_with_peers(seq, params, scene_name + " seed " + std::to_string(seed), peer_scores);
     }
     r.skin_pct.push_back(100.0 * mean(skin_fraction));
@@ -53,6 +60,9 @@ void measure_scene(const BenchOptions& o, std::size_t si, BenchResults& r,
 
 int run_bench(const BenchOptions& o)
 {
+    std::error_code ec;
+    if (o.real_dir_given && !o.real_dir.empty() && !std::filesystem::is_directory(o.real_dir, ec))
+        throw std::runtime_error("--real: no folder " + o.real_dir);
     cv::setNumThreads(1);  // per-eye figures are single-threaded
     BenchResults r;
     r.machine = machine_info();
@@ -60,8 +70,11 @@ int run_bench(const BenchOptions& o)
     for (std::size_t si = 0; si < o.scenes.size(); ++si)
         measure_scene(o, si, r, baselines);
 
-    std::cerr << "gesturecam-bench: stereo\n";
-    r.stereo = measure_stereo(o);
+    for (gc::HandDetector detector : o.detectors) {
+        std::cerr << "gesturecam-bench: stereo, " << detector_name(detector) << '\n';
+        r.stereo.push_back(measure_stereo(o, detector));
+    }
+    r.real = measure_real_pair_rows(o);
     std::vector<double> copy_ms, convert_ms;
     for (const Baseline& b : baselines) {
         copy_ms.push_back(b.copy_ms);

@@ -1,6 +1,7 @@
 #include "tools/real_pair.hpp"
 
 #include "stereo/calibration.hpp"
+#include "tools/bench_stats.hpp"
 #include "tools/json_reader.hpp"
 #include "tracker/pointing_tracker.hpp"
 
@@ -11,7 +12,6 @@
 #include <cmath>
 #include <fstream>
 #include <map>
-#include <numbers>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -100,11 +100,6 @@ struct ViewTally {
         return f;
     }
 };
-
-double angle_deg(const cv::Vec3d& a, const cv::Vec3d& b) {
-    const double c = a.dot(b) / (cv::norm(a) * cv::norm(b));
-    return std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / std::numbers::pi;
-}
 
 cv::VideoCapture open_video(const std::string& path) {
     cv::VideoCapture video(path);
