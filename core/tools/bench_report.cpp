@@ -82,6 +82,7 @@ void print_accuracy_row(const BenchOptions& o, const BenchResults& r, int di, in
                    .add("tracked_fraction", tracked, 3)
                    .add("lost_frames", lost, 1)
                    .add("ms_per_frame", ms, 3)
+                   .add("cpu_ms_per_frame", mean(a.cpu_ms), 3)
                    .str()
             << '\n';
         return;
@@ -142,9 +143,9 @@ void print_stereo(const BenchOptions& o, const BenchResults& r, std::ostream& ou
     if (!o.json)
         out << "\n## Stereo (clean scene, " << o.peer_particles << " particles per eye)\n\n"
             << "| detector | 3D step ms/stereo frame | 3D valid frames | median direction error deg | "
-               "median palm error mm | pipeline frames/s (2 threads) | with rendering frames/s | "
-               "network share |\n"
-            << "|---|---|---|---|---|---|---|---|\n";
+               "median palm error mm | pipeline frames/s (2 threads) | CPU ms/stereo frame | "
+               "with rendering frames/s | with rendering CPU ms/stereo frame | network share |\n"
+            << "|---|---|---|---|---|---|---|---|---|---|\n";
     for (const StereoFigures& s : r.stereo) {
         if (o.json) {
             out << JsonObject()
@@ -159,7 +160,9 @@ void print_stereo(const BenchOptions& o, const BenchResults& r, std::ostream& ou
                        .add("palm_error_mm", s.palm_error_mm, 1)
                        .add("pipeline_fps", s.fps, 2)
                        .add("threads", 2)
+                       .add("cpu_ms_per_frame", s.cpu_ms, 2)
                        .add("rendering_fps", s.rendering_fps, 2)
+                       .add("rendering_cpu_ms_per_frame", s.rendering_cpu_ms, 2)
                        .add("models_share", s.models_share, 3)
                        .str()
                 << '\n';
@@ -167,8 +170,9 @@ void print_stereo(const BenchOptions& o, const BenchResults& r, std::ostream& ou
         }
         out << "| " << detector_name(s.detector) << " | " << fixed(s.estimate_ms, 2) << " | "
             << s.valid << "/" << s.frames << " | " << fixed(s.direction_error_deg, 1) << " | "
-            << fixed(s.palm_error_mm, 0) << " | " << fixed(s.fps, 1) << " | "
-            << fixed(s.rendering_fps, 1) << " | " << fixed(s.models_share, 3) << " |\n";
+            << fixed(s.palm_error_mm, 0) << " | " << fixed(s.fps, 1) << " | " << fixed(s.cpu_ms, 2)
+            << " | " << fixed(s.rendering_fps, 1) << " | " << fixed(s.rendering_cpu_ms, 2) << " | "
+            << fixed(s.models_share, 3) << " |\n";
     }
 }
 

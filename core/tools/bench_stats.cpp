@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <numbers>
 
 namespace gc::tools {
@@ -11,6 +12,20 @@ double ms_since(BenchClock::time_point t0)
 {
     return std::chrono::duration<double, std::milli>(BenchClock::now() - t0).count();
 }
+
+namespace {
+
+double clock_ms(clockid_t clock)
+{
+    timespec t{};
+    clock_gettime(clock, &t);
+    return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
+}
+
+}  // namespace
+
+double thread_cpu_ms() { return clock_ms(CLOCK_THREAD_CPUTIME_ID); }
+double process_cpu_ms() { return clock_ms(CLOCK_PROCESS_CPUTIME_ID); }
 
 double median(std::vector<double> v)
 {

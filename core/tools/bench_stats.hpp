@@ -14,6 +14,10 @@ namespace gc::tools {
 using BenchClock = std::chrono::steady_clock;
 
 double ms_since(BenchClock::time_point t0);
+// CPU time in ms, of the calling thread or of the whole process (every thread): what a
+// measurement costs however busy the machine is, where wall time also counts the waits.
+double thread_cpu_ms();
+double process_cpu_ms();
 double median(std::vector<double> v);
 double mean(const std::vector<double>& v);
 double angle_deg(const cv::Vec3d& a, const cv::Vec3d& b);

@@ -43,7 +43,9 @@ void measure_scene(const BenchOptions& o, std::size_t si, BenchResults& r,
                 params.seed = seed;
                 params.detector = o.detectors[di];
                 AccuracyRow& row = r.accuracy[{di, static_cast<int>(si), particles}];
-                row.ms.push_back(run_tracker(seq, params, o.runs, &row, nullptr));
+                const TrackerCost cost = run_tracker(seq, params, o.runs, &row, nullptr);
+                row.ms.push_back(cost.ms);
+                row.cpu_ms.push_back(cost.cpu_ms);
             }
         }
         if (!o.peers)

@@ -63,7 +63,7 @@ void compare_with_peers(const Sequence& seq, const gc::TrackerParams& params,
     const int frames = static_cast<int>(seq.frames.size());
     std::vector<cv::Rect> our_boxes;
     AccuracyRow ours_row;
-    const double our_ms = run_tracker(seq, params, 1, &ours_row, &our_boxes);
+    const double our_ms = run_tracker(seq, params, 1, &ours_row, &our_boxes).ms;
     // Peers start where we acquire, or where the hand first shows if we never do.
     int init = ours_row.acquired_at.front() >= 0 ? ours_row.acquired_at.front() : seq.first_visible;
     while (init >= 0 && init < frames && !seq.visible[init])

@@ -8,7 +8,6 @@
 #include <opencv2/videoio.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -118,14 +117,16 @@ RealPairFigures measure_real_pair(const RealPairOptions& o) {
     PointingTracker tracker(o.params, load_calibration(base + "calib.yml"));
 
     ViewTally lt, rt;
-    std::vector<double> angles, ms;
+    std::vector<double> angles, ms, cpu_ms;
     int pointing = 0, other = 0, false_rays = 0, frame = 0;
     cv::Mat l, r;
     for (; frame < o.last_frame && left.read(l) && right.read(r); ++frame) {
         if (frame < o.first_frame) continue;
-        const auto t0 = std::chrono::steady_clock::now();
+        const auto t0 = BenchClock::now();
+        const double cpu0 = process_cpu_ms();
         const FrameResult& res = tracker.process_stereo(l, r);
-        ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        cpu_ms.push_back(process_cpu_ms() - cpu0);
+        ms.push_back(ms_since(t0));
         const auto ref = stereo_ref.find(frame);
         const bool points = ref != stereo_ref.end() && ref->second.pointing;
         const auto tip = [&](const std::map<int, cv::Point2d>& m) {
@@ -154,6 +155,7 @@ RealPairFigures measure_real_pair(const RealPairOptions& o) {
     f.other_frames = other;
     f.false_pointing = share(false_rays, other);
     f.ms_per_frame = quantile(ms, 0.5);
+    f.cpu_ms_per_frame = quantile(cpu_ms, 0.5);
     return f;
 }
 

@@ -57,6 +57,7 @@ void print_3d(const BenchOptions& o, const RealPairRow& row, std::ostream& out)
                    .add("other_frames", f.other_frames)
                    .add("false_pointing", f.false_pointing, 3)
                    .add("ms_per_frame", row.ms_per_frame, 2)
+                   .add("cpu_ms_per_frame", row.cpu_ms_per_frame, 2)
                    .add("runs", o.runs)
                    .str()
             << '\n';
@@ -66,7 +67,7 @@ void print_3d(const BenchOptions& o, const RealPairRow& row, std::ostream& out)
         << fixed(f.ray_coverage, 3) << " | " << fixed(f.angle_median_deg, 1) << " | "
         << fixed(f.angle_p90_deg, 1) << " | " << f.other_frames << " | "
         << fixed(f.false_pointing, 3) << " | " << fixed(row.ms_per_frame, 2) << " | "
-        << fixed(fps, 1) << " |\n";
+        << fixed(fps, 1) << " | " << fixed(row.cpu_ms_per_frame, 2) << " |\n";
 }
 
 }  // namespace
@@ -93,8 +94,9 @@ void print_real_pair(const BenchOptions& o, const std::vector<RealPairRow>& rows
         out << "\nThe 3D pointing ray against the reference's, and the cost (median of " << o.runs
             << " run(s); both eyes on two threads, one OpenCV thread each):\n\n"
             << "| detector | pointing frames | 3D ray | median angle deg | p90 angle deg | "
-               "other frames | false pointing | ms/stereo frame | stereo frames/s |\n"
-            << "|---|---|---|---|---|---|---|---|---|\n";
+               "other frames | false pointing | ms/stereo frame | stereo frames/s | "
+               "CPU ms/stereo frame |\n"
+            << "|---|---|---|---|---|---|---|---|---|---|\n";
     for (const RealPairRow& row : rows)
         print_3d(o, row, out);
 }

@@ -27,7 +27,7 @@ std::vector<RealPairRow> measure_real_pair_rows(const BenchOptions& o)
         options.params.detector = detector;
         RealPairRow row;
         row.detector = detector;
-        std::vector<double> ms;
+        std::vector<double> ms, cpu_ms;
         for (int run = 0; run < o.runs; ++run) {
             std::cerr << "gesturecam-bench: real pair, " << detector_name(detector) << ", run "
                       << run + 1 << '\n';
@@ -35,8 +35,10 @@ std::vector<RealPairRow> measure_real_pair_rows(const BenchOptions& o)
             if (run == 0)
                 row.figures = f;
             ms.push_back(f.ms_per_frame);
+            cpu_ms.push_back(f.cpu_ms_per_frame);
         }
         row.ms_per_frame = median(ms);
+        row.cpu_ms_per_frame = median(cpu_ms);
         rows.push_back(row);
     }
     return rows;

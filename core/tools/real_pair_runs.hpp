@@ -13,6 +13,7 @@ struct RealPairRow {
     gc::HandDetector detector = gc::HandDetector::Learned;
     RealPairFigures figures;      // of the first run (the runs track alike)
     double ms_per_frame = 0.0;    // median over runs of each run's median stereo frame
+    double cpu_ms_per_frame = 0.0;  // ... of its CPU time
 };
 
 // One row per detector of `o`; none when the real pair is skipped, or when the source

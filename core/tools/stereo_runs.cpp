@@ -6,53 +6,50 @@
 #include "tracker/pointing_tracker.hpp"
 #include "tracker/stereo_tracker.hpp"
 
+#include <array>
 
 namespace gc::tools {
 
 namespace {
 
-// Stereo frames per second of the whole pipeline on frames rendered beforehand, one
-// figure per run; `models_share` receives the share of eye-frames of the first run on
-// which the learned models ran.
-std::vector<double> tracker_fps(const gc::TrackerParams& params, const gc::sim::Scene& scene,
-                                const Sequence& left, const Sequence& right, int runs,
-                                double* models_share)
+struct Throughput {
+    double fps = 0.0;     // stereo frames per second, wall time
+    double cpu_ms = 0.0;  // CPU time per stereo frame, every thread of the process
+};
+
+// The whole pipeline over the scene, `runs` times; medians over runs. With `rendered`,
+// on its frames rendered beforehand; without, both views are rendered in the timed loop
+// on the calling thread, as a pair of scene sources feeding the tracker would do without
+// running beside it. `models_share`, when given, receives the share of eye-frames of the
+// first run on which the learned models ran.
+Throughput throughput(const gc::TrackerParams& params, const gc::sim::Scene& scene, int frames,
+                      int runs, const std::array<const Sequence*, 2>* rendered,
+                      double* models_share)
 {
-    const int frames = static_cast<int>(left.frames.size());
-    std::vector<double> fps;
+    std::vector<double> fps, cpu_ms;
+    cv::Mat left, right;
     for (int run = 0; run < runs; ++run) {
         gc::PointingTracker pipeline(params, scene.calibration());
         int models = 0;
         const auto t0 = BenchClock::now();
+        const double cpu0 = process_cpu_ms();
         for (int f = 0; f < frames; ++f) {
-            const gc::FrameResult& r = pipeline.process_stereo(left.frames[f], right.frames[f]);
+            if (rendered) {
+                left = (*rendered)[0]->frames[f];
+                right = (*rendered)[1]->frames[f];
+            } else {
+                scene.render(f, gc::Eye::Left, gc::HeadPose{}, left);
+                scene.render(f, gc::Eye::Right, gc::HeadPose{}, right);
+            }
+            const gc::FrameResult& r = pipeline.process_stereo(left, right);
             models += int(r.left.models_ran) + int(r.right.models_ran);
         }
+        cpu_ms.push_back((process_cpu_ms() - cpu0) / frames);
         fps.push_back(1000.0 * frames / ms_since(t0));
-        if (run == 0)
+        if (run == 0 && models_share)
             *models_share = models / (2.0 * frames);
     }
-    return fps;
-}
-
-// The same with both eyes rendered in the timed loop, on the calling thread, as a pair of
-// scene sources feeding the tracker would do without running beside it.
-std::vector<double> rendering_fps(const gc::TrackerParams& params, const gc::sim::Scene& scene,
-                                  int frames, int runs)
-{
-    std::vector<double> fps;
-    cv::Mat left, right;
-    for (int run = 0; run < runs; ++run) {
-        gc::PointingTracker pipeline(params, scene.calibration());
-        const auto t0 = BenchClock::now();
-        for (int f = 0; f < frames; ++f) {
-            scene.render(f, gc::Eye::Left, gc::HeadPose{}, left);
-            scene.render(f, gc::Eye::Right, gc::HeadPose{}, right);
-            pipeline.process_stereo(left, right);
-        }
-        fps.push_back(1000.0 * frames / ms_since(t0));
-    }
-    return fps;
+    return {median(fps), median(cpu_ms)};
 }
 
 }  // namespace
@@ -96,8 +93,13 @@ StereoFigures measure_stereo(const BenchOptions& o, gc::HandDetector detector)
         out.direction_error_deg = median(direction_err);
         out.palm_error_mm = median(palm_err);
     }
-    out.fps = median(tracker_fps(params, scene, left, right, o.runs, &out.models_share));
-    out.rendering_fps = median(rendering_fps(params, scene, o.frames, o.runs));
+    const std::array<const Sequence*, 2> rendered{&left, &right};
+    const Throughput tracking = throughput(params, scene, o.frames, o.runs, &rendered, &out.models_share);
+    const Throughput whole = throughput(params, scene, o.frames, o.runs, nullptr, nullptr);
+    out.fps = tracking.fps;
+    out.cpu_ms = tracking.cpu_ms;
+    out.rendering_fps = whole.fps;
+    out.rendering_cpu_ms = whole.cpu_ms;
     return out;
 }
 

@@ -17,7 +17,9 @@ struct StereoFigures {
     double direction_error_deg = std::nan("");
     double palm_error_mm = std::nan("");
     double fps = std::nan("");            // frames rendered beforehand
-    double rendering_fps = std::nan("");     // both views rendered in the timed loop
+    double cpu_ms = std::nan("");         // ... CPU time per stereo frame, all threads
+    double rendering_fps = std::nan("");  // both views rendered in the timed loop
+    double rendering_cpu_ms = std::nan("");
     double models_share = std::nan("");   // eye-frames on which the learned models ran
 };
 

@@ -27,20 +27,22 @@ Sequence render_sequence(const gc::sim::Scene& scene, int frames, gc::Eye eye)
     return s;
 }
 
-double run_tracker(const Sequence& seq, const gc::TrackerParams& params, int runs,
+TrackerCost run_tracker(const Sequence& seq, const gc::TrackerParams& params, int runs,
                    AccuracyRow* row, std::vector<cv::Rect>* boxes)
 {
     const int n = static_cast<int>(seq.frames.size());
     const cv::Size size = seq.frames.front().size();
     const cv::Mat1b empty(size, 0);
-    std::vector<double> per_run;
+    std::vector<double> per_run, cpu_per_run;
     for (int run = 0; run < runs; ++run) {
         gc::HandTracker tracker(params);
-        double total_ms = 0.0;
+        double total_ms = 0.0, total_cpu_ms = 0.0;
         int acquired = -1;
         for (int f = 0; f < n; ++f) {
             const auto t0 = BenchClock::now();
+            const double cpu0 = thread_cpu_ms();
             const gc::EyeEstimate& e = tracker.process(seq.frames[f]);
+            total_cpu_ms += thread_cpu_ms() - cpu0;
             total_ms += ms_since(t0);
             if (run != 0)
                 continue;
@@ -71,8 +73,9 @@ double run_tracker(const Sequence& seq, const gc::TrackerParams& params, int run
         if (run == 0 && row)
             row->acquired_at.push_back(acquired);
         per_run.push_back(total_ms / n);
+        cpu_per_run.push_back(total_cpu_ms / n);
     }
-    return median(per_run);
+    return {median(per_run), median(cpu_per_run)};
 }
 
 Baseline measure_baseline(const Sequence& seq, int runs)

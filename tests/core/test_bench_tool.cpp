@@ -111,6 +111,7 @@ TEST(BenchTool, QuickJsonRunCoversTheSyntheticTables)
         EXPECT_TRUE(in_range(row["mean_iou"], 0.0, 1.0));
         EXPECT_TRUE(in_range(row["tracked_fraction"], 0.0, 1.0));
         EXPECT_TRUE(in_range(row["ms_per_frame"], 0.0, 10000.0));
+        EXPECT_TRUE(in_range(row["cpu_ms_per_frame"], 1e-6, 10000.0));
         EXPECT_TRUE(in_range(row["skin_pct"], 0.0, 100.0));
         EXPECT_TRUE(row["snr_db"].is_number() || row["snr_db"].is_null());
     }
@@ -143,6 +144,8 @@ TEST(BenchTool, QuickJsonRunHasAStereoRowPerDetector)
     for (const auto& [detector, s] : by_detector) {
         EXPECT_TRUE(in_range(s["pipeline_fps"], 0.0, 1e6)) << detector;
         EXPECT_TRUE(in_range(s["rendering_fps"], 0.0, 1e6)) << detector;
+        EXPECT_TRUE(in_range(s["cpu_ms_per_frame"], 1e-6, 1e6)) << detector;
+        EXPECT_TRUE(in_range(s["rendering_cpu_ms_per_frame"], 1e-6, 1e6)) << detector;
         EXPECT_TRUE(in_range(s["valid_3d"], 0.0, s["frames"].number())) << detector;
     }
     EXPECT_TRUE(in_range(by_detector["learned"]["models_share"], 1e-9, 1.0));
@@ -180,6 +183,7 @@ TEST(BenchTool, QuickJsonRunHasTheRealPairForEachDetector)
         EXPECT_TRUE(in_range(p["ray_coverage"], 0.0, 1.0)) << detector;
         EXPECT_TRUE(in_range(p["false_pointing"], 0.0, 1.0)) << detector;
         EXPECT_TRUE(in_range(p["ms_per_frame"], 1e-6, 10000.0)) << detector;
+        EXPECT_TRUE(in_range(p["cpu_ms_per_frame"], 1e-6, 10000.0)) << detector;
     }
     EXPECT_EQ(detectors, (std::set<std::string>{"learned", "motion"}));
     EXPECT_EQ(rows_of("real_pair").size(), 2u);
