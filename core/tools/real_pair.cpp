@@ -1,17 +1,16 @@
 #include "tools/real_pair.hpp"
 
 #include "stereo/calibration.hpp"
+#include "tools/bench_stats.hpp"
 #include "tools/json_reader.hpp"
 #include "tracker/pointing_tracker.hpp"
 
 #include <opencv2/videoio.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <map>
-#include <numbers>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -101,11 +100,6 @@ struct ViewTally {
     }
 };
 
-double angle_deg(const cv::Vec3d& a, const cv::Vec3d& b) {
-    const double c = a.dot(b) / (cv::norm(a) * cv::norm(b));
-    return std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / std::numbers::pi;
-}
-
 cv::VideoCapture open_video(const std::string& path) {
     cv::VideoCapture video(path);
     if (!video.isOpened()) throw std::runtime_error("cannot decode " + path);
@@ -123,14 +117,16 @@ RealPairFigures measure_real_pair(const RealPairOptions& o) {
     PointingTracker tracker(o.params, load_calibration(base + "calib.yml"));
 
     ViewTally lt, rt;
-    std::vector<double> angles, ms;
+    std::vector<double> angles, ms, cpu_ms;
     int pointing = 0, other = 0, false_rays = 0, frame = 0;
     cv::Mat l, r;
     for (; frame < o.last_frame && left.read(l) && right.read(r); ++frame) {
         if (frame < o.first_frame) continue;
-        const auto t0 = std::chrono::steady_clock::now();
+        const auto t0 = BenchClock::now();
+        const double cpu0 = process_cpu_ms();
         const FrameResult& res = tracker.process_stereo(l, r);
-        ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        cpu_ms.push_back(process_cpu_ms() - cpu0);
+        ms.push_back(ms_since(t0));
         const auto ref = stereo_ref.find(frame);
         const bool points = ref != stereo_ref.end() && ref->second.pointing;
         const auto tip = [&](const std::map<int, cv::Point2d>& m) {
@@ -159,6 +155,7 @@ RealPairFigures measure_real_pair(const RealPairOptions& o) {
     f.other_frames = other;
     f.false_pointing = share(false_rays, other);
     f.ms_per_frame = quantile(ms, 0.5);
+    f.cpu_ms_per_frame = quantile(cpu_ms, 0.5);
     return f;
 }
 

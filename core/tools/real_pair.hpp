@@ -41,6 +41,7 @@ struct RealPairFigures {
     int other_frames = 0;         // reference frames where it does not point
     double false_pointing = 0.0;  // share of them with a 3D ray
     double ms_per_frame = 0.0;    // median wall time of one stereo frame
+    double cpu_ms_per_frame = 0.0;  // median CPU time of one, every thread of the process
 };
 
 // Decodes both recordings (frame i = the i-th decoded frame), tracks them in stereo and

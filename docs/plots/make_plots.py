@@ -47,6 +47,19 @@ def load(path):
     return rows
 
 
+def detector_of(row):
+    # Lines written before the bench measured both detectors carry none.
+    return row.get("detector", "")
+
+
+def detectors(rows):
+    names = []
+    for r in rows:
+        if detector_of(r) not in names:
+            names.append(detector_of(r))
+    return names
+
+
 def by_scene(rows):
     scenes = {}
     for r in rows:
@@ -54,6 +67,24 @@ def by_scene(rows):
     for rs in scenes.values():
         rs.sort(key=lambda r: r["particles"])
     return scenes
+
+
+def by_scene_and_detector(rows):
+    """{(scene, detector): rows by particle count}, scenes and detectors in file order."""
+    out = {}
+    for r in rows:
+        out.setdefault((r["scene"], detector_of(r)), []).append(r)
+    for rs in out.values():
+        rs.sort(key=lambda r: r["particles"])
+    return out
+
+
+LINESTYLES = ["-", ":", "-.", (0, (1, 3))]  # thesis curves are dashed
+
+
+def curve_label(scene, detector, extra=""):
+    who = f"GestureCAM {detector}" if detector else "GestureCAM"
+    return f"{who}, {scene}{extra}"
 
 
 def fmt(v, digits):
@@ -68,12 +99,19 @@ def plots(data, out_dir):
     import matplotlib.pyplot as plt
 
     scenes = by_scene(data["tracker"])
+    curves = by_scene_and_detector(data["tracker"])
+    dets = detectors(data["tracker"])
+    colours = {name: f"C{i}" for i, name in enumerate(scenes)}
 
-    fig, ax = plt.subplots(figsize=(7, 5.5))
-    for name, rs in scenes.items():
+    def style(scene, detector):
+        return dict(color=colours[scene], linestyle=LINESTYLES[dets.index(detector) % len(LINESTYLES)])
+
+    fig, ax = plt.subplots(figsize=(7, 6))
+    for (name, det), rs in curves.items():
         pts = [(r["particles"], r["snr_db"]) for r in rs if r["snr_db"] is not None]
         if pts:
-            ax.plot(*zip(*pts), marker="o", label=f"GestureCAM, {name} ({rs[0]['skin_pct']:.2f}% skin)")
+            ax.plot(*zip(*pts), marker="o", **style(name, det),
+                    label=curve_label(name, det, f" ({rs[0]['skin_pct']:.2f}% skin)"))
     for label, (x, y) in THESIS_SNR.items():
         ax.plot(x, y, linestyle="--", marker="s", color="grey" if "no" in label else "black",
                 label=f"thesis, {label}")
@@ -87,10 +125,12 @@ def plots(data, out_dir):
     fig.savefig(out_dir / "snr_vs_particles.png", dpi=110)
     plt.close(fig)
 
-    fig, ax = plt.subplots(figsize=(7, 5.5))
-    for name, rs in scenes.items():
-        ax.plot([r["particles"] for r in rs], [r["ms_per_frame"] for r in rs], marker="o",
-                label=f"GestureCAM, {name}")
+    # CPU time where the bench gave it: on a shared machine it moves far less than wall time.
+    cost = "cpu_ms_per_frame" if all("cpu_ms_per_frame" in r for r in data["tracker"]) else "ms_per_frame"
+    fig, ax = plt.subplots(figsize=(7, 6))
+    for (name, det), rs in curves.items():
+        ax.plot([r["particles"] for r in rs], [r[cost] for r in rs], marker="o",
+                **style(name, det), label=curve_label(name, det))
     ax.plot(*THESIS_MS, linestyle="--", marker="s", color="black",
             label="thesis (2003 desktop, whole iteration)")
     conv = data["baseline"][0]["convert_ms"]
@@ -98,7 +138,7 @@ def plots(data, out_dir):
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("particles per eye")
-    ax.set_ylabel("ms per frame per eye")
+    ax.set_ylabel(("CPU " if cost.startswith("cpu") else "") + "ms per frame per eye")
     machine = data["machine"][0]
     ax.set_title(f"Cost per frame ({machine['cpu']}, one thread)", fontsize=9)
     ax.grid(True, which="both", alpha=0.3)
@@ -131,6 +171,93 @@ def plots(data, out_dir):
         plt.close(fig)
 
 
+def synthetic_table(data):
+    """Tables 4.1/4.2 with every detector's figure beside the other's in each cell."""
+    b = data["baseline"][0]
+    dets = detectors(data["tracker"])
+    rows = {}
+    for r in data["tracker"]:
+        rows.setdefault((r["scene"], r["particles"]), {})[detector_of(r)] = r
+    pair = " / ".join(d for d in dets if d)
+    head = f" ({pair})" if len(dets) > 1 else ""
+    out = [f"| scene | skin % | particles | SNR dB{head} | mean IoU{head} | tracked{head} | "
+           f"lost frames{head} | ms/frame/eye{head} | x conversion{head} | CPU ms/frame/eye{head} |",
+           "|---|---|---|---|---|---|---|---|---|---|"]
+
+    def cell(by_det, fn):
+        return " / ".join(fn(by_det[d]) if d in by_det else "n/a" for d in dets)
+
+    def ratio(r):
+        return fmt(r["ms_per_frame"] / b["convert_ms"] if b["convert_ms"] else None, 1)
+
+    for (scene, particles), by_det in rows.items():
+        first = next(iter(by_det.values()))
+        out.append(f"| {scene} | {fmt(first['skin_pct'], 2)} | {particles} | "
+                   f"{cell(by_det, lambda r: fmt(r['snr_db'], 2))} | "
+                   f"{cell(by_det, lambda r: fmt(r['mean_iou'], 3))} | "
+                   f"{cell(by_det, lambda r: fmt(r['tracked_fraction'], 3))} | "
+                   f"{cell(by_det, lambda r: fmt(r['lost_frames'], 1))} | "
+                   f"{cell(by_det, lambda r: fmt(r['ms_per_frame'], 2))} | {cell(by_det, ratio)} | "
+                   f"{cell(by_det, lambda r: fmt(r.get('cpu_ms_per_frame'), 2))} |")
+    return out
+
+
+def peers_table(peers):
+    ours = f"{peers[0]['particles']} particles"
+    if "detector" in peers[0]:
+        ours += f", {peers[0]['detector']} detector"
+    out = ["", f"OpenCV's trackers on the same frames (ours at {ours}):",
+           "", "| scene | tracker | box IoU | ms/frame | frames scored |", "|---|---|---|---|---|"]
+    for p in peers:
+        out.append(f"| {p['scene']} | {p['tracker']} | {fmt(p['box_iou'], 3)} | "
+                   f"{fmt(p['ms_per_frame'], 2)} | {p['frames']} |")
+    return out
+
+
+def stereo_table(rows):
+    s0 = rows[0]
+    out = ["", f"Stereo, {s0['scene']} scene, {s0['particles']} particles per eye:", "",
+           "| detector | 3D step ms/stereo frame | 3D valid frames | median direction error deg | "
+           "median palm error mm | pipeline frames/s (2 threads) | CPU ms/stereo frame | "
+           "with rendering frames/s | with rendering CPU ms/stereo frame | network share |",
+           "|---|---|---|---|---|---|---|---|---|---|"]
+    for s in rows:
+        out.append(f"| {s.get('detector', 'n/a')} | {fmt(s['estimate_ms'], 2)} | "
+                   f"{s['valid_3d']}/{s['frames']} | {fmt(s['direction_error_deg'], 1)} | "
+                   f"{fmt(s['palm_error_mm'], 0)} | {fmt(s['pipeline_fps'], 1)} | "
+                   f"{fmt(s.get('cpu_ms_per_frame'), 2)} | {fmt(s.get('rendering_fps'), 1)} | "
+                   f"{fmt(s.get('rendering_cpu_ms_per_frame'), 2)} | {fmt(s.get('models_share'), 3)} |")
+    return out
+
+
+def real_pair_tables(views, pairs):
+    p0 = pairs[0]
+    out = ["", f"Real pair, {p0['frames']} stereo frames, {p0['particles']} particles per eye: "
+           "the fingertip in each view against the reference key points (\"models\": frames where "
+           "the learned models ran; \"carried\": frames the contour carried alone):", "",
+           "| detector | view | reference frames | tracked | within 30 px | median px | "
+           "median px, models | median px, carried | models share of tracked | pointing frames | "
+           "tracked while pointing | median px while pointing |",
+           "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for v in views:
+        out.append(f"| {v['detector']} | {v['view']} | {v['reference_frames']} | "
+                   f"{fmt(v['coverage'], 3)} | {fmt(v['within_30px'], 3)} | {fmt(v['median_px'], 1)} | "
+                   f"{fmt(v['median_px_models'], 1)} | {fmt(v['median_px_carried'], 1)} | "
+                   f"{fmt(v['models_share'], 3)} | {v['pointing_frames']} | "
+                   f"{fmt(v['pointing_coverage'], 3)} | {fmt(v['pointing_median_px'], 1)} |")
+    out += ["", f"Real pair in 3D, and its cost (median of {p0['runs']} run(s)):", "",
+            "| detector | pointing frames | 3D ray | median angle deg | p90 angle deg | other frames | "
+            "false pointing | ms/stereo frame | stereo frames/s | CPU ms/stereo frame |",
+            "|---|---|---|---|---|---|---|---|---|---|"]
+    for p in pairs:
+        fps = 1000.0 / p["ms_per_frame"] if p["ms_per_frame"] else None
+        out.append(f"| {p['detector']} | {p['pointing_frames']} | {fmt(p['ray_coverage'], 3)} | "
+                   f"{fmt(p['angle_median_deg'], 1)} | {fmt(p['angle_p90_deg'], 1)} | "
+                   f"{p['other_frames']} | {fmt(p['false_pointing'], 3)} | "
+                   f"{fmt(p['ms_per_frame'], 2)} | {fmt(fps, 1)} | {fmt(p.get('cpu_ms_per_frame'), 2)} |")
+    return out
+
+
 def tables(data):
     m = data["machine"][0]
     b = data["baseline"][0]
@@ -142,30 +269,13 @@ def tables(data):
         f"Baseline per frame: copy {fmt(b['copy_ms'], 3)} ms, BGR->RGB conversion "
         f"{fmt(b['convert_ms'], 3)} ms.",
         "",
-        "| scene | skin % | particles | SNR dB | mean IoU | tracked | lost frames | ms/frame/eye | x conversion |",
-        "|---|---|---|---|---|---|---|---|---|",
-    ]
-    for r in data["tracker"]:
-        ratio = r["ms_per_frame"] / b["convert_ms"] if b["convert_ms"] else float("nan")
-        out.append(f"| {r['scene']} | {fmt(r['skin_pct'], 2)} | {r['particles']} | "
-                   f"{fmt(r['snr_db'], 2)} | {fmt(r['mean_iou'], 3)} | "
-                   f"{fmt(r['tracked_fraction'], 3)} | {fmt(r['lost_frames'], 1)} | "
-                   f"{fmt(r['ms_per_frame'], 2)} | {fmt(ratio, 1)} |")
-    peers = data.get("peer", [])
-    if peers:
-        out += ["", f"OpenCV's trackers on the same frames (ours at {peers[0]['particles']} particles):",
-                "", "| scene | tracker | box IoU | ms/frame | frames scored |", "|---|---|---|---|---|"]
-        for p in peers:
-            out.append(f"| {p['scene']} | {p['tracker']} | {fmt(p['box_iou'], 3)} | "
-                       f"{fmt(p['ms_per_frame'], 2)} | {p['frames']} |")
-    for s in data.get("stereo", []):
-        out += ["", f"Stereo, {s['scene']} scene, {s['particles']} particles per eye:", "",
-                "| 3D step ms/stereo frame | 3D valid frames | median direction error deg | "
-                "median palm error mm | pipeline frames/s (2 threads) |",
-                "|---|---|---|---|---|",
-                f"| {fmt(s['estimate_ms'], 2)} | {s['valid_3d']}/{s['frames']} | "
-                f"{fmt(s['direction_error_deg'], 1)} | {fmt(s['palm_error_mm'], 0)} | "
-                f"{fmt(s['pipeline_fps'], 1)} |"]
+    ] + synthetic_table(data)
+    if data.get("peer"):
+        out += peers_table(data["peer"])
+    if data.get("stereo"):
+        out += stereo_table(data["stereo"])
+    if data.get("real_pair") and data.get("real_view"):
+        out += real_pair_tables(data["real_view"], data["real_pair"])
     return "\n".join(out)
 
 

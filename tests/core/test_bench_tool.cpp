@@ -1,5 +1,6 @@
-// gesturecam-bench: the quick smoke run prints well-formed JSON lines covering every table, with
-// figures in their valid ranges; bad options are rejected.
+// gesturecam-bench: the quick smoke run prints well-formed JSON lines covering every table (both
+// detectors, the stereo rows, the real pair), with figures in their valid ranges; bad options
+// are rejected.
 #include "tools/json_reader.hpp"
 
 #include <gtest/gtest.h>
@@ -15,6 +16,8 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -62,78 +65,185 @@ bool in_range(const JsonValue& v, double lo, double hi)
     return v.is_number() && v.number() >= lo && v.number() <= hi;
 }
 
-TEST(BenchTool, QuickJsonRunCoversEveryTable)
-{
-    const RunResult r = run_bench("--quick --json");
-    ASSERT_EQ(r.status, 0) << r.err;
-    std::map<std::string, std::vector<JsonValue>> by_kind;
-    std::istringstream in(r.out);
-    for (std::string line; std::getline(in, line);) {
-        JsonValue v;
-        ASSERT_NO_THROW(v = JsonReader::parse(line)) << line;
-        ASSERT_TRUE(v.has("kind")) << line;
-        by_kind[v["kind"].string()].push_back(v);
-    }
-    ASSERT_EQ(by_kind["machine"].size(), 1u);
-    EXPECT_GE(by_kind["machine"][0]["cores"].number(), 1);
-    ASSERT_EQ(by_kind["baseline"].size(), 1u);
-    EXPECT_TRUE(in_range(by_kind["baseline"][0]["convert_ms"], 0.0, 1000.0));
+using Rows = std::map<std::string, std::vector<JsonValue>>;
 
-    // --quick: scenes clean and heavy, 50 and 200 particles.
-    const std::vector<JsonValue>& rows = by_kind["tracker"];
-    ASSERT_EQ(rows.size(), 4u);
-    std::set<std::pair<std::string, int>> seen;
-    for (const JsonValue& row : rows) {
-        seen.insert({row["scene"].string(), static_cast<int>(row["particles"].number())});
+// The quick run's JSON lines by kind; parsed once for the tests below.
+const Rows& quick_json_rows()
+{
+    static const Rows rows = [] {
+        Rows by_kind;
+        const RunResult r = run_bench("--quick --json");
+        EXPECT_EQ(r.status, 0) << r.err;
+        std::istringstream in(r.out);
+        for (std::string line; std::getline(in, line);) {
+            JsonValue v;
+            EXPECT_NO_THROW(v = JsonReader::parse(line)) << line;
+            EXPECT_TRUE(v.has("kind")) << line;
+            if (v.has("kind"))
+                by_kind[v["kind"].string()].push_back(v);
+        }
+        return by_kind;
+    }();
+    return rows;
+}
+
+std::vector<JsonValue> rows_of(const std::string& kind)
+{
+    const Rows& rows = quick_json_rows();
+    const auto it = rows.find(kind);
+    return it == rows.end() ? std::vector<JsonValue>{} : it->second;
+}
+
+TEST(BenchTool, QuickJsonRunCoversTheSyntheticTables)
+{
+    const std::vector<JsonValue> machine = rows_of("machine");
+    ASSERT_EQ(machine.size(), 1u);
+    EXPECT_GE(machine[0]["cores"].number(), 1);
+    const std::vector<JsonValue> baseline = rows_of("baseline");
+    ASSERT_EQ(baseline.size(), 1u);
+    EXPECT_TRUE(in_range(baseline[0]["convert_ms"], 0.0, 1000.0));
+
+    // --quick: scenes clean and heavy, 50 and 200 particles, each with both detectors.
+    std::set<std::tuple<std::string, std::string, int>> seen;
+    for (const JsonValue& row : rows_of("tracker")) {
+        seen.insert({row["detector"].string(), row["scene"].string(),
+                     static_cast<int>(row["particles"].number())});
         EXPECT_TRUE(in_range(row["mean_iou"], 0.0, 1.0));
         EXPECT_TRUE(in_range(row["tracked_fraction"], 0.0, 1.0));
         EXPECT_TRUE(in_range(row["ms_per_frame"], 0.0, 10000.0));
+        EXPECT_TRUE(in_range(row["cpu_ms_per_frame"], 1e-6, 10000.0));
         EXPECT_TRUE(in_range(row["skin_pct"], 0.0, 100.0));
         EXPECT_TRUE(row["snr_db"].is_number() || row["snr_db"].is_null());
     }
-    EXPECT_EQ(seen, (std::set<std::pair<std::string, int>>{
-                        {"clean", 50}, {"clean", 200}, {"heavy", 50}, {"heavy", 200}}));
+    std::set<std::tuple<std::string, std::string, int>> expected;
+    for (const char* detector : {"learned", "motion"})
+        for (const char* scene : {"clean", "heavy"})
+            for (int particles : {50, 200})
+                expected.insert({detector, scene, particles});
+    EXPECT_EQ(seen, expected);
+    EXPECT_EQ(rows_of("tracker").size(), expected.size());
 
     std::set<std::string> peers;
-    for (const JsonValue& p : by_kind["peer"]) {
+    for (const JsonValue& p : rows_of("peer")) {
         peers.insert(p["tracker"].string());
+        EXPECT_EQ(p["detector"].string(), "learned");
         EXPECT_TRUE(in_range(p["box_iou"], 0.0, 1.0));
         EXPECT_TRUE(in_range(p["ms_per_frame"], 0.0, 10000.0));
     }
     EXPECT_EQ(peers, (std::set<std::string>{"gesturecam", "kcf", "csrt", "medianflow", "camshift"}));
+}
 
-    ASSERT_EQ(by_kind["stereo"].size(), 1u);
-    const JsonValue& s = by_kind["stereo"][0];
-    EXPECT_TRUE(in_range(s["pipeline_fps"], 0.0, 1e6));
-    EXPECT_TRUE(in_range(s["valid_3d"], 0.0, s["frames"].number()));
+// One stereo row per detector; the network runs only in the learned mode.
+TEST(BenchTool, QuickJsonRunHasAStereoRowPerDetector)
+{
+    std::map<std::string, JsonValue> by_detector;
+    for (const JsonValue& s : rows_of("stereo"))
+        by_detector[s["detector"].string()] = s;
+    ASSERT_EQ(rows_of("stereo").size(), 2u);
+    ASSERT_EQ(by_detector.size(), 2u);
+    for (const auto& [detector, s] : by_detector) {
+        EXPECT_TRUE(in_range(s["pipeline_fps"], 0.0, 1e6)) << detector;
+        EXPECT_TRUE(in_range(s["rendering_fps"], 0.0, 1e6)) << detector;
+        EXPECT_TRUE(in_range(s["cpu_ms_per_frame"], 1e-6, 1e6)) << detector;
+        EXPECT_TRUE(in_range(s["rendering_cpu_ms_per_frame"], 1e-6, 1e6)) << detector;
+        EXPECT_TRUE(in_range(s["valid_3d"], 0.0, s["frames"].number())) << detector;
+    }
+    EXPECT_TRUE(in_range(by_detector["learned"]["models_share"], 1e-9, 1.0));
+    EXPECT_TRUE(in_range(by_detector["motion"]["models_share"], 0.0, 0.0));
+}
+
+// --quick tracks the real pair's first 40 frames: 26 of them (14-39) point.
+TEST(BenchTool, QuickJsonRunHasTheRealPairForEachDetector)
+{
+    std::set<std::pair<std::string, std::string>> views;
+    for (const JsonValue& v : rows_of("real_view")) {
+        const std::string detector = v["detector"].string(), view = v["view"].string();
+        views.insert({detector, view});
+        EXPECT_EQ(v["pointing_frames"].number(), 26) << detector << ' ' << view;
+        for (const char* share : {"coverage", "within_30px", "models_share", "pointing_coverage"})
+            EXPECT_TRUE(in_range(v[share], 0.0, 1.0)) << detector << ' ' << view << ' ' << share;
+        if (detector == "learned") {
+            // The landmark model sees this hand: the fingertip is found and lands near it.
+            EXPECT_GE(v["pointing_coverage"].number(), 0.5) << view;
+            EXPECT_TRUE(in_range(v["pointing_median_px"], 0.0, 30.0)) << view;
+            EXPECT_GT(v["models_share"].number(), 0.0) << view;
+        } else {
+            EXPECT_EQ(v["models_share"].number(), 0.0) << view;
+        }
+    }
+    EXPECT_EQ(views, (std::set<std::pair<std::string, std::string>>{
+                         {"learned", "left"}, {"learned", "right"}, {"motion", "left"}, {"motion", "right"}}));
+
+    std::set<std::string> detectors;
+    for (const JsonValue& p : rows_of("real_pair")) {
+        const std::string detector = p["detector"].string();
+        detectors.insert(detector);
+        EXPECT_EQ(p["frames"].number(), 40) << detector;
+        EXPECT_EQ(p["pointing_frames"].number(), 26) << detector;
+        EXPECT_TRUE(in_range(p["ray_coverage"], 0.0, 1.0)) << detector;
+        EXPECT_TRUE(in_range(p["false_pointing"], 0.0, 1.0)) << detector;
+        EXPECT_TRUE(in_range(p["ms_per_frame"], 1e-6, 10000.0)) << detector;
+        EXPECT_TRUE(in_range(p["cpu_ms_per_frame"], 1e-6, 10000.0)) << detector;
+    }
+    EXPECT_EQ(detectors, (std::set<std::string>{"learned", "motion"}));
+    EXPECT_EQ(rows_of("real_pair").size(), 2u);
+}
+
+std::size_t count(const std::string& text, const std::string& what)
+{
+    std::size_t n = 0;
+    for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1))
+        ++n;
+    return n;
 }
 
 TEST(BenchTool, MarkdownTablesByDefault)
 {
-    const RunResult r = run_bench("--quick --no-peers --scenes clean --particles 20,100");
+    const RunResult r = run_bench("--quick --no-peers --scenes clean --particles 20,100 --frames 20 --real-frames 20");
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.out.find("machine: "), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("| scene | skin % | particles | SNR dB |"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("| clean | "), std::string::npos) << r.out;
     EXPECT_EQ(r.out.find("| kcf |"), std::string::npos) << "--no-peers";
     EXPECT_NE(r.out.find("pipeline frames/s"), std::string::npos) << r.out;
-    // Two particle rows for the one scene.
-    std::size_t rows = 0;
-    for (std::size_t at = r.out.find("| clean | "); at != std::string::npos; at = r.out.find("| clean | ", at + 1))
-        ++rows;
-    EXPECT_EQ(rows, 2u);
+    // Two particle rows for the one scene, in each detector's table.
+    EXPECT_EQ(count(r.out, "### learned detector"), 1u) << r.out;
+    EXPECT_EQ(count(r.out, "### motion detector"), 1u) << r.out;
+    EXPECT_EQ(count(r.out, "| clean | "), 4u) << r.out;
+    EXPECT_EQ(count(r.out, "## Real pair"), 1u) << r.out;
+    for (const char* row : {"| learned | left | ", "| learned | right | ", "| motion | left | ",
+                            "| motion | right | "})
+        EXPECT_EQ(count(r.out, row), 1u) << row << '\n' << r.out;
+    // Stereo and the real pair's 3D table: one row per detector each.
+    EXPECT_EQ(count(r.out, "| learned | "), 4u) << r.out;
+    EXPECT_EQ(count(r.out, "| motion | "), 4u) << r.out;
+}
+
+TEST(BenchTool, OneDetectorAndNoRealPair)
+{
+    const RunResult r = run_bench("--quick --no-peers --no-real --detectors motion --scenes clean --particles 20 --frames 20");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(count(r.out, "### motion detector"), 1u) << r.out;
+    EXPECT_EQ(r.out.find("### learned"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("| learned |"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("Real pair"), std::string::npos) << r.out;
+    EXPECT_EQ(count(r.out, "| motion | "), 1u) << "one stereo row\n" << r.out;
 }
 
 TEST(BenchTool, RejectsBadOptions)
 {
     for (const char* args : {"--particles 0", "--scenes clean,nowhere", "--runs x", "--particles 20,,50",
-                             "--bogus"}) {
+                             "--bogus", "--detectors learned,blob", "--real-frames 0", "--no-real=1"}) {
         const RunResult r = run_bench(args);
         EXPECT_EQ(r.status, 2) << args;
         EXPECT_FALSE(r.err.empty()) << args;
     }
     const RunResult r = run_bench("--scenes clean,nowhere");
     EXPECT_NE(r.err.find("nowhere"), std::string::npos) << r.err;
+    // A named real pair folder that is not there fails before anything is measured.
+    const RunResult missing = run_bench("--quick --real /nonexistent/handpose3d");
+    EXPECT_EQ(missing.status, 1);
+    EXPECT_NE(missing.err.find("/nonexistent/handpose3d"), std::string::npos) << missing.err;
+    EXPECT_EQ(missing.err.find("seed"), std::string::npos) << "measured before failing: " << missing.err;
 }
 
 }  // namespace

@@ -1,0 +1,40 @@
+// gesturecam-bench's command line: what to measure and how often.
+#pragma once
+
+#include "sim/scene.hpp"
+#include "tracker/hand_tracker.hpp"
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace gc::tools {
+
+extern const std::string_view kBenchUsage;
+
+std::string_view detector_name(gc::HandDetector d);
+
+struct BenchOptions {
+    std::vector<int> particles{20, 50, 100, 200, 500, 1000, 2000, 5000};
+    std::vector<gc::sim::Preset> scenes{gc::sim::Preset::Clean, gc::sim::Preset::Light,
+                                        gc::sim::Preset::Heavy, gc::sim::Preset::FacePass};
+    gc::sim::Motion motion = gc::sim::Motion::Mixed;
+    // The first one is also the one set beside OpenCV's trackers.
+    std::vector<gc::HandDetector> detectors{gc::HandDetector::Learned, gc::HandDetector::Motion};
+    int frames = 150;
+    int runs = 5;
+    std::vector<std::uint64_t> seeds{1, 2, 3};
+    int peer_particles = 1000;
+    bool peers = true;
+    std::string real_dir;       // the real pair's folder; empty: skip it
+    bool real_dir_given = false;  // named on the command line (else the source tree's)
+    int real_frames = 1 << 30;  // the real pair's first frames that are tracked
+    bool json = false;
+    bool help = false;
+};
+
+// Throws gc::cli::UsageError on a wrong command line.
+BenchOptions parse_bench_options(int argc, char** argv);
+
+}  // namespace gc::tools
