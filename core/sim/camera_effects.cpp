@@ -52,8 +52,16 @@ cv::Mat motion_kernel(cv::Point2d motion)
     return k;
 }
 
-void composite_smeared(cv::Mat& target, cv::Mat& colour, cv::Mat& alpha, const cv::Mat& kernel)
+void composite_smeared(cv::Mat& target, const cv::Mat& layer, const cv::Mat& coverage, float gain,
+                       const cv::Mat& kernel)
 {
+    thread_local cv::Mat alpha, colour;
+    coverage.convertTo(alpha, CV_32F, 1.0 / 255.0);
+    layer.convertTo(colour, CV_32FC3, gain);
+    cv::Mat planes[3];
+    cv::split(colour, planes);
+    for (cv::Mat& p : planes) p = p.mul(alpha);
+    cv::merge(planes, 3, colour);
     cv::filter2D(colour, colour, -1, kernel, cv::Point(-1, -1), 0.0, cv::BORDER_CONSTANT);
     cv::filter2D(alpha, alpha, -1, kernel, cv::Point(-1, -1), 0.0, cv::BORDER_CONSTANT);
     for (int y = 0; y < target.rows; ++y) {

@@ -15,10 +15,11 @@ void apply_vignetting(cv::Mat& bgr, const cv::Mat& gains);
 // A normalised line kernel (CV_32F) that smears by `motion` pixels (centred on it).
 cv::Mat motion_kernel(cv::Point2d motion);
 
-// Composites a layer over `target` through a motion kernel: `colour` (CV_32FC3) is the
-// layer's light already multiplied by its coverage `alpha` (CV_32F, 0..1), both of
-// target's size; both are smeared, then target = colour + (1 - alpha) * target.
-void composite_smeared(cv::Mat& target, cv::Mat& colour, cv::Mat& alpha, const cv::Mat& kernel);
+// Composites `layer` (CV_8UC3, times `gain`) with its coverage (CV_8U, 255 = opaque) over
+// `target` (all of one size) through a motion kernel: the layer's light and its coverage
+// are both smeared, then target = light + (1 - coverage) * target.
+void composite_smeared(cv::Mat& target, const cv::Mat& layer, const cv::Mat& coverage, float gain,
+                       const cv::Mat& kernel);
 
 // Encodes as JPEG of the given quality (4:2:0 chroma) and decodes back into `bgr`.
 void jpeg_round_trip(cv::Mat& bgr, int quality);

@@ -352,15 +352,8 @@ void Scene::Impl::draw_hand(cv::Mat& bgr, const EyeCamera& cam, const HandFrame&
     box_blur3(roi_mask, alpha);
     cv::Mat target = bgr(roi);
     if (reach > 0) {
-        thread_local cv::Mat coverage, colour;
-        alpha.convertTo(coverage, CV_32F, 1.0 / 255.0);
-        coverage.setTo(0.0f, roi_mask == 0);
-        warped.convertTo(colour, CV_32FC3, lit);
-        cv::Mat planes[3];
-        cv::split(colour, planes);
-        for (cv::Mat& p : planes) p = p.mul(coverage);
-        cv::merge(planes, 3, colour);
-        composite_smeared(target, colour, coverage, motion_kernel(smear));
+        alpha.setTo(0, roi_mask == 0);
+        composite_smeared(target, warped, alpha, lit, motion_kernel(smear));
     }
     for (int y = 0; y < roi.height && reach == 0; ++y) {
         const std::uint8_t* m = roi_mask.ptr<std::uint8_t>(y);

@@ -708,6 +708,30 @@ TEST(SimVariety, SeedsSpanSkinHandsSensorsAndSleeves)
     EXPECT_GE(sleeved, 8);
 }
 
+// A hand moving while the shutter is open smears past its outline (rendering the same pose
+// as a still hand shows the difference); without the variety there is no smear.
+TEST(SimVariety, MovingHandSmears)
+{
+    int smeared = 0;
+    for (Variety variety : {Variety::None, Variety::Wide}) {
+        SceneConfig c = config(Preset::Clean, Motion::Mixed, 23);
+        c.variety = variety;
+        const Scene scene(c);
+        cv::Mat moving, still, diff;
+        EyeTruth t;
+        scene.render(10, Eye::Left, {}, moving, &t);  // the wave
+        scene.render_pose(scene.hand_pose(10), 10, Eye::Left, {}, still);
+        cv::absdiff(moving, still, diff);
+        cv::Mat1b changed;
+        cv::cvtColor(diff, changed, cv::COLOR_BGR2GRAY);
+        changed = changed > 10;
+        changed.setTo(0, t.mask);
+        if (variety == Variety::None) EXPECT_EQ(cv::norm(diff, cv::NORM_L1), 0.0);
+        else smeared = cv::countNonZero(changed);
+    }
+    EXPECT_GT(smeared, 50);
+}
+
 // The varied preset's rooms run from almost no skin-coloured background to a great deal of
 // it (skin-coloured walls), and hold no one, one or two people.
 TEST(SimVariety, VariedRoomsSpanClutterAndPeople)
