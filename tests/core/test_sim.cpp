@@ -708,6 +708,27 @@ TEST(SimVariety, SeedsSpanSkinHandsSensorsAndSleeves)
     EXPECT_GE(sleeved, 8);
 }
 
+// face_pass with the variety (people of other sizes and tones, sometimes two, the hand at
+// another distance) still starts beside the face and crosses it later.
+TEST(SimVariety, FacePassStillCrossesTheFace)
+{
+    for (std::uint64_t seed : {1, 2, 3}) {
+        const Scene scene(wide(Preset::FacePass, Motion::Mixed, seed));
+        int during_wave = 0, crossing = 0;
+        cv::Mat img;
+        EyeTruth t;
+        for (int frame = 0; frame < 200; frame += 4) {
+            scene.render(frame, Eye::Left, {}, img, &t);
+            ASSERT_FALSE(t.face.empty());
+            const int hand = cv::countNonZero(t.mask);
+            const bool crosses = hand > 0 && cv::countNonZero(t.mask & t.face) >= 0.05 * hand;
+            (frame <= 36 ? during_wave : crossing) += crosses;
+        }
+        EXPECT_EQ(during_wave, 0) << "seed " << seed;
+        EXPECT_GE(crossing, 5) << "seed " << seed;
+    }
+}
+
 // A hand moving while the shutter is open smears past its outline (rendering the same pose
 // as a still hand shows the difference); without the variety there is no smear.
 TEST(SimVariety, MovingHandSmears)
