@@ -34,6 +34,7 @@ enum {
     PROP_SEED,
     PROP_NOISE,
     PROP_LIGHTING_CHANGE,
+    PROP_VARIETY,
     PROP_IS_LIVE,
     PROP_TRUTH_MESSAGES,
     PROP_HEAD,
@@ -49,6 +50,7 @@ struct SceneSettings {
     guint64 seed = kDefaultSeed;
     double noise = kDefaultNoise;
     bool lighting_change = false;
+    gc::sim::Variety variety = gc::sim::Variety::None;
     bool truth_messages = true;
     std::string head;  // URI of the head the cameras sit on; empty: a fixed rig at home pose
 };
@@ -105,10 +107,28 @@ static GType gst_hand_scene_preset_get_type()
         {int(gc::sim::Preset::Light), "Light clutter (3.7 % skin-like pixels)", "light"},
         {int(gc::sim::Preset::Heavy), "Heavy clutter (9.4 % skin-like pixels)", "heavy"},
         {int(gc::sim::Preset::FacePass), "Light clutter and a face that the hand's path crosses", "face-pass"},
+        {int(gc::sim::Preset::Varied), "A room of any kind, often skin-coloured, pictures of faces and hands, "
+                                       "up to two people; always of the wide variety", "varied"},
         {0, nullptr, nullptr},
     };
     if (g_once_init_enter(&type))
         g_once_init_leave(&type, g_enum_register_static("GstHandScenePreset", values));
+    return type;
+}
+
+#define GST_TYPE_HAND_SCENE_VARIETY (gst_hand_scene_variety_get_type())
+static GType gst_hand_scene_variety_get_type()
+{
+    static GType type = 0;
+    static const GEnumValue values[] = {
+        {int(gc::sim::Variety::None), "The preset's one hand, light and camera", "none"},
+        {int(gc::sim::Variety::Wide),
+         "Hand shape and skin, sleeve, people, light and camera (noise, blur, exposure, white balance, "
+         "vignetting, compression) drawn from the seed", "wide"},
+        {0, nullptr, nullptr},
+    };
+    if (g_once_init_enter(&type))
+        g_once_init_leave(&type, g_enum_register_static("GstHandSceneVariety", values));
     return type;
 }
 
@@ -170,6 +190,7 @@ static gboolean gst_hand_scene_src_set_caps(GstBaseSrc* src, GstCaps* caps)
     config.fps = double(GST_VIDEO_INFO_FPS_N(&info)) / GST_VIDEO_INFO_FPS_D(&info);
     config.noise_sigma = settings.noise;
     config.lighting_change = settings.lighting_change;
+    config.variety = settings.variety;
     try {
         self->state->scene.emplace(config);
     } catch (const std::exception& err) {
@@ -510,6 +531,9 @@ static void gst_hand_scene_src_set_property(GObject* object, guint prop_id, cons
     case PROP_LIGHTING_CHANGE:
         s.lighting_change = g_value_get_boolean(value);
         break;
+    case PROP_VARIETY:
+        s.variety = gc::sim::Variety(g_value_get_enum(value));
+        break;
     case PROP_TRUTH_MESSAGES:
         s.truth_messages = g_value_get_boolean(value);
         break;
@@ -552,6 +576,9 @@ static void gst_hand_scene_src_get_property(GObject* object, guint prop_id, GVal
         break;
     case PROP_LIGHTING_CHANGE:
         g_value_set_boolean(value, s.lighting_change);
+        break;
+    case PROP_VARIETY:
+        g_value_set_enum(value, int(s.variety));
         break;
     case PROP_TRUTH_MESSAGES:
         g_value_set_boolean(value, s.truth_messages);
@@ -613,6 +640,12 @@ static void gst_hand_scene_src_class_init(GstHandSceneSrcClass* klass)
         g_param_spec_boolean("lighting-change", "Lighting change",
                              "A slow global change of brightness and colour temperature", FALSE, flags));
     g_object_class_install_property(
+        gobject_class, PROP_VARIETY,
+        g_param_spec_enum("variety", "Variety",
+                          "What else the seed varies: nothing (the preset as it always was) or the hand, "
+                          "people, light and camera",
+                          GST_TYPE_HAND_SCENE_VARIETY, int(gc::sim::Variety::None), flags));
+    g_object_class_install_property(
         gobject_class, PROP_IS_LIVE,
         g_param_spec_boolean("is-live", "Is live", "Behave as a live camera: frames come at the frame rate",
                              FALSE, flags));
@@ -653,6 +686,7 @@ static void gst_hand_scene_src_class_init(GstHandSceneSrcClass* klass)
     gst_type_mark_as_plugin_api(GST_TYPE_HAND_SCENE_EYE, GstPluginAPIFlags(0));
     gst_type_mark_as_plugin_api(GST_TYPE_HAND_SCENE_PRESET, GstPluginAPIFlags(0));
     gst_type_mark_as_plugin_api(GST_TYPE_HAND_SCENE_MOTION, GstPluginAPIFlags(0));
+    gst_type_mark_as_plugin_api(GST_TYPE_HAND_SCENE_VARIETY, GstPluginAPIFlags(0));
 }
 
 static void gst_hand_scene_src_init(GstHandSceneSrc* self)

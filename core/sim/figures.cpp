@@ -89,7 +89,8 @@ void draw_tube(cv::Mat& bgr, const EyeCamera& cam, const Tube& tube, const cv::V
     }
 }
 
-Billboard build_person(const cv::Vec3d& face_centre_mm, const cv::Vec3f& skin, Rng& rng)
+Billboard build_person(const cv::Vec3d& face_centre_mm, const cv::Vec3f& skin, Rng& rng,
+                       double scale, bool shaded)
 {
     Billboard b;
     b.centre_mm = face_centre_mm;
@@ -110,7 +111,11 @@ Billboard build_person(const cv::Vec3d& face_centre_mm, const cv::Vec3f& skin, R
     add(ellipse_points({0, -30}, 86, 112), hair);               // back of the hair
     add(ellipse_points({-72, 12}, 13, 24), shade, true);        // ears
     add(ellipse_points({72, 12}, 13, 24), shade, true);
-    add(ellipse_points({0, 10}, 72, 100), face, true);
+    add(ellipse_points({0, 10}, 72, 100), shaded ? shade : face, true);
+    if (shaded) {  // the lit side of the face
+        const double side = uniform(rng, -1.0, 1.0);
+        add(ellipse_points({side * 16, 8}, 58, 94), face, true);
+    }
     add(ellipse_points({0, -78}, 70, 30), hair);                // fringe
     for (double s : {-1.0, 1.0}) {
         add(ellipse_points({s * 28, -4}, 12, 5.5), white);
@@ -119,16 +124,15 @@ Billboard build_person(const cv::Vec3d& face_centre_mm, const cv::Vec3f& skin, R
     }
     add({{-3, 0}, {3, 0}, {9, 34}, {-9, 34}}, shade, true);      // nose
     add(ellipse_points({0, 55}, 22, 7), lips);
+    if (scale != 1.0)
+        for (auto& layer : b.layers)
+            for (auto& p : layer.polygon) p *= scale;
     return b;
 }
 
 void draw_billboard(cv::Mat& bgr, const EyeCamera& cam, const Billboard& person,
                     cv::Mat1b* skin_mask)
 {
-    if (skin_mask) {
-        skin_mask->create(bgr.size());
-        skin_mask->setTo(0);
-    }
     std::vector<cv::Point> pts;
     for (const auto& layer : person.layers)
         if (project_polygon(cam, person.centre_mm, {1, 0, 0}, {0, 1, 0}, layer.polygon, pts)) {

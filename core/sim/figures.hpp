@@ -43,8 +43,11 @@ struct Billboard {
     std::vector<Layer> layers;
 };
 
-Billboard build_person(const cv::Vec3d& face_centre_mm, const cv::Vec3f& skin_bgr, Rng& rng);
-// With `skin_mask`, also draws where the person's skin shows (255) into it, at bgr's size.
+// `scale` sizes the person (1: a face 200 mm high); `shaded` lights the face from one side.
+Billboard build_person(const cv::Vec3d& face_centre_mm, const cv::Vec3f& skin_bgr, Rng& rng,
+                       double scale = 1.0, bool shaded = false);
+// With `skin_mask` (of bgr's size), also draws where the person's skin shows (255) into it
+// and clears it where the person hides what is behind.
 void draw_billboard(cv::Mat& bgr, const EyeCamera& cam, const Billboard& person,
                     cv::Mat1b* skin_mask = nullptr);
 

@@ -15,15 +15,15 @@ constexpr double kPi = std::numbers::pi;
 
 using Poly = std::vector<cv::Point2d>;
 
-// Rounded rectangle: |u/a|^4 + |v/b|^4 = 1.
-Poly superellipse(double a, double b, int n)
+// Rounded rectangle: |u/a|^e + |v/b|^e = 1.
+Poly superellipse(double a, double b, double e, int n)
 {
+    auto root = [e](double x) { return e == 4.0 ? std::sqrt(std::abs(x)) : std::pow(std::abs(x), 2.0 / e); };
     Poly p;
     for (int i = 0; i < n; ++i) {
         const double t = 2.0 * kPi * i / n;
         const double c = std::cos(t), s = std::sin(t);
-        p.emplace_back(a * std::copysign(std::sqrt(std::abs(c)), c),
-                       b * std::copysign(std::sqrt(std::abs(s)), s));
+        p.emplace_back(a * std::copysign(root(c), c), b * std::copysign(root(s), s));
     }
     return p;
 }
@@ -90,6 +90,108 @@ Poly arc(cv::Point2d c, double a, double b, double angle_deg, double from_deg, d
     return p;
 }
 
+// The hand's outline in the anatomical layout (the palm's long axis along u), turned so that
+// the fingertip lies on +u, mirrored for the other hand; `j` is the seeded size factor.
+struct Outline {
+    HandModel model;             // parts, finger length, palm axis, wrist
+    std::size_t first_curled = 0;
+    double turn_cos = 1.0, turn_sin = 0.0, v_sign = 1.0;
+
+    Poly place(Poly p) const
+    {
+        for (auto& q : p) {
+            q = rotate(q, turn_cos, turn_sin);
+            q.y *= v_sign;
+        }
+        return p;
+    }
+};
+
+Outline hand_outline(const HandShape& h, double j, bool mirrored)
+{
+    const cv::Point2d tip_centre = h.index_tip * j;
+    const double tip_r = h.index_tip_radius * j;
+    const Poly palm = superellipse(h.palm_half_length * j, h.palm_half_width * j, h.palm_exponent, 64);
+    const double edge = h.palm_half_length - 7.0, joint = h.wrist_half_width + 4.0;
+    const Poly wrist{{-edge * j, joint * j}, {-h.wrist_length * j, h.wrist_half_width * j},
+                     {-h.wrist_length * j, -h.wrist_half_width * j}, {-edge * j, -joint * j}};
+    const Poly index = capsule(h.index_base * j, h.index_base_radius * j, tip_centre, tip_r, 24);
+    const Poly thumb = capsule(h.thumb_base * j, h.thumb_base_radius * j, h.thumb_tip * j,
+                               h.thumb_tip_radius * j, 24);
+
+    // The fingertip: the point of the finger's end cap farthest from the palm centroid, so
+    // that it is also the hand's extreme point along the pointing direction.
+    cv::Point2d tip(tip_centre.x + tip_r, tip_centre.y);
+    for (int i = 0; i < 8; ++i) tip = tip_centre + tip * (tip_r / std::hypot(tip.x, tip.y));
+    const double turn = -std::atan2(tip.y, tip.x);
+    Outline o;
+    o.turn_cos = std::cos(turn);
+    o.turn_sin = std::sin(turn);
+    o.v_sign = mirrored ? -1.0 : 1.0;
+
+    HandModel& m = o.model;
+    m.finger_length_mm = std::hypot(tip.x, tip.y);
+    m.palm_axis = rotate({-1.0, 0.0}, o.turn_cos, o.turn_sin);
+    m.palm_axis.y *= o.v_sign;
+    m.wrist_mm = h.wrist_length * j;
+    m.parts = {o.place(palm), o.place(wrist), o.place(index), o.place(thumb)};
+    o.first_curled = m.parts.size();
+    for (int i = 0; i < 3; ++i)
+        m.parts.push_back(o.place(ellipse(h.curled_centre[i] * j, h.curled_length[i] * j,
+                                          h.curled_width[i] * j, h.curled_angle_deg[i], 32)));
+    return o;
+}
+
+// Brightness over the hand's texels: a smooth gradient across it, parts slightly apart in
+// tone, creases, darkening towards the silhouette (the surface turns away from the light).
+cv::Mat1f skin_shading(const Outline& o, const HandShape& h, double j, double gradient,
+                       const cv::Mat1f& dist, Rng& rng)
+{
+    const HandModel& m = o.model;
+    const cv::Size size = dist.size();
+    cv::Mat1f shade(size, 1.0f);
+    const double g_angle = uniform(rng, 0.0, 2.0 * kPi);
+    for (int y = 0; y < size.height; ++y)
+        for (int x = 0; x < size.width; ++x) {
+            const double u = m.texture_origin.x + x * kTexelMm;
+            const double v = m.texture_origin.y - y * kTexelMm;
+            shade(y, x) = float(1.0 + gradient * (u * std::cos(g_angle) + v * std::sin(g_angle)) / 80.0);
+        }
+    auto part_gain = [&](const Poly& part, float gain) {
+        cv::Mat1b pm(size, std::uint8_t{0});
+        cv::fillConvexPoly(pm, to_texels(part, m), cv::Scalar(255), cv::LINE_8, 4);
+        cv::Mat1f g(size, 1.0f);
+        g.setTo(gain, pm);
+        cv::GaussianBlur(g, g, cv::Size(0, 0), 1.0 / kTexelMm);
+        shade = shade.mul(g);
+    };
+    part_gain(m.parts[1], 0.96f);  // wrist
+    part_gain(m.parts[3], 0.97f);  // thumb
+    for (std::size_t i = o.first_curled; i < m.parts.size(); ++i) part_gain(m.parts[i], 0.93f);
+
+    // Creases: where the curled fingers fold, the palm lines, the index finger's joints.
+    for (std::size_t i = o.first_curled; i < m.parts.size(); ++i) {
+        Poly outline = m.parts[i];
+        outline.push_back(outline.front());
+        crease(shade, m, outline, 1.1, 0.22f);
+    }
+    const double sx = j * (h.palm_half_length / 45.0), sy = j * (h.palm_half_width / 40.0);
+    crease(shade, m, o.place(arc({-6 * sx, -2 * sy}, 32 * sx, 24 * sy, -15, 200, 300)), 0.9, 0.12f);
+    crease(shade, m, o.place(arc({10 * sx, 28 * sy}, 40 * sx, 20 * sy, 10, 200, 280)), 0.9, 0.12f);
+    crease(shade, m, o.place(arc({-20 * sx, 22 * sy}, 28 * sx, 40 * sy, 0, 260, 350)), 0.9, 0.14f);
+    for (double k : {0.42, 0.72}) {
+        const double u = h.index_base.x * j + k * (h.index_tip.x - h.index_base.x) * j;
+        crease(shade, m, o.place(Poly{{u, (h.index_base.y - 8.5) * j}, {u + 1.0, (h.index_base.y + 8.5) * j}}),
+               0.8, 0.18f);
+    }
+
+    const float rim_texels = float(5.0 / kTexelMm);
+    for (int y = 0; y < size.height; ++y)
+        for (int x = 0; x < size.width; ++x)
+            shade(y, x) *= 0.80f + 0.20f * std::min(1.0f, dist(y, x) / rim_texels);
+    return shade;
+}
+
 }  // namespace
 
 cv::Matx33d HandModel::texel_to_model() const
@@ -97,50 +199,12 @@ cv::Matx33d HandModel::texel_to_model() const
     return {texel_mm, 0.0, texture_origin.x, 0.0, -texel_mm, texture_origin.y, 0.0, 0.0, 1.0};
 }
 
-HandModel build_hand_model(const cv::Vec3f& skin, bool mirrored, Rng& rng)
+HandModel build_hand_model(const cv::Vec3f& skin_bgr, bool mirrored, Rng& rng, const HandShape& shape,
+                           const HandSkin* skin)
 {
-    // Anatomical layout with the palm's long axis along u; the index lies along the thumb's
-    // edge of the palm, so the palm-to-fingertip line is turned against that axis.
     const double jitter = uniform(rng, 0.95, 1.05);  // hand size
-    const cv::Point2d tip_centre(108.0 * jitter, 24.0 * jitter);
-    const double tip_r = 8.2 * jitter;
-    Poly palm = superellipse(45.0 * jitter, 40.0 * jitter, 64);
-    Poly wrist{{-38.0 * jitter, 31.0 * jitter}, {-80.0 * jitter, 27.0 * jitter},
-               {-80.0 * jitter, -27.0 * jitter}, {-38.0 * jitter, -31.0 * jitter}};
-    Poly index = capsule({32.0 * jitter, 24.0 * jitter}, 9.5 * jitter, tip_centre, tip_r, 24);
-    Poly thumb = capsule({-2.0 * jitter, 36.0 * jitter}, 12.5 * jitter,
-                         {30.0 * jitter, 44.0 * jitter}, 10.0 * jitter, 24);
-    const cv::Point2d curl_c[3] = {{46.0, 5.0}, {43.0, -15.0}, {38.0, -32.0}};
-    const double curl_a[3] = {15.5, 14.5, 12.0}, curl_b[3] = {10.5, 10.0, 8.5};
-    const double curl_angle[3] = {-8.0, 0.0, 10.0};
-    std::vector<Poly> curled;
-    for (int i = 0; i < 3; ++i)
-        curled.push_back(ellipse(curl_c[i] * jitter, curl_a[i] * jitter, curl_b[i] * jitter,
-                                 curl_angle[i], 32));
-
-    // The fingertip: the point of the finger's end cap farthest from the palm centroid, so
-    // that it is also the hand's extreme point along the pointing direction.
-    cv::Point2d tip(tip_centre.x + tip_r, tip_centre.y);
-    for (int i = 0; i < 8; ++i) tip = tip_centre + tip * (tip_r / std::hypot(tip.x, tip.y));
-    const double turn = -std::atan2(tip.y, tip.x);
-    const double c = std::cos(turn), s = std::sin(turn);
-    const double vs = mirrored ? -1.0 : 1.0;
-    auto place = [&](Poly p) {
-        for (auto& q : p) {
-            q = rotate(q, c, s);
-            q.y *= vs;
-        }
-        return p;
-    };
-
-    HandModel m;
-    m.finger_length_mm = std::hypot(tip.x, tip.y);
-    m.palm_axis = rotate({-1.0, 0.0}, c, s);
-    m.palm_axis.y *= vs;
-    m.wrist_mm = 80.0 * jitter;
-    m.parts = {place(palm), place(wrist), place(index), place(thumb)};
-    const std::size_t first_curled = m.parts.size();
-    for (const auto& p : curled) m.parts.push_back(place(p));
+    Outline o = hand_outline(shape, jitter, mirrored);
+    HandModel& m = o.model;
 
     // Texture over the parts' bounding box plus a margin.
     double u0 = 1e9, u1 = -1e9, v0 = 1e9, v1 = -1e9;
@@ -158,66 +222,34 @@ HandModel build_hand_model(const cv::Vec3f& skin, bool mirrored, Rng& rng)
     cv::Mat1b inside(size, std::uint8_t{0});
     for (const auto& part : m.parts)
         cv::fillConvexPoly(inside, to_texels(part, m), cv::Scalar(255), cv::LINE_8, 4);
-
-    // Brightness: a smooth gradient across the hand, parts slightly apart in tone, creases,
-    // darkening towards the silhouette (the surface turns away from the light there).
-    cv::RNG cvrng(std::uniform_int_distribution<std::uint64_t>()(rng));
-    cv::Mat1f shade(size, 1.0f);
-    const double g_angle = uniform(rng, 0.0, 2.0 * kPi);
-    for (int y = 0; y < size.height; ++y)
-        for (int x = 0; x < size.width; ++x) {
-            const double u = m.texture_origin.x + x * kTexelMm;
-            const double v = m.texture_origin.y - y * kTexelMm;
-            shade(y, x) = float(1.0 + 0.07 * (u * std::cos(g_angle) + v * std::sin(g_angle)) / 80.0);
-        }
-    auto part_gain = [&](const Poly& part, float gain) {
-        cv::Mat1b pm(size, std::uint8_t{0});
-        cv::fillConvexPoly(pm, to_texels(part, m), cv::Scalar(255), cv::LINE_8, 4);
-        cv::Mat1f g(size, 1.0f);
-        g.setTo(gain, pm);
-        cv::GaussianBlur(g, g, cv::Size(0, 0), 1.0 / kTexelMm);
-        shade = shade.mul(g);
-    };
-    part_gain(m.parts[1], 0.96f);  // wrist
-    part_gain(m.parts[3], 0.97f);  // thumb
-    for (std::size_t i = first_curled; i < m.parts.size(); ++i) part_gain(m.parts[i], 0.93f);
-
-    // Creases: where the curled fingers fold, the palm lines, the index finger's joints.
-    for (std::size_t i = first_curled; i < m.parts.size(); ++i) {
-        Poly outline = m.parts[i];
-        outline.push_back(outline.front());
-        crease(shade, m, outline, 1.1, 0.22f);
-    }
-    const double sj = jitter;
-    crease(shade, m, place(arc({-6 * sj, -2 * sj}, 32 * sj, 24 * sj, -15, 200, 300)), 0.9, 0.12f);
-    crease(shade, m, place(arc({10 * sj, 28 * sj}, 40 * sj, 20 * sj, 10, 200, 280)), 0.9, 0.12f);
-    crease(shade, m, place(arc({-20 * sj, 22 * sj}, 28 * sj, 40 * sj, 0, 260, 350)), 0.9, 0.14f);
-    for (double k : {0.42, 0.72}) {
-        const double u = 32 * sj + k * (108 - 32) * sj;
-        crease(shade, m, place(Poly{{u, 15.5 * sj}, {u + 1.0, 32.5 * sj}}), 0.8, 0.18f);
-    }
-
     cv::Mat1f dist;
     cv::distanceTransform(inside, dist, cv::DIST_L2, 3);
-    const float rim_texels = float(5.0 / kTexelMm);
-    for (int y = 0; y < size.height; ++y)
-        for (int x = 0; x < size.width; ++x)
-            shade(y, x) *= 0.80f + 0.20f * std::min(1.0f, dist(y, x) / rim_texels);
 
-    // Skin texture: blotches of brightness and of redness, and fine grain.
+    cv::RNG cvrng(std::uniform_int_distribution<std::uint64_t>()(rng));
+    const cv::Mat1f shade = skin_shading(o, shape, jitter, skin ? skin->gradient : 0.07, dist, rng);
+
+    // Skin texture: blotches of brightness and of redness, and fine grain; with a HandSkin,
+    // the palm's tone turns into the back's towards the silhouette.
     const cv::Mat1f blotch = smooth_noise(size, 6.0 / kTexelMm, cvrng);
     const cv::Mat1f redness = smooth_noise(size, 10.0 / kTexelMm, cvrng);
     cv::Mat1f grain(size);
     cvrng.fill(grain, cv::RNG::NORMAL, 0.0, 1.0);
+    const float blotches = skin ? float(skin->blotches) : 0.03f;
+    const float rim = skin ? float(skin->rim_mm / kTexelMm) : 1.0f;
 
     m.texture.create(size);
     for (int y = 0; y < size.height; ++y)
         for (int x = 0; x < size.width; ++x) {
-            const float k = shade(y, x) * (1.0f + 0.03f * blotch(y, x) + 0.012f * grain(y, x));
+            const float k = shade(y, x) * (1.0f + blotches * blotch(y, x) + 0.012f * grain(y, x));
             const float red = 1.0f + 0.025f * redness(y, x);
-            m.texture(y, x) = {cv::saturate_cast<std::uint8_t>(skin[0] * k),
-                               cv::saturate_cast<std::uint8_t>(skin[1] * k),
-                               cv::saturate_cast<std::uint8_t>(skin[2] * k * red)};
+            cv::Vec3f tone = skin_bgr;
+            if (skin) {
+                const float w = std::min(1.0f, dist(y, x) / rim);
+                tone = skin->back + w * (skin->palm - skin->back);
+            }
+            m.texture(y, x) = {cv::saturate_cast<std::uint8_t>(tone[0] * k),
+                               cv::saturate_cast<std::uint8_t>(tone[1] * k),
+                               cv::saturate_cast<std::uint8_t>(tone[2] * k * red)};
         }
     return m;
 }

@@ -1,4 +1,4 @@
-// Text names of the scene presets and motions, as used on command lines and element
+// Text names of the scene presets, motions and varieties, as used on command lines and element
 // properties.
 #include "sim/scene.hpp"
 
@@ -9,11 +9,12 @@ namespace gc::sim {
 
 namespace {
 
-constexpr std::array<std::pair<Preset, std::string_view>, 4> kPresets{{
+constexpr std::array<std::pair<Preset, std::string_view>, 5> kPresets{{
     {Preset::Clean, "clean"},
     {Preset::Light, "light"},
     {Preset::Heavy, "heavy"},
     {Preset::FacePass, "face_pass"},
+    {Preset::Varied, "varied"},
 }};
 
 constexpr std::array<std::pair<Motion, std::string_view>, 7> kMotions{{
@@ -26,34 +27,35 @@ constexpr std::array<std::pair<Motion, std::string_view>, 7> kMotions{{
     {Motion::LeaveReturn, "leave_return"},
 }};
 
+constexpr std::array<std::pair<Variety, std::string_view>, 2> kVarieties{{
+    {Variety::None, "none"},
+    {Variety::Wide, "wide"},
+}};
+
+template <class Table, class Value>
+std::string_view name_of(const Table& table, Value v)
+{
+    for (const auto& [q, n] : table)
+        if (q == v) return n;
+    return "unknown";
+}
+
+template <class Value, std::size_t N>
+std::optional<Value> value_of(const std::array<std::pair<Value, std::string_view>, N>& table,
+                              std::string_view name)
+{
+    for (const auto& [v, n] : table)
+        if (n == name) return v;
+    return std::nullopt;
+}
+
 }  // namespace
 
-std::optional<Preset> preset_from_string(std::string_view name)
-{
-    for (const auto& [p, n] : kPresets)
-        if (n == name) return p;
-    return std::nullopt;
-}
-
-std::optional<Motion> motion_from_string(std::string_view name)
-{
-    for (const auto& [m, n] : kMotions)
-        if (n == name) return m;
-    return std::nullopt;
-}
-
-std::string_view to_string(Preset p)
-{
-    for (const auto& [q, n] : kPresets)
-        if (q == p) return n;
-    return "unknown";
-}
-
-std::string_view to_string(Motion m)
-{
-    for (const auto& [q, n] : kMotions)
-        if (q == m) return n;
-    return "unknown";
-}
+std::optional<Preset> preset_from_string(std::string_view name) { return value_of(kPresets, name); }
+std::optional<Motion> motion_from_string(std::string_view name) { return value_of(kMotions, name); }
+std::optional<Variety> variety_from_string(std::string_view name) { return value_of(kVarieties, name); }
+std::string_view to_string(Preset p) { return name_of(kPresets, p); }
+std::string_view to_string(Motion m) { return name_of(kMotions, m); }
+std::string_view to_string(Variety v) { return name_of(kVarieties, v); }
 
 }  // namespace gc::sim

@@ -18,8 +18,16 @@ namespace gc::sim {
 
 // Background clutter; measured skin-pixel fractions near the thesis's scenes:
 // clean 0.03 %, light 3.74 %, heavy 9.35 %; face_pass: light clutter plus a face that the
-// hand's path crosses.
-enum class Preset { Clean, Light, Heavy, FacePass };
+// hand's path crosses. varied: a room drawn from many kinds (wall materials, photo-like
+// posters of faces and hands, skin-coloured walls and objects, none to two people), always
+// with the wide variety.
+enum class Preset { Clean, Light, Heavy, FacePass, Varied };
+
+// How much a scene varies from seed to seed besides its layout and motion. None: one hand
+// shape, the camera and light of the presets as they always were. Wide: the hand's shape and
+// skin, the sleeve, the people, the light and the camera (noise, blur, exposure, white
+// balance, vignetting, compression) are drawn from the seed too.
+enum class Variety { None, Wide };
 
 // Scripted hand motions. Every script starts with a short wave (so that motion-based
 // acquisition has something to find) and then runs its motion.
@@ -37,18 +45,21 @@ std::optional<Preset> preset_from_string(std::string_view name);
 std::optional<Motion> motion_from_string(std::string_view name);
 std::string_view to_string(Preset p);
 std::string_view to_string(Motion m);
+std::optional<Variety> variety_from_string(std::string_view name);
+std::string_view to_string(Variety v);
 
 struct SceneConfig {
     Preset preset = Preset::Clean;
     Motion motion = Motion::Mixed;
     std::uint64_t seed = 1;        // background layout, skin tone, noise: same seed, same scene
+    Variety variety = Variety::None;  // the varied preset is wide whatever this says
     int width = 640;
     int height = 480;
     double fps = 30.0;
     double focal_px = 0.0;         // 0: a 60 degree horizontal field of view
     double baseline_mm = 120.0;
     double hand_distance_mm = 1000.0;  // of the palm from the head at rest
-    double noise_sigma = 2.0;      // sensor noise, grey levels
+    double noise_sigma = 2.0;      // sensor noise, grey levels (wide: scaled by 0.5-4 per seed)
     bool lighting_change = false;  // a slow global change of brightness and colour temperature
 };
 
@@ -77,7 +88,7 @@ struct EyeTruth {
     cv::Point2d fingertip_px;
     double pointing_deg = 0.0;  // palm -> fingertip, 0 = +x, counter-clockwise, y up
     cv::Rect bbox;              // of the mask
-    cv::Mat1b face;             // face_pass: 255 where the person's skin is (behind the hand); else empty
+    cv::Mat1b face;             // 255 where people's skin is (behind the hand); empty without people
 };
 
 class Scene {

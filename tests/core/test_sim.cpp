@@ -64,8 +64,10 @@ cv::Point2d extreme_point(const cv::Mat1b& mask, cv::Point2d from, cv::Point2d d
 
 TEST(SimNames, RoundTrip)
 {
-    for (Preset p : {Preset::Clean, Preset::Light, Preset::Heavy, Preset::FacePass})
+    for (Preset p : {Preset::Clean, Preset::Light, Preset::Heavy, Preset::FacePass, Preset::Varied})
         EXPECT_EQ(preset_from_string(to_string(p)), p);
+    for (Variety v : {Variety::None, Variety::Wide}) EXPECT_EQ(variety_from_string(to_string(v)), v);
+    EXPECT_FALSE(variety_from_string("some").has_value());
     for (Motion m : {Motion::Static, Motion::Translate, Motion::Rotate, Motion::Scale, Motion::Yaw,
                      Motion::Mixed, Motion::LeaveReturn})
         EXPECT_EQ(motion_from_string(to_string(m)), m);
@@ -87,6 +89,7 @@ TEST(SimScene, RejectsBadConfiguration)
     EXPECT_THROW(Scene(bad([](SceneConfig& c) { c.hand_distance_mm = 50.0; })), std::invalid_argument);
     EXPECT_THROW(Scene(bad([](SceneConfig& c) { c.noise_sigma = -1.0; })), std::invalid_argument);
     EXPECT_THROW(Scene(bad([](SceneConfig& c) { c.preset = static_cast<Preset>(42); })), std::invalid_argument);
+    EXPECT_THROW(Scene(bad([](SceneConfig& c) { c.variety = static_cast<Variety>(3); })), std::invalid_argument);
 }
 
 TEST(SimScene, RejectsBadRenderInput)
@@ -220,24 +223,31 @@ TEST(SimScene, PointingAngleFollowsRoll)
     }
 }
 
-TEST(SimScene, DeterministicPerSeedAndDifferentAcrossSeeds)
+// Two scenes of config `c` render the same frames and truth; one of `other_seed` differs.
+void expect_seeded(SceneConfig c, std::uint64_t other_seed)
 {
-    const Scene a(config(Preset::Heavy, Motion::Mixed, 7));
-    const Scene b(config(Preset::Heavy, Motion::Mixed, 7));
-    const Scene c(config(Preset::Heavy, Motion::Mixed, 8));
+    const Scene a(c), b(c);
+    c.seed = other_seed;
+    const Scene other(c);
     cv::Mat ia, ib, ic;
     EyeTruth ta, tb;
-    for (int frame : {0, 60}) {
+    for (int frame : {0, 60, 77}) {
         for (Eye eye : {Eye::Left, Eye::Right}) {
             a.render(frame, eye, {}, ia, &ta);
             b.render(frame, eye, {}, ib, &tb);
-            c.render(frame, eye, {}, ic);
+            other.render(frame, eye, {}, ic);
             EXPECT_EQ(cv::norm(ia, ib, cv::NORM_L1), 0.0);
             EXPECT_EQ(cv::norm(ta.mask, tb.mask, cv::NORM_L1), 0.0);
+            EXPECT_EQ(cv::norm(ta.face, tb.face, cv::NORM_L1), 0.0);
             EXPECT_GT(cv::norm(ia, ic, cv::NORM_L1) / double(ia.total()), 10.0);
         }
     }
-    EXPECT_GT(cv::norm(a.hand_pose(150).palm_mm - c.hand_pose(150).palm_mm), 10.0);
+    EXPECT_GT(cv::norm(a.hand_pose(150).palm_mm - other.hand_pose(150).palm_mm), 10.0);
+}
+
+TEST(SimScene, DeterministicPerSeedAndDifferentAcrossSeeds)
+{
+    expect_seeded(config(Preset::Heavy, Motion::Mixed, 7), 8);
 }
 
 TEST(SimScene, NoiseIsSeededPerFrameAndEye)
@@ -534,6 +544,242 @@ TEST(SimScene, YawForeshortensTheHand)
     scene.render_pose(pose, 0, Eye::Left, {}, img, &turned);
     const double ratio = double(cv::countNonZero(turned.mask)) / cv::countNonZero(face_on.mask);
     EXPECT_NEAR(ratio, 0.5, 0.12);  // cos 60 deg, with some perspective
+}
+
+
+// FNV-1a over the bytes of the image, the hand mask and the face mask of one frame.
+std::uint64_t frame_hash(const cv::Mat& img, const EyeTruth& t)
+{
+    std::uint64_t h = 1469598103934665603ull;
+    auto add = [&h](const cv::Mat& m) {
+        if (m.empty()) return;
+        const cv::Mat c = m.isContinuous() ? m : m.clone();
+        const auto* p = c.ptr<std::uint8_t>();
+        for (std::size_t i = 0; i < c.total() * c.elemSize(); ++i) h = (h ^ p[i]) * 1099511628211ull;
+    };
+    add(img);
+    add(t.mask);
+    add(t.face);
+    return h;
+}
+
+// The presets of before the scene variety render the very same frames and truth by default:
+// many tests and benchmark figures depend on them. The hashes were taken from the renderer
+// before the variety existed (OpenCV 4.6 of Debian 12; another OpenCV may round its warps
+// differently).
+TEST(SimScene, ExistingPresetsRenderAsBefore)
+{
+    struct Case {
+        Preset preset;
+        Motion motion;
+        std::uint64_t seed;
+        bool lighting;
+        std::uint64_t expected;
+    };
+    const Case cases[] = {
+        {Preset::Clean, Motion::Mixed, 1, false, 17929683889105910823ull},
+        {Preset::Light, Motion::Yaw, 2, false, 2990204891979785252ull},
+        {Preset::Heavy, Motion::Mixed, 7, true, 11518751136972703918ull},
+        {Preset::FacePass, Motion::Mixed, 3, false, 7102670778598867120ull},
+        {Preset::FacePass, Motion::LeaveReturn, 5, true, 8911110177374500181ull},
+    };
+    for (const Case& k : cases) {
+        SceneConfig c = config(k.preset, k.motion, k.seed);
+        c.lighting_change = k.lighting;
+        const Scene scene(c);
+        std::uint64_t h = 0;
+        cv::Mat img;
+        EyeTruth t;
+        for (int frame : {0, 45, 130})
+            for (Eye eye : {Eye::Left, Eye::Right}) {
+                scene.render(frame, eye, frame == 130 ? HeadPose{2.0, -1.5, 1.0, -0.5} : HeadPose{}, img, &t);
+                h = h * 31 + frame_hash(img, t);
+            }
+        EXPECT_EQ(h, k.expected) << to_string(k.preset) << " " << to_string(k.motion) << " seed " << k.seed;
+    }
+}
+
+SceneConfig wide(Preset preset, Motion motion, std::uint64_t seed)
+{
+    SceneConfig c = config(preset, motion, seed);
+    c.variety = Variety::Wide;
+    return c;
+}
+
+TEST(SimVariety, SameSeedSameSceneOtherSeedOtherScene)
+{
+    expect_seeded(wide(Preset::Varied, Motion::Mixed, 5), 6);
+    expect_seeded(wide(Preset::FacePass, Motion::Mixed, 3), 4);
+    // The variety is drawn from the seed on top of the preset: heavy with and without it
+    // differ, in the hand as in the rest.
+    cv::Mat plain, varied;
+    EyeTruth tp, tv;
+    Scene(config(Preset::Heavy, Motion::Mixed, 5)).render(40, Eye::Left, {}, plain, &tp);
+    Scene(wide(Preset::Heavy, Motion::Mixed, 5)).render(40, Eye::Left, {}, varied, &tv);
+    EXPECT_GT(cv::norm(plain, varied, cv::NORM_L1) / double(plain.total()), 5.0);
+    EXPECT_GT(cv::norm(tp.mask, tv.mask, cv::NORM_L1), 0.0);
+}
+
+// Whatever the seed draws (hand shape, distance, blur, compression), the truth is exact: the
+// 3D points project onto the truth pixels, the palm is on the mask and the fingertip is the
+// mask's extreme point along the pointing direction.
+TEST(SimVariety, TruthStaysExact)
+{
+    int checked = 0;
+    for (Preset preset : {Preset::Varied, Preset::Heavy, Preset::FacePass})
+        for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+            const Scene scene(wide(preset, Motion::Mixed, seed));
+            const gc::StereoCalibration cal = scene.calibration();
+            for (int frame : {10, 95, 170})
+                for (Eye eye : {Eye::Left, Eye::Right}) {
+                    cv::Mat img;
+                    EyeTruth t;
+                    scene.render(frame, eye, {}, img, &t);
+                    if (!t.visible) continue;
+                    ++checked;
+                    const HandTruth t3 = scene.hand_truth(scene.hand_pose(frame));
+                    const gc::RigidTransform to_eye = gc::camera_to_head(cal.head, {}, eye).inverse();
+                    const cv::Point2d palm = project(cal.M1, to_eye.apply(t3.palm_mm));
+                    EXPECT_LT(distance(palm, t.palm_px), 0.5);
+                    EXPECT_LT(distance(project(cal.M1, to_eye.apply(t3.fingertip_mm)), t.fingertip_px), 0.5);
+                    EXPECT_EQ(t.mask(cv::Point(cvRound(palm.x), cvRound(palm.y))), 255);
+                    const double a = t.pointing_deg * std::numbers::pi / 180.0;
+                    const cv::Point2d dir(std::cos(a), -std::sin(a));
+                    EXPECT_LT(distance(extreme_point(t.mask, palm, dir), t.fingertip_px), 2.5)
+                        << to_string(preset) << " seed " << seed << " frame " << frame << " eye " << int(eye);
+                    EXPECT_EQ(t.bbox, cv::boundingRect(t.mask));
+                }
+        }
+    EXPECT_GT(checked, 80);
+}
+
+// Seeds really differ: the hand's skin from dark to light, its finger from short to long,
+// the sensor from quiet to noisy, the forearm sleeved or bare.
+TEST(SimVariety, SeedsSpanSkinHandsSensorsAndSleeves)
+{
+    double darkest = 255.0, lightest = 0.0, shortest = 1e9, longest = 0.0, quietest = 1e9, noisiest = 0.0;
+    int bare = 0, sleeved = 0;
+    for (std::uint64_t seed = 1; seed <= 24; ++seed) {
+        const Scene scene(wide(Preset::Clean, Motion::Static, seed));
+        cv::Mat a, b, grey;
+        EyeTruth t;
+        scene.render(60, Eye::Left, {}, a, &t);
+        scene.render(61, Eye::Left, {}, b);
+        ASSERT_TRUE(t.visible) << "seed " << seed;
+        cv::Mat1b core;  // the hand inside its soft edge
+        cv::erode(t.mask, core, cv::getStructuringElement(cv::MORPH_ELLIPSE, {5, 5}));
+        cv::cvtColor(a, grey, cv::COLOR_BGR2GRAY);
+        const double level = cv::mean(grey, core)[0];
+        darkest = std::min(darkest, level), lightest = std::max(lightest, level);
+
+        const HandTruth t3 = scene.hand_truth(scene.hand_pose(60));
+        const double finger = cv::norm(t3.fingertip_mm - t3.palm_mm);
+        shortest = std::min(shortest, finger), longest = std::max(longest, finger);
+
+        // Static after the wave: frames 60 and 61 differ by their noise alone (and a
+        // slow exposure drift), on a background without the hand and arm.
+        cv::Mat1b background = t.mask.clone();
+        cv::dilate(background, background, cv::getStructuringElement(cv::MORPH_RECT, {101, 101}));
+        cv::Mat diff;
+        cv::subtract(a, b, diff, cv::noArray(), CV_32F);
+        cv::Scalar mean, sd;
+        cv::Mat1b outside;
+        cv::bitwise_not(background, outside);
+        cv::meanStdDev(diff, mean, sd, outside);
+        const double sigma = (sd[0] + sd[1] + sd[2]) / 3.0 / std::sqrt(2.0);
+        quietest = std::min(quietest, sigma), noisiest = std::max(noisiest, sigma);
+
+        // Half way along the forearm: skin (bare) or not (a sleeve), by a model of the hand.
+        const gc::StereoCalibration cal = scene.calibration();
+        const gc::RigidTransform to_left = gc::camera_to_head(cal.head, {}, Eye::Left).inverse();
+        const cv::Point2d mid = project(cal.M1, to_left.apply(0.5 * (t3.palm_mm + t3.elbow_mm)));
+        const cv::Rect patch = cv::Rect(cvRound(mid.x) - 2, cvRound(mid.y) - 2, 5, 5) & cv::Rect(0, 0, a.cols, a.rows);
+        ASSERT_FALSE(patch.empty());
+        const int skin = cv::countNonZero(gc::SkinModel::fit(a, t.mask).segment(a)(patch));
+        bare += skin >= 20;
+        sleeved += skin == 0;
+    }
+    EXPECT_LT(darkest, 70.0);
+    EXPECT_GT(lightest, 160.0);
+    EXPECT_GT(longest - shortest, 15.0);
+    EXPECT_LT(quietest, 1.2);
+    EXPECT_GT(noisiest, 3.0);
+    EXPECT_GE(bare, 3);
+    EXPECT_GE(sleeved, 8);
+}
+
+// face_pass with the variety (people of other sizes and tones, sometimes two, the hand at
+// another distance) still starts beside the face and crosses it later.
+TEST(SimVariety, FacePassStillCrossesTheFace)
+{
+    for (std::uint64_t seed : {1, 2, 3}) {
+        const Scene scene(wide(Preset::FacePass, Motion::Mixed, seed));
+        int during_wave = 0, crossing = 0;
+        cv::Mat img;
+        EyeTruth t;
+        for (int frame = 0; frame < 200; frame += 4) {
+            scene.render(frame, Eye::Left, {}, img, &t);
+            ASSERT_FALSE(t.face.empty());
+            const int hand = cv::countNonZero(t.mask);
+            const bool crosses = hand > 0 && cv::countNonZero(t.mask & t.face) >= 0.05 * hand;
+            (frame <= 36 ? during_wave : crossing) += crosses;
+        }
+        EXPECT_EQ(during_wave, 0) << "seed " << seed;
+        EXPECT_GE(crossing, 5) << "seed " << seed;
+    }
+}
+
+// A hand moving while the shutter is open smears past its outline (rendering the same pose
+// as a still hand shows the difference); without the variety there is no smear.
+TEST(SimVariety, MovingHandSmears)
+{
+    int smeared = 0;
+    for (Variety variety : {Variety::None, Variety::Wide}) {
+        SceneConfig c = config(Preset::Clean, Motion::Mixed, 23);
+        c.variety = variety;
+        const Scene scene(c);
+        cv::Mat moving, still, diff;
+        EyeTruth t;
+        scene.render(10, Eye::Left, {}, moving, &t);  // the wave
+        scene.render_pose(scene.hand_pose(10), 10, Eye::Left, {}, still);
+        cv::absdiff(moving, still, diff);
+        cv::Mat1b changed;
+        cv::cvtColor(diff, changed, cv::COLOR_BGR2GRAY);
+        changed = changed > 10;
+        changed.setTo(0, t.mask);
+        if (variety == Variety::None) EXPECT_EQ(cv::norm(diff, cv::NORM_L1), 0.0);
+        else smeared = cv::countNonZero(changed);
+    }
+    EXPECT_GT(smeared, 50);
+}
+
+// The varied preset's rooms run from almost no skin-coloured background to a great deal of
+// it (skin-coloured walls), and hold no one, one or two people.
+TEST(SimVariety, VariedRoomsSpanClutterAndPeople)
+{
+    double least = 1.0, most = 0.0;
+    int without = 0, with_two = 0;
+    for (std::uint64_t seed = 1; seed <= 12; ++seed) {
+        const Scene scene(wide(Preset::Varied, Motion::Mixed, seed));
+        const double fraction = scene.measured_skin_fraction();
+        least = std::min(least, fraction), most = std::max(most, fraction);
+        cv::Mat img;
+        EyeTruth t;
+        scene.render_pose(HandPose{{5000.0, 0.0, 1000.0}}, 0, Eye::Left, {}, img, &t);  // hand out of the way
+        if (t.face.empty()) {
+            ++without;
+            continue;
+        }
+        std::vector<std::vector<cv::Point>> faces;
+        cv::findContours(t.face.clone(), faces, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE);
+        int big = 0;
+        for (const auto& f : faces) big += cv::contourArea(f) > 100.0;
+        with_two += big >= 2;
+    }
+    EXPECT_LT(least, 0.05);
+    EXPECT_GT(most, 0.2);
+    EXPECT_GE(without, 1);
+    EXPECT_GE(with_two, 1);
 }
 
 }  // namespace
