@@ -35,7 +35,9 @@ constexpr int kMinInliers = 12;
 constexpr double kMinPlaneToleranceMm = 6.0;
 constexpr double kPlaneToleranceDisparityPx = 1.0;  // inlier band: this much disparity error
 constexpr int kPlaneIterations = 96;
-constexpr double kMinHandLengthMm = 10.0;  // palm to fingertip, below which H is noise
+constexpr double kMinHandLengthMm = 10.0;
+// Cameras turned more than this from each other: correlation windows no longer match.
+constexpr double kMaxCorrelatedTurn = 15.0 * std::numbers::pi / 180.0;  // palm to fingertip, below which H is noise
 
 Eigen::Vector3d to_eigen(const cv::Vec3d& v) { return {v[0], v[1], v[2]}; }
 cv::Vec3d to_cv(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
@@ -200,7 +202,31 @@ struct PointingEstimator::Impl {
         check_frame(left_bgr, "left");
         check_frame(right_bgr, "right");
         if (!plausible(le) || !plausible(re)) return out;
-        if (!le.landmarks.empty() && !re.landmarks.empty()) return from_key_points(le, re, head);
+        // The hand's plane from many correspondences holds the depth better than two
+        // triangulated points where the views are close (a stereo head); where they are far
+        // apart the correlation finds too little, and the key points are triangulated.
+        const bool key_points = !le.landmarks.empty() && !re.landmarks.empty();
+        if (key_points && views_far_apart(head)) return from_key_points(le, re, head);
+        out = from_plane(left_bgr, right_bgr, le, re, head);
+        if (!out.valid && key_points) return from_key_points(le, re, head);
+        return out;
+    }
+
+    // Whether the two cameras look in directions so different that a correlation window in
+    // one view no longer resembles the same patch in the other.
+    bool views_far_apart(const HeadPose& head) const
+    {
+        const cv::Matx33d R = left_to_right_at(calibration, head).R;
+        const double cos_angle = std::clamp((R(0, 0) + R(1, 1) + R(2, 2) - 1.0) / 2.0, -1.0, 1.0);
+        return std::acos(cos_angle) > kMaxCorrelatedTurn;
+    }
+
+    // Correspondences along epipolar lines inside both hands, a robust plane through them,
+    // and each view's fingertip and palm cast onto it.
+    Pointing3D from_plane(const cv::Mat& left_bgr, const cv::Mat& right_bgr, const EyeEstimate& le,
+                          const EyeEstimate& re, const HeadPose& head)
+    {
+        Pointing3D out;
         if (!left.prepare(left_bgr, le) || !right.prepare(right_bgr, re)) return out;
 
         const RigidTransform l2r = left_to_right_at(calibration, head);

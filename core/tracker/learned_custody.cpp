@@ -25,6 +25,10 @@ constexpr double kAgreedError = 0.12;
 // Without a hand, the palm detector looks at every frame for this many frames, then at
 // every kSlowSearchEvery-th: an empty room costs less.
 constexpr int kEagerSearchFrames = 15;
+// The contour's fingertip is reported when it lies within this angle of the key points'
+// index direction and at most this many times their tip's distance from the palm.
+constexpr double kContourTipAngle = 20.0 * 3.14159265358979 / 180.0;
+constexpr double kContourTipReach = 2.5;
 // How far past the wrist key point the template's region runs, in palm sizes.
 constexpr double kWristReach = 0.6;
 constexpr int kSlowSearchEvery = 3;
@@ -193,8 +197,18 @@ void HandTracker::Impl::place_key_points(const HandState& s) {
     estimate.landmarks.resize(key_points.size());
     std::array<cv::Point2f, 21> placed;
     for (std::size_t i = 0; i < key_points.size(); ++i) placed[i] = estimate.landmarks[i] = cv::Point2f(place(s, key_points[i]));
-    estimate.fingertip = placed[8];
     estimate.palm = palm_centre(placed);
+    estimate.fingertip = placed[8];
+    // The contour's own fingertip (its extreme point along the finger) is where the
+    // silhouette ends, which the key points only estimate: it is taken when it lies the way
+    // the key points' index finger points, no nearer the palm than their tip.
+    const cv::Point2f by_contour = cv::Point2f(place(s, shape->fingertip)) - estimate.palm;
+    const cv::Point2f by_points = placed[8] - estimate.palm;
+    const double along = by_contour.dot(by_points), points_length = cv::norm(by_points);
+    const double contour_length = cv::norm(by_contour);
+    if (points_length > 0.0 && contour_length >= points_length && contour_length <= kContourTipReach * points_length &&
+        along >= std::cos(kContourTipAngle) * contour_length * points_length)
+        estimate.fingertip = placed[8] + (by_contour - by_points);
 }
 
 }  // namespace gc
