@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 namespace gc {
@@ -25,13 +26,13 @@ constexpr double kAgreedError = 0.12;
 // Without a hand, the palm detector looks at every frame for this many frames, then at
 // every kSlowSearchEvery-th: an empty room costs less.
 constexpr int kEagerSearchFrames = 15;
+constexpr int kSlowSearchEvery = 3;
 // The contour's fingertip is reported when it lies within this angle of the key points'
 // index direction and at most this many times their tip's distance from the palm.
-constexpr double kContourTipAngle = 20.0 * 3.14159265358979 / 180.0;
+constexpr double kContourTipAngle = 20.0 * std::numbers::pi / 180.0;
 constexpr double kContourTipReach = 2.5;
 // How far past the wrist key point the template's region runs, in palm sizes.
 constexpr double kWristReach = 0.6;
-constexpr int kSlowSearchEvery = 3;
 
 // The bones drawn between key points (MediaPipe's hand topology).
 constexpr int kBones[][2] = {{0, 1},   {1, 2},   {2, 3},   {3, 4},   {0, 5},   {5, 6},  {6, 7},
