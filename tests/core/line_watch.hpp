@@ -24,7 +24,7 @@ namespace gc::test {
 struct LineWatch {
     bool started = false;
     int looks = 0;                 // times the file was seen non-empty while the program ran
-    std::string partial;           // the first content seen that ended inside a line; empty if none
+    std::string partial;           // the first content seen ending inside a line that stayed so; empty if none
     bool terminated = false;       // the program ended by the SIGTERM
     std::string final_content;     // the file after the program ended
 };
@@ -63,8 +63,14 @@ inline LineWatch watch_lines(const std::vector<std::string>& argv, const std::st
         const std::string seen = file_text(path);
         if (!seen.empty()) {
             ++w.looks;
-            if (seen.back() != '\n' && w.partial.empty())
-                w.partial = seen;
+            if (seen.back() != '\n' && w.partial.empty()) {
+                // A reader can catch one write(2) of a long line half copied, for microseconds;
+                // a line held back in a buffer stays cut until the next flush, a frame later.
+                std::this_thread::sleep_for(std::chrono::milliseconds(5));
+                const std::string later = file_text(path);
+                if (later.find('\n', seen.size()) == std::string::npos)
+                    w.partial = seen;
+            }
         }
         const auto lines = static_cast<std::size_t>(std::count(seen.begin(), seen.end(), '\n'));
         if (!sent && (lines >= lines_before_term || std::chrono::steady_clock::now() > deadline)) {
