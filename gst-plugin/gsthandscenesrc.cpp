@@ -66,7 +66,7 @@ struct SceneState {
     GstClockID capture_wait = nullptr;
     bool unlocked = false;
     cv::Mat bgr;
-    cv::Mat yuv_scratch;
+    gc::gst::BgrWriter writer;
     gc::sim::EyeTruth truth;
     gc::HeadPose pose;  // the pose the last frame was rendered from
     bool warned_pose = false;  // about a head pose the room cannot be rendered from
@@ -436,7 +436,7 @@ static GstFlowReturn gst_hand_scene_src_fill(GstPushSrc* src, GstBuffer* buffer)
         } else {
             st.scene->render(int(frame), settings.eye, st.pose, st.bgr, truth);
         }
-        gc::gst::write_bgr(st.bgr, out, st.yuv_scratch);
+        st.writer.write(st.bgr, out);
     } catch (const std::exception& err) {
         gst_video_frame_unmap(&out);
         GST_ELEMENT_ERROR(self, STREAM, FAILED, ("Cannot render frame %" G_GUINT64_FORMAT ".", frame),

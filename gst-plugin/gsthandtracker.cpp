@@ -52,7 +52,7 @@ struct Engine {
     cv::Mat halves[2];             // the two views of a side-by-side frame
     cv::Mat canvas;                // the view being drawn on
     cv::Mat scaled;                // the view at the output size
-    cv::Mat yuv_scratch;
+    gc::gst::BgrWriter writer;
     std::vector<float> contour_scratch;
     gc::gst::AttentionWindow attention;
     gc::gst::TrackingOverlay overlay;
@@ -531,7 +531,7 @@ static GstFlowReturn compose_output(GstHandTracker* self, const Settings& settin
     try {
         context.view = gc::gst::compose_view(in, choice, result, particles, out_size, e.attention, e.overlay,
                                              e.canvas, e.scaled);
-        gc::gst::write_bgr(e.scaled, out, e.yuv_scratch);
+        e.writer.write(e.scaled, out);
     } catch (const std::exception& err) {
         gst_video_frame_unmap(&out);
         GST_ELEMENT_ERROR(self, STREAM, FAILED, ("Cannot compose the output frame."), ("%s", err.what()));

@@ -1,167 +1,101 @@
 #include "video_bgr.hpp"
 
-#include <opencv2/imgproc.hpp>
-
 #include <stdexcept>
 #include <string>
 
 namespace gc::gst {
 namespace {
 
-std::string format_name(const GstVideoFrame& frame)
+std::string describe(const GstVideoInfo& info)
 {
-    return gst_video_format_to_string(GST_VIDEO_FRAME_FORMAT(&frame));
+    return std::to_string(GST_VIDEO_INFO_WIDTH(&info)) + "x" + std::to_string(GST_VIDEO_INFO_HEIGHT(&info)) +
+           " " + gst_video_format_to_string(GST_VIDEO_INFO_FORMAT(&info));
 }
 
-void require_even(const GstVideoFrame& frame)
+bool supported(GstVideoFormat format, const char* list)
 {
-    const int w = GST_VIDEO_FRAME_WIDTH(&frame);
-    const int h = GST_VIDEO_FRAME_HEIGHT(&frame);
-    if (w % 2 != 0 || h % 2 != 0)
-        throw std::invalid_argument(format_name(frame) + " frames must have an even width and height, got " +
-                                    std::to_string(w) + "x" + std::to_string(h));
+    const std::string formats = std::string(", ") + list + ",";
+    return formats.find(std::string(" ") + gst_video_format_to_string(format) + ",") != std::string::npos;
 }
 
-// Channel pairs for cv::mixChannels between 4-byte formats with padding first and BGR.
-constexpr int kXrgbToBgr[] = {3, 0, 2, 1, 1, 2};
-constexpr int kXbgrToBgr[] = {1, 0, 2, 1, 3, 2};
-constexpr int kBgrToXrgb[] = {2, 1, 1, 2, 0, 3};
-constexpr int kBgrToXbgr[] = {0, 1, 1, 2, 2, 3};
+// A GstVideoFrame over a BGR cv::Mat, filled by hand rather than mapped from a GstBuffer so
+// that no buffer is allocated per frame; the converter reads only the info and plane data.
+// The frame rate, aspect and layout are the other side's: the converter changes only pixels.
+GstVideoFrame bgr_frame(const cv::Mat& bgr, const GstVideoInfo& other_side)
+{
+    GstVideoFrame frame{};
+    gst_video_info_set_interlaced_format(&frame.info, GST_VIDEO_FORMAT_BGR, GST_VIDEO_INFO_INTERLACE_MODE(&other_side),
+                                         guint(bgr.cols), guint(bgr.rows));
+    frame.info.fps_n = other_side.fps_n;
+    frame.info.fps_d = other_side.fps_d;
+    frame.info.par_n = other_side.par_n;
+    frame.info.par_d = other_side.par_d;
+    frame.info.stride[0] = int(bgr.step[0]);
+    frame.info.size = bgr.step[0] * size_t(bgr.rows);
+    frame.data[0] = bgr.data;
+    return frame;
+}
+
+bool same_conversion(const GstVideoInfo& a, const GstVideoInfo& b)
+{
+    return GST_VIDEO_INFO_FORMAT(&a) == GST_VIDEO_INFO_FORMAT(&b) && a.width == b.width && a.height == b.height &&
+           gst_video_colorimetry_is_equal(&a.colorimetry, &b.colorimetry) &&
+           GST_VIDEO_INFO_CHROMA_SITE(&a) == GST_VIDEO_INFO_CHROMA_SITE(&b) &&
+           GST_VIDEO_INFO_INTERLACE_MODE(&a) == GST_VIDEO_INFO_INTERLACE_MODE(&b);
+}
 
 }  // namespace
 
-const cv::Mat& BgrReader::read(const GstVideoFrame& frame)
+void CachedConverter::convert(const GstVideoFrame& src, GstVideoFrame& dst)
 {
-    const GstVideoFormat format = GST_VIDEO_FRAME_FORMAT(&frame);
-    const int w = GST_VIDEO_FRAME_WIDTH(&frame);
-    const int h = GST_VIDEO_FRAME_HEIGHT(&frame);
-    auto packed = [&](int channels) {
-        return cv::Mat(h, w, CV_8UC(channels), GST_VIDEO_FRAME_PLANE_DATA(&frame, 0),
-                       static_cast<size_t>(GST_VIDEO_FRAME_PLANE_STRIDE(&frame, 0)));
-    };
-    switch (format) {
-    case GST_VIDEO_FORMAT_BGR:
-        view_ = packed(3);
-        return view_;
-    case GST_VIDEO_FORMAT_RGB:
-        cv::cvtColor(packed(3), bgr_, cv::COLOR_RGB2BGR);
-        return bgr_;
-    case GST_VIDEO_FORMAT_BGRx:
-    case GST_VIDEO_FORMAT_BGRA:
-        cv::cvtColor(packed(4), bgr_, cv::COLOR_BGRA2BGR);
-        return bgr_;
-    case GST_VIDEO_FORMAT_RGBx:
-    case GST_VIDEO_FORMAT_RGBA:
-        cv::cvtColor(packed(4), bgr_, cv::COLOR_RGBA2BGR);
-        return bgr_;
-    case GST_VIDEO_FORMAT_xRGB:
-    case GST_VIDEO_FORMAT_xBGR: {
-        bgr_.create(h, w, CV_8UC3);
-        const cv::Mat src = packed(4);
-        cv::mixChannels(&src, 1, &bgr_, 1, format == GST_VIDEO_FORMAT_xRGB ? kXrgbToBgr : kXbgrToBgr, 3);
-        return bgr_;
+    if (!converter_ || !same_conversion(src.info, in_) || !same_conversion(dst.info, out_)) {
+        converter_.reset();
+        in_ = src.info;
+        out_ = dst.info;
+        // One thread: the tracker already works on both eyes at once.
+        GstStructure* config = gst_structure_new("GstVideoConverter", GST_VIDEO_CONVERTER_OPT_THREADS,
+                                                 G_TYPE_UINT, 1u, nullptr);
+        converter_.reset(gst_video_converter_new(&in_, &out_, config));
+        if (!converter_)
+            throw std::invalid_argument("GStreamer cannot convert " + describe(in_) + " to " + describe(out_));
     }
-    case GST_VIDEO_FORMAT_YUY2:
-        cv::cvtColor(packed(2), bgr_, cv::COLOR_YUV2BGR_YUY2);
-        return bgr_;
-    case GST_VIDEO_FORMAT_NV12: {
-        require_even(frame);
-        const cv::Mat y(h, w, CV_8UC1, GST_VIDEO_FRAME_PLANE_DATA(&frame, 0),
-                        static_cast<size_t>(GST_VIDEO_FRAME_PLANE_STRIDE(&frame, 0)));
-        const cv::Mat uv(h / 2, w / 2, CV_8UC2, GST_VIDEO_FRAME_PLANE_DATA(&frame, 1),
-                         static_cast<size_t>(GST_VIDEO_FRAME_PLANE_STRIDE(&frame, 1)));
-        cv::cvtColorTwoPlane(y, uv, bgr_, cv::COLOR_YUV2BGR_NV12);
-        return bgr_;
-    }
-    case GST_VIDEO_FORMAT_I420: {
-        // cvtColor wants the three planes back to back without row padding.
-        require_even(frame);
-        contiguous_.create(h + h / 2, w, CV_8UC1);
-        const cv::Mat y(h, w, CV_8UC1, GST_VIDEO_FRAME_PLANE_DATA(&frame, 0),
-                        static_cast<size_t>(GST_VIDEO_FRAME_PLANE_STRIDE(&frame, 0)));
-        y.copyTo(contiguous_.rowRange(0, h));
-        for (int p = 1; p <= 2; ++p) {
-            const cv::Mat chroma(h / 2, w / 2, CV_8UC1, GST_VIDEO_FRAME_PLANE_DATA(&frame, p),
-                                 static_cast<size_t>(GST_VIDEO_FRAME_PLANE_STRIDE(&frame, p)));
-            uchar* dst = contiguous_.ptr(h) + static_cast<size_t>(p - 1) * (w / 2) * (h / 2);
-            chroma.copyTo(cv::Mat(h / 2, w / 2, CV_8UC1, dst));
-        }
-        cv::cvtColor(contiguous_, bgr_, cv::COLOR_YUV2BGR_I420);
-        return bgr_;
-    }
-    default:
-        throw std::invalid_argument("unsupported input format " + format_name(frame));
-    }
+    gst_video_converter_frame(converter_.get(), &src, &dst);
 }
 
-void write_bgr(const cv::Mat& bgr, GstVideoFrame& frame, cv::Mat& scratch)
+const cv::Mat& BgrReader::read(const GstVideoFrame& frame)
 {
-    const GstVideoFormat format = GST_VIDEO_FRAME_FORMAT(&frame);
-    const int w = GST_VIDEO_FRAME_WIDTH(&frame);
-    const int h = GST_VIDEO_FRAME_HEIGHT(&frame);
-    if (bgr.type() != CV_8UC3 || bgr.cols != w || bgr.rows != h)
-        throw std::invalid_argument("write_bgr: a " + std::to_string(bgr.cols) + "x" +
-                                    std::to_string(bgr.rows) + " " + cv::typeToString(bgr.type()) +
-                                    " image does not fit a " + std::to_string(w) + "x" +
-                                    std::to_string(h) + " " + format_name(frame) + " frame");
-    auto packed = [&](int channels) {
-        return cv::Mat(h, w, CV_8UC(channels), GST_VIDEO_FRAME_PLANE_DATA(&frame, 0),
-                       static_cast<size_t>(GST_VIDEO_FRAME_PLANE_STRIDE(&frame, 0)));
-    };
-    switch (format) {
-    case GST_VIDEO_FORMAT_BGR: {
-        cv::Mat dst = packed(3);
+    const GstVideoInfo& info = frame.info;
+    if (!supported(GST_VIDEO_INFO_FORMAT(&info), GC_INPUT_FORMATS))
+        throw std::invalid_argument("unsupported input format " + describe(info));
+    const int w = GST_VIDEO_INFO_WIDTH(&info);
+    const int h = GST_VIDEO_INFO_HEIGHT(&info);
+    if (GST_VIDEO_INFO_FORMAT(&info) == GST_VIDEO_FORMAT_BGR && GST_VIDEO_FRAME_PLANE_STRIDE(&frame, 0) == 3 * w) {
+        view_ = cv::Mat(h, w, CV_8UC3, GST_VIDEO_FRAME_PLANE_DATA(&frame, 0));
+        return view_;
+    }
+    bgr_.create(h, w, CV_8UC3);
+    GstVideoFrame dst = bgr_frame(bgr_, info);
+    converter_.convert(frame, dst);
+    return bgr_;
+}
+
+void BgrWriter::write(const cv::Mat& bgr, GstVideoFrame& frame)
+{
+    const GstVideoInfo& info = frame.info;
+    if (bgr.type() != CV_8UC3 || bgr.cols != GST_VIDEO_INFO_WIDTH(&info) || bgr.rows != GST_VIDEO_INFO_HEIGHT(&info))
+        throw std::invalid_argument("a " + std::to_string(bgr.cols) + "x" + std::to_string(bgr.rows) + " " +
+                                    cv::typeToString(bgr.type()) + " image does not fit a " + describe(info) +
+                                    " frame");
+    if (!supported(GST_VIDEO_INFO_FORMAT(&info), GC_OUTPUT_FORMATS))
+        throw std::invalid_argument("unsupported output format " + describe(info));
+    if (GST_VIDEO_INFO_FORMAT(&info) == GST_VIDEO_FORMAT_BGR) {
+        cv::Mat dst(bgr.rows, bgr.cols, CV_8UC3, GST_VIDEO_FRAME_PLANE_DATA(&frame, 0),
+                    size_t(GST_VIDEO_FRAME_PLANE_STRIDE(&frame, 0)));
         bgr.copyTo(dst);
         return;
     }
-    case GST_VIDEO_FORMAT_RGB: {
-        cv::Mat dst = packed(3);
-        cv::cvtColor(bgr, dst, cv::COLOR_BGR2RGB);
-        return;
-    }
-    case GST_VIDEO_FORMAT_BGRx:
-    case GST_VIDEO_FORMAT_BGRA: {
-        cv::Mat dst = packed(4);
-        cv::cvtColor(bgr, dst, cv::COLOR_BGR2BGRA);
-        return;
-    }
-    case GST_VIDEO_FORMAT_RGBx:
-    case GST_VIDEO_FORMAT_RGBA: {
-        cv::Mat dst = packed(4);
-        cv::cvtColor(bgr, dst, cv::COLOR_BGR2RGBA);
-        return;
-    }
-    case GST_VIDEO_FORMAT_xRGB:
-    case GST_VIDEO_FORMAT_xBGR: {
-        cv::Mat dst = packed(4);
-        dst.setTo(cv::Scalar::all(255));
-        cv::mixChannels(&bgr, 1, &dst, 1, format == GST_VIDEO_FORMAT_xRGB ? kBgrToXrgb : kBgrToXbgr, 3);
-        return;
-    }
-    case GST_VIDEO_FORMAT_I420:
-    case GST_VIDEO_FORMAT_NV12: {
-        require_even(frame);
-        cv::cvtColor(bgr, scratch, cv::COLOR_BGR2YUV_I420);  // (h * 3 / 2) x w, planes back to back
-        scratch.rowRange(0, h).copyTo(cv::Mat(h, w, CV_8UC1, GST_VIDEO_FRAME_PLANE_DATA(&frame, 0),
-                                              static_cast<size_t>(GST_VIDEO_FRAME_PLANE_STRIDE(&frame, 0))));
-        const cv::Mat u(h / 2, w / 2, CV_8UC1, scratch.ptr(h));
-        const cv::Mat v(h / 2, w / 2, CV_8UC1, scratch.ptr(h) + static_cast<size_t>(w / 2) * (h / 2));
-        if (format == GST_VIDEO_FORMAT_I420) {
-            u.copyTo(cv::Mat(h / 2, w / 2, CV_8UC1, GST_VIDEO_FRAME_PLANE_DATA(&frame, 1),
-                             static_cast<size_t>(GST_VIDEO_FRAME_PLANE_STRIDE(&frame, 1))));
-            v.copyTo(cv::Mat(h / 2, w / 2, CV_8UC1, GST_VIDEO_FRAME_PLANE_DATA(&frame, 2),
-                             static_cast<size_t>(GST_VIDEO_FRAME_PLANE_STRIDE(&frame, 2))));
-        } else {
-            cv::Mat uv(h / 2, w / 2, CV_8UC2, GST_VIDEO_FRAME_PLANE_DATA(&frame, 1),
-                       static_cast<size_t>(GST_VIDEO_FRAME_PLANE_STRIDE(&frame, 1)));
-            const cv::Mat planes[] = {u, v};
-            cv::merge(planes, 2, uv);
-        }
-        return;
-    }
-    default:
-        throw std::invalid_argument("unsupported output format " + format_name(frame));
-    }
+    const GstVideoFrame src = bgr_frame(bgr, info);
+    converter_.convert(src, frame);
 }
 
 }  // namespace gc::gst

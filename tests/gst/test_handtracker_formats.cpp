@@ -1,5 +1,6 @@
-// handtracker reads every listed input format and writes every output format itself, with
-// padded strides (odd widths), without a videoconvert; mismatched views fail in words.
+// handtracker reads every listed input format and writes every output format without a
+// videoconvert, as videoconvert would (colorimetry, range, padded strides of odd widths);
+// mismatched views fail in words.
 #include "gst_fixture.hpp"
 
 #include <glib/gstdio.h>
@@ -9,6 +10,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
+#include <vector>
 #include <string>
 
 namespace {
@@ -32,17 +35,17 @@ cv::Mat bgr_of(GstSample* sample)
     return copy;
 }
 
-// Runs `branch` (from a tee of the test source) next to videoconvert's reference and
-// returns the largest mean absolute difference between the two BGR results.
-double difference_to_reference(const std::string& source_caps, const std::string& branch)
+// Runs `branch` and `reference` (from a tee of the test source) side by side and returns the
+// largest difference, in grey levels, between their BGR results.
+int difference(const std::string& source_caps, const std::string& branch, const std::string& reference)
 {
     const std::string description =
         "videotestsrc num-buffers=2 pattern=smpte ! " + source_caps + " ! tee name=s "
         "s. ! queue ! " + branch + " ! video/x-raw,format=BGR ! appsink name=out sync=false wait-on-eos=false "
-        "s. ! queue ! videoconvert ! video/x-raw,format=BGR ! appsink name=ref sync=false wait-on-eos=false";
+        "s. ! queue ! " + reference + " ! video/x-raw,format=BGR ! appsink name=ref sync=false wait-on-eos=false";
     gc::test::ElementPtr pipeline = gc::test::parse_pipeline(description);
     if (!pipeline)
-        return 1e9;
+        return 1000;
     std::vector<gc::test::SamplePtr> out, ref;
     const gc::test::RunResult r = run_pipeline(pipeline.get(), 30 * GST_SECOND, [&] {
         out = drain(pipeline.get(), "out");
@@ -57,11 +60,16 @@ double difference_to_reference(const std::string& source_caps, const std::string
         const cv::Mat b = bgr_of(ref[i].get());
         EXPECT_EQ(a.size(), b.size());
         if (a.size() != b.size())
-            return 1e9;
-        const cv::Scalar mean = cv::mean(cv::abs(a - b) + cv::abs(b - a));
-        worst = std::max({worst, mean[0], mean[1], mean[2]});
+            return 1000;
+        worst = std::max(worst, cv::norm(a, b, cv::NORM_INF));
     }
-    return worst;
+    return int(worst);
+}
+
+// The picture the tracker sees is the one videoconvert would give, to within one grey level.
+int input_difference(const std::string& source_caps)
+{
+    return difference(source_caps, "handtracker output=left", "videoconvert");
 }
 
 class InputFormat : public ::testing::TestWithParam<const char*> {};
@@ -69,36 +77,101 @@ class InputFormat : public ::testing::TestWithParam<const char*> {};
 TEST_P(InputFormat, MatchesVideoconvert)
 {
     gc::test::init_gstreamer();
-    const std::string format = GetParam();
-    const double diff = difference_to_reference("video/x-raw,format=" + format + "," + kSize,
-                                                 "handtracker name=t output=left ! videoconvert");
-    // Packed RGB formats are rearranged exactly; YUV differs by the chroma filters only
-    // (a stride error would shear the image and differ by tens of grey levels).
-    const bool rgb = format.find('Y') == std::string::npos && format.find('I') == std::string::npos &&
-                     format.find('N') == std::string::npos;
-    EXPECT_LE(diff, rgb ? 0.0 : 8.0) << format;
+    EXPECT_LE(input_difference(std::string("video/x-raw,format=") + GetParam() + "," + kSize), 1) << GetParam();
 }
 
 INSTANTIATE_TEST_SUITE_P(Handtracker, InputFormat,
                          ::testing::Values("YUY2", "NV12", "I420", "RGB", "BGR", "RGBx", "BGRx", "xRGB", "xBGR",
                                            "RGBA", "BGRA"));
 
+// HD cameras send BT.709, webcams' MJPEG full-range BT.601 ("1:4:0:0"): each is read as its
+// caps say, not as limited-range BT.601 always.
+class InputColorimetry : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(InputColorimetry, MatchesVideoconvert)
+{
+    gc::test::init_gstreamer();
+    for (const char* format : {"I420", "NV12", "YUY2"}) {
+        const std::string caps =
+            std::string("video/x-raw,format=") + format + ",colorimetry=" + GetParam() + "," + kSize;
+        EXPECT_LE(input_difference(caps), 1) << format << " " << GetParam();
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Handtracker, InputColorimetry, ::testing::Values("bt601", "bt709", "1:4:0:0", "1:3:5:1"));
+
+// Written in any output format, the picture is what videoconvert would write from the same
+// BGR picture, to within one grey level once read back.
 class OutputFormat : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(OutputFormat, MatchesVideoconvert)
 {
     gc::test::init_gstreamer();
-    const std::string format = GetParam();
-    const double diff =
-        difference_to_reference(std::string("video/x-raw,format=BGR,") + kSize,
-                                "handtracker output=left ! video/x-raw,format=" + format + " ! videoconvert");
-    const bool rgb = format != "I420" && format != "NV12";
-    EXPECT_LE(diff, rgb ? 0.0 : 8.0) << format;
+    const std::string format = std::string("video/x-raw,format=") + GetParam();
+    EXPECT_LE(difference(std::string("video/x-raw,format=BGR,") + kSize,
+                         "handtracker output=left ! " + format + " ! videoconvert",
+                         "videoconvert ! " + format + " ! videoconvert"),
+              1)
+        << GetParam();
+    const bool yuv = std::string(GetParam()) == "I420" || std::string(GetParam()) == "NV12";
+    if (yuv)
+        EXPECT_LE(difference(std::string("video/x-raw,format=BGR,") + kSize,
+                         "handtracker output=left ! " + format + ",colorimetry=bt709 ! videoconvert",
+                         "videoconvert ! " + format + ",colorimetry=bt709 ! videoconvert"),
+              1)
+        << GetParam() << " bt709";
 }
 
 INSTANTIATE_TEST_SUITE_P(Handtracker, OutputFormat,
                          ::testing::Values("BGR", "RGB", "BGRx", "RGBx", "xRGB", "xBGR", "BGRA", "RGBA", "I420",
                                            "NV12"));
+
+struct Track {
+    std::string state;
+    double fingertip_x = 0.0, fingertip_y = 0.0;
+};
+
+// The left eye's state and fingertip on each frame of the rendered scene, delivered in `caps`.
+std::vector<Track> track_scene(const std::string& caps)
+{
+    const std::string eye = " scene=clean motion=mixed num-buffers=90 ! " + caps + " ! ";
+    const gc::test::RunResult r = run_pipeline("handscenesrc eye=left" + eye + "t.sink_left handscenesrc eye=right" +
+                                                   eye + "t.sink_right handtracker name=t ! fakesink sync=false",
+                                               120 * GST_SECOND);
+    EXPECT_TRUE(r.eos) << r.error;
+    std::vector<Track> out;
+    for (const GstStructure* msg : r.named("hand-pointing", "t")) {
+        Track t;
+        t.state = gst_structure_get_string(msg, "state");
+        if (const GstStructure* left = gc::test::get_child(msg, "left")) {
+            t.fingertip_x = gc::test::get_double(left, "fingertip-x");
+            t.fingertip_y = gc::test::get_double(left, "fingertip-y");
+        }
+        out.push_back(t);
+    }
+    return out;
+}
+
+// The same scene delivered as RGB and as BT.709 I420 (an HD camera's format) is tracked alike.
+TEST(Colorimetry, Bt709TracksLikeRgb)
+{
+    gc::test::init_gstreamer();
+    const std::vector<Track> rgb = track_scene("video/x-raw,format=RGB");
+    const std::vector<Track> yuv = track_scene("video/x-raw,format=I420,colorimetry=bt709");
+    ASSERT_EQ(rgb.size(), 90u);
+    ASSERT_EQ(yuv.size(), rgb.size());
+    int same_state = 0;
+    std::vector<double> apart;
+    for (size_t i = 0; i < rgb.size(); ++i) {
+        same_state += rgb[i].state == yuv[i].state;
+        if (rgb[i].state == "tracking" && yuv[i].state == "tracking")
+            apart.push_back(std::hypot(rgb[i].fingertip_x - yuv[i].fingertip_x, rgb[i].fingertip_y - yuv[i].fingertip_y));
+    }
+    EXPECT_GE(same_state, 89) << "of 90 frames";
+    ASSERT_GE(apart.size(), 60u);
+    std::nth_element(apart.begin(), apart.begin() + long(apart.size() / 2), apart.end());
+    EXPECT_LE(apart[apart.size() / 2], 2.0);
+}
 
 TEST(Negotiation, MismatchedViewsFailWithBothSizes)
 {
