@@ -31,9 +31,9 @@ GST_ELEMENT_REGISTER_DEFINE(handtracker, "handtracker", GST_RANK_NONE, GST_TYPE_
 // Pads
 
 static GstAggregatorPad* gst_hand_tracker_create_new_pad(GstAggregator* agg, GstPadTemplate* templ,
-                                                         const gchar* /*req_name*/, const GstCaps* /*caps*/)
+                                                         const gchar* req_name, const GstCaps* /*caps*/)
 {
-    return create_tracker_pad(GST_HAND_TRACKER(agg), templ);
+    return create_tracker_pad(GST_HAND_TRACKER(agg), templ, req_name);
 }
 
 static gboolean gst_hand_tracker_sink_query(GstAggregator* agg, GstAggregatorPad* pad, GstQuery* query)
@@ -85,7 +85,11 @@ static GstFlowReturn gst_hand_tracker_aggregate_frames(GstVideoAggregator* vagg,
         return size_mismatch(self, left, right);
     gc::gst::SlotViews in;
     try {
-        gc::gst::read_views(e.readers, e.halves, packed_pad ? packed : nullptr, left, right, in);
+        const gc::gst::PackedLayout layout =
+            packed_pad ? gc::gst::packed_layout(packed_pad->info, settings.input_mode_override,
+                                                settings.input_flags_override)
+                       : gc::gst::PackedLayout{};
+        gc::gst::read_views(e.readers, e.halves, packed_pad ? packed : nullptr, layout, left, right, in);
     } catch (const std::exception& err) {
         GST_ELEMENT_ERROR(self, STREAM, FORMAT, ("Cannot read an input frame."), ("%s", err.what()));
         return GST_FLOW_ERROR;

@@ -1,5 +1,7 @@
 #include "handtracker_caps.hpp"
 
+#include "handtracker_state.hpp"
+#include "handtracker_views.hpp"
 #include "video_bgr.hpp"
 
 #include "common/frame_limits.hpp"
@@ -40,6 +42,32 @@ void warn_if_too_large(GstHandTracker* self, GstPad* pad, GstCaps* caps)
                         ("the caps are refused"));
 }
 
+PackedLayout sink_layout(GstHandTracker* self, const GstVideoInfo& info)
+{
+    const TrackerSettings settings = read_settings(self);
+    return packed_layout(info, settings.input_mode_override, settings.input_flags_override);
+}
+
+// `sink` takes both views in one frame; caps that do not say how they are packed (plain
+// mono video, say) are refused in words, with the ways to say it.
+bool accept_packed_caps(GstHandTracker* self, GstCaps* caps)
+{
+    GstVideoInfo info;
+    if (!gst_caps_is_fixed(caps) || !gst_video_info_from_caps(&info, caps))
+        return true;  // the template check decides
+    const PackedLayout layout = sink_layout(self, info);
+    if (layout.known())
+        return true;
+    const char* mode = gst_video_multiview_mode_to_caps_string(layout.mode);
+    GST_ELEMENT_ERROR(self, STREAM, FORMAT,
+                      ("The sink pad takes both views in one frame, but its caps give multiview-mode=%s. Declare "
+                       "the packing (multiview-mode=side-by-side or top-bottom in the caps, e.g. with capssetter, or "
+                       "input-mode-override=side-by-side), or link two cameras to sink_left and sink_right.",
+                       mode ? mode : "mono"),
+                      ("caps: %" GST_PTR_FORMAT, caps));
+    return false;
+}
+
 // The size of one view as the pads currently describe it.
 bool current_view_size(GstHandTracker* self, int& width, int& height)
 {
@@ -52,14 +80,11 @@ bool current_view_size(GstHandTracker* self, int& width, int& height)
         GST_OBJECT_UNLOCK(self);
         if (!info.finfo || GST_VIDEO_INFO_FORMAT(&info) == GST_VIDEO_FORMAT_UNKNOWN || info.width == 0)
             continue;
-        width = info.width;
-        height = info.height;
-        if (g_str_equal(name, "sink")) {
-            if (GST_VIDEO_INFO_MULTIVIEW_MODE(&info) == GST_VIDEO_MULTIVIEW_MODE_TOP_BOTTOM)
-                height /= 2;
-            else
-                width /= 2;
-        }
+        cv::Size view(info.width, info.height);
+        if (g_str_equal(name, "sink"))
+            view = sink_layout(self, info).view_size(view);
+        width = view.width;
+        height = view.height;
         return true;
     }
     return false;
@@ -83,10 +108,14 @@ GstVideoAggregatorPad* sink_pad(GstHandTracker* self, const char* name)
     return pad ? GST_VIDEO_AGGREGATOR_PAD(pad) : nullptr;
 }
 
-GstAggregatorPad* create_tracker_pad(GstHandTracker* self, GstPadTemplate* templ)
+GstAggregatorPad* create_tracker_pad(GstHandTracker* self, GstPadTemplate* templ, const gchar* req_name)
 {
-    const gchar* name = GST_PAD_TEMPLATE_NAME_TEMPLATE(templ);
     GstElement* element = GST_ELEMENT(self);
+    // A link that names no pad (gst-launch's `t.`) asks for the first fitting template
+    // twice: the second camera gets sink_right.
+    if (!req_name && g_str_equal(GST_PAD_TEMPLATE_NAME_TEMPLATE(templ), "sink_left") && sink_pad(self, "sink_left"))
+        templ = gst_element_class_get_pad_template(GST_ELEMENT_GET_CLASS(element), "sink_right");
+    const gchar* name = GST_PAD_TEMPLATE_NAME_TEMPLATE(templ);
     if (GstPad* existing = gst_element_get_static_pad(element, name)) {
         gst_object_unref(existing);
         GST_WARNING_OBJECT(self, "pad %s already exists", name);
@@ -127,10 +156,12 @@ bool answer_caps_query(GstHandTracker* self, GstAggregatorPad* pad, GstQuery* qu
         GstCaps* caps = nullptr;
         gst_query_parse_accept_caps(query, &caps);
         GstCaps* templ = gst_pad_get_pad_template_caps(GST_PAD(pad));
-        const gboolean accepted = gst_caps_is_subset(caps, templ);
+        gboolean accepted = gst_caps_is_subset(caps, templ);
         gst_caps_unref(templ);
         if (!accepted)
             warn_if_too_large(self, GST_PAD(pad), caps);
+        else if (g_str_equal(GST_PAD_NAME(pad), "sink"))
+            accepted = accept_packed_caps(self, caps);
         gst_query_set_accept_caps_result(query, accepted);
         return true;
     }

@@ -14,7 +14,7 @@ GstVideoAggregatorPad* sink_pad(GstHandTracker* self, const char* name);
 
 // A new sink pad from `templ`; nullptr when it exists already or cannot be combined with
 // the pads there are (sink_left/sink_right or sink).
-GstAggregatorPad* create_tracker_pad(GstHandTracker* self, GstPadTemplate* templ);
+GstAggregatorPad* create_tracker_pad(GstHandTracker* self, GstPadTemplate* templ, const gchar* req_name);
 
 // Answers the caps and accept-caps queries of a sink pad; false for any other query.
 bool answer_caps_query(GstHandTracker* self, GstAggregatorPad* pad, GstQuery* query);

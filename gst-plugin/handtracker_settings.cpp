@@ -23,6 +23,8 @@ enum {
     PROP_TARGET_DISTANCE,
     PROP_DETECTOR,
     PROP_MODEL_DIR,
+    PROP_INPUT_MODE_OVERRIDE,
+    PROP_INPUT_FLAGS_OVERRIDE,
 };
 
 #define GST_TYPE_HAND_TRACKER_OUTPUT (gst_hand_tracker_output_get_type())
@@ -178,6 +180,20 @@ void install_tracker_properties(GObjectClass* gobject_class)
                             "Folder of the learned models (palm_detection.onnx, hand_landmark.onnx); unset: "
                             "GESTURECAM_MODEL_DIR, else the installed models, else the source tree's core/models",
                             nullptr, GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
+    g_object_class_install_property(
+        gobject_class, PROP_INPUT_MODE_OVERRIDE,
+        g_param_spec_enum("input-mode-override", "Input mode override",
+                          "How frames on the sink pad hold both views, when their caps do not say (none: the "
+                          "caps' multiview-mode)",
+                          GST_TYPE_VIDEO_MULTIVIEW_FRAME_PACKING, GST_VIDEO_MULTIVIEW_FRAME_PACKING_NONE,
+                          GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
+    g_object_class_install_property(
+        gobject_class, PROP_INPUT_FLAGS_OVERRIDE,
+        g_param_spec_flags("input-flags-override", "Input flags override",
+                           "The multiview flags (right-view-first, half-aspect) of the sink pad's frames, used "
+                           "with input-mode-override",
+                           GST_TYPE_VIDEO_MULTIVIEW_FLAGS, GST_VIDEO_MULTIVIEW_FLAGS_NONE,
+                           GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
 }
 
 void mark_tracker_enums_as_plugin_api()
@@ -255,6 +271,12 @@ bool set_tracker_setting(TrackerSettings& s, guint prop_id, const GValue* value,
         rebuild = true;
         break;
     }
+    case PROP_INPUT_MODE_OVERRIDE:
+        s.input_mode_override = GstVideoMultiviewFramePacking(g_value_get_enum(value));
+        break;
+    case PROP_INPUT_FLAGS_OVERRIDE:
+        s.input_flags_override = GstVideoMultiviewFlags(g_value_get_flags(value));
+        break;
     default:
         return false;
     }
@@ -308,6 +330,12 @@ bool get_tracker_setting(const TrackerSettings& s, guint prop_id, GValue* value)
         break;
     case PROP_MODEL_DIR:
         g_value_set_string(value, s.model_dir.empty() ? nullptr : s.model_dir.c_str());
+        break;
+    case PROP_INPUT_MODE_OVERRIDE:
+        g_value_set_enum(value, s.input_mode_override);
+        break;
+    case PROP_INPUT_FLAGS_OVERRIDE:
+        g_value_set_flags(value, s.input_flags_override);
         break;
     default:
         return false;

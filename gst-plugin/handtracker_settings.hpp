@@ -8,6 +8,7 @@
 #include "tracker/hand_tracker.hpp"
 
 #include <glib-object.h>
+#include <gst/video/video.h>
 
 #include <string>
 
@@ -40,6 +41,9 @@ struct TrackerSettings {
     double target_distance_mm = kDefaultTargetDistanceMm;
     gc::HandDetector detector = gc::HandDetector::Learned;
     std::string model_dir;  // empty: the learned models are found without configuration
+    // How `sink` frames hold both views when their caps do not say (or say wrongly).
+    GstVideoMultiviewFramePacking input_mode_override = GST_VIDEO_MULTIVIEW_FRAME_PACKING_NONE;
+    GstVideoMultiviewFlags input_flags_override = GST_VIDEO_MULTIVIEW_FLAGS_NONE;
 };
 
 // Installs every property of the element's class.

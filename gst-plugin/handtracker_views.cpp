@@ -4,23 +4,50 @@
 
 namespace gc::gst {
 
-void read_views(BgrReader readers[2], cv::Mat halves[2], const GstVideoFrame* packed, const GstVideoFrame* left,
-                const GstVideoFrame* right, SlotViews& out)
+bool PackedLayout::known() const
+{
+    return mode == GST_VIDEO_MULTIVIEW_MODE_SIDE_BY_SIDE || mode == GST_VIDEO_MULTIVIEW_MODE_TOP_BOTTOM;
+}
+
+cv::Size PackedLayout::view_size(cv::Size frame) const
+{
+    if (flags & GST_VIDEO_MULTIVIEW_FLAGS_HALF_ASPECT)
+        return frame;
+    return mode == GST_VIDEO_MULTIVIEW_MODE_TOP_BOTTOM ? cv::Size(frame.width, frame.height / 2)
+                                                       : cv::Size(frame.width / 2, frame.height);
+}
+
+PackedLayout packed_layout(const GstVideoInfo& info, GstVideoMultiviewFramePacking mode_override,
+                           GstVideoMultiviewFlags flags_override)
+{
+    if (mode_override != GST_VIDEO_MULTIVIEW_FRAME_PACKING_NONE)
+        return {GstVideoMultiviewMode(mode_override), flags_override};
+    return {GST_VIDEO_INFO_MULTIVIEW_MODE(&info), GST_VIDEO_INFO_MULTIVIEW_FLAGS(&info)};
+}
+
+void read_views(BgrReader readers[2], cv::Mat halves[2], const GstVideoFrame* packed, const PackedLayout& layout,
+                const GstVideoFrame* left, const GstVideoFrame* right, SlotViews& out)
 {
     if (packed) {
         if (!views_ready(packed))
             return;
         const cv::Mat& whole = readers[0].read(*packed);
-        const bool top_bottom = GST_VIDEO_INFO_MULTIVIEW_MODE(&packed->info) == GST_VIDEO_MULTIVIEW_MODE_TOP_BOTTOM;
+        const bool top_bottom = layout.mode == GST_VIDEO_MULTIVIEW_MODE_TOP_BOTTOM;
         const cv::Rect first = top_bottom ? cv::Rect(0, 0, whole.cols, whole.rows / 2)
                                           : cv::Rect(0, 0, whole.cols / 2, whole.rows);
         const cv::Rect second = top_bottom ? cv::Rect(0, whole.rows / 2, whole.cols, whole.rows / 2)
                                            : cv::Rect(whole.cols / 2, 0, whole.cols / 2, whole.rows);
-        whole(first).copyTo(halves[0]);
-        whole(second).copyTo(halves[1]);
-        out.views[0] = halves[0];
-        out.views[1] = halves[1];
-        out.have[0] = out.have[1] = true;
+        const bool right_first = (layout.flags & GST_VIDEO_MULTIVIEW_FLAGS_RIGHT_VIEW_FIRST) != 0;
+        const cv::Size view = layout.view_size(whole.size());
+        for (int i = 0; i < 2; ++i) {
+            const cv::Mat part = whole((i == 0) != right_first ? first : second);
+            if (part.size() == view)
+                part.copyTo(halves[i]);
+            else
+                cv::resize(part, halves[i], view, 0, 0, cv::INTER_LINEAR);
+            out.views[i] = halves[i];
+            out.have[i] = true;
+        }
         return;
     }
     const GstVideoFrame* frames[2] = {left, right};

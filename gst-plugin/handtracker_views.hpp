@@ -24,11 +24,27 @@ struct SlotViews {
     bool have[2] = {false, false};
 };
 
-// Reads `packed` (both views in one frame, per its multiview mode) or `left` and `right`
+// How both views share one frame on the `sink` pad (GStreamer's multiview description).
+struct PackedLayout {
+    GstVideoMultiviewMode mode = GST_VIDEO_MULTIVIEW_MODE_NONE;
+    GstVideoMultiviewFlags flags = GST_VIDEO_MULTIVIEW_FLAGS_NONE;
+
+    // Side by side or top and bottom: the packings the tracker can split.
+    bool known() const;
+    // One view's size in a frame of `frame` size, stretched back to full aspect when the
+    // views were squeezed to half.
+    cv::Size view_size(cv::Size frame) const;
+};
+
+// The layout of frames described by `info`: the override when one is set, else the caps'.
+PackedLayout packed_layout(const GstVideoInfo& info, GstVideoMultiviewFramePacking mode_override,
+                           GstVideoMultiviewFlags flags_override);
+
+// Reads `packed` (both views in one frame, laid out as `layout` says) or `left` and `right`
 // (either may be absent) into `out`, with `halves` as the storage for copies. Throws what
 // the readers throw on a frame they cannot convert.
-void read_views(BgrReader readers[2], cv::Mat halves[2], const GstVideoFrame* packed, const GstVideoFrame* left,
-                const GstVideoFrame* right, SlotViews& out);
+void read_views(BgrReader readers[2], cv::Mat halves[2], const GstVideoFrame* packed, const PackedLayout& layout,
+                const GstVideoFrame* left, const GstVideoFrame* right, SlotViews& out);
 
 // What the output shows and how it is drawn.
 struct ViewChoice {
