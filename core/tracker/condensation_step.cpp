@@ -25,24 +25,11 @@ double wrap_angle(double a) { return std::remainder(a, 2.0 * std::numbers::pi); 
 
 void HandTracker::Impl::track(const cv::Mat& bgr, const ImageMotion& motion) {
     const Spread spread = predict(motion);
-
-    // The skin map once per frame, over the region the hypotheses can reach; the rest of
-    // the map stays 0 (cleared where the previous region was).
-    const double reach = spread.max_scale * std::max(1.0, previous.squash) * template_radius +
-                         measurement.params().half_window + 2.0;
-    const cv::Rect frame(0, 0, bgr.cols, bgr.rows);
-    const cv::Rect roi =
-        cv::Rect(cv::Point(int(std::floor(spread.min_x - reach)), int(std::floor(spread.min_y - reach))),
-                 cv::Point(int(std::ceil(spread.max_x + reach)) + 1, int(std::ceil(spread.max_y + reach)) + 1)) &
-        frame;
-    if (membership_roi.area() > 0) membership(membership_roi).setTo(0);
-    membership_roi = roi;
     // Every hypothesis outside the frame (the head turned far): nothing to measure.
-    if (roi.area() == 0) {
+    if (!map_skin(bgr, spread)) {
         lose();
         return;
     }
-    skin->membership(bgr, roi, membership);
     // While the edges are weak the hand is likely in front of skin (a face, a skin-coloured
     // object), and the normals from skin into skin are measured on the grey levels.
     // Elsewhere such normals are few and the skin edges decide alone, which spares the grey
@@ -51,37 +38,17 @@ void HandTracker::Impl::track(const cv::Mat& bgr, const ImageMotion& motion) {
     // mouth) are everywhere for it to settle on.
     const bool use_steps = edges_were_weak && template_quality != CaptureQuality::Unsure;
     const cv::Mat1b& steps = use_steps ? grey : no_map;
-    if (use_steps) update_steps(bgr, roi);
-
-    double best_misfit = 2.0;
-    const std::size_t best = weigh(steps, best_misfit);
-    const HandState& b = particles[best].state;
-    const HandState mean = weighted_mean(b);
-    estimate.mean = mean;
-    estimate.best = b;
-
-    const double best_like = measurement.normal_likelihood(best_misfit);
-    if (awaiting_p_init) {
-        p_init = best_like;
-        awaiting_p_init = false;
-    }
-    estimate.confidence = p_init > 0.0 ? std::clamp(best_like / p_init, 0.0, 1.0) : 0.0;
-    const bool weak_edges = best_like < params.lost_ratio * p_init;
-    // Whether the next frame measures grey steps is judged on the skin edges alone: judged
-    // with the steps, finding them would switch them off on the next frame and the density
-    // would alternate between two landscapes, frame by frame.
-    edges_were_weak = use_steps ? measurement.normal_likelihood(measurement.misfit(
-                                      membership, no_map, *shape, b)) < params.lost_ratio * p_init
-                                : weak_edges;
+    if (use_steps) update_steps(bgr, membership_roi);
+    const Weighed w = weigh_and_judge(steps, use_steps);
 
     // Refine from the better of mean and best; report that. The squash follows the hand's
     // turn only while its edges fit (where they are weak, in front of a face, the outline's
     // horizontal extent is not seen), and only for a clean template: one merged with
     // something else would use it to stretch over that.
-    const double mean_misfit = measurement.misfit(membership, steps, *shape, mean);
-    const HandState start = mean_misfit <= best_misfit ? mean : b;
+    const double mean_misfit = measurement.misfit(membership, steps, *shape, w.mean);
+    const HandState start = mean_misfit <= w.best_misfit ? w.mean : w.best;
     FitParams refine;
-    refine.fit_squash = !weak_edges && template_quality == CaptureQuality::Clean;
+    refine.fit_squash = !w.weak_edges && template_quality == CaptureQuality::Clean;
     const FitResult fit = refine_fit(membership, *shape, start, refine, bgr);
     const HandState out = fit.converged ? fit.state : start;
 
@@ -92,7 +59,7 @@ void HandTracker::Impl::track(const cv::Mat& bgr, const ImageMotion& motion) {
     // while the edges that can still be seen (not skin against skin) fit as well as
     // tracking did, or while the contour outlines something that moved in front of the
     // learnt scene. The refined contour is the best placed one to judge.
-    if (weak_edges && !hand_still_there(out, steps, bgr)) {
+    if (w.weak_edges && !hand_still_there(out, steps, bgr)) {
         if (++low_frames >= params.lost_frames) {
             lose();
             return;
@@ -100,21 +67,68 @@ void HandTracker::Impl::track(const cv::Mat& bgr, const ImageMotion& motion) {
     } else {
         low_frames = 0;
     }
+    if (settle_trial(bgr, out, fit.converged ? fit.agreement : 0.0, w.weak_edges)) return;
+    follow(bgr, out, motion, w.weak_edges);
+}
 
-    // While the edges are weak the hand may be touching a face or a skin-coloured object,
-    // and a capture now could merge it: a candidate larger than the tracked hand waits for
-    // a frame where the hand stands apart. A smaller one may still drop what a merged
-    // template holds, but not by a verdict taken on such a frame, where part of either
-    // outline may be unseen. The area the edges last fitted can itself be wrong (a contour
-    // shrunk onto a piece of the hand still fits edges there), so a candidate is stepped
-    // on at least one frame first, and one whose outline has agreed with the image clearly
-    // better than the tracked one's on every frame so far is not dropped for its size.
+// The skin map once per frame, over the region the hypotheses can reach; the rest of the
+// map stays 0 (cleared where the previous region was). False when that region is empty.
+bool HandTracker::Impl::map_skin(const cv::Mat& bgr, const Spread& spread) {
+    const double reach = spread.max_scale * std::max(1.0, previous.squash) * template_radius +
+                         measurement.params().half_window + 2.0;
+    const cv::Rect frame(0, 0, bgr.cols, bgr.rows);
+    const cv::Rect roi =
+        cv::Rect(cv::Point(int(std::floor(spread.min_x - reach)), int(std::floor(spread.min_y - reach))),
+                 cv::Point(int(std::ceil(spread.max_x + reach)) + 1, int(std::ceil(spread.max_y + reach)) + 1)) &
+        frame;
+    if (membership_roi.area() > 0) membership(membership_roi).setTo(0);
+    membership_roi = roi;
+    if (roi.area() == 0) return false;
+    skin->membership(bgr, roi, membership);
+    return true;
+}
+
+// Weighs the particles, records the estimate's mean, best and confidence (against P_init,
+// taken on the first frame of a track), and judges whether the edges are weak.
+HandTracker::Impl::Weighed HandTracker::Impl::weigh_and_judge(const cv::Mat1b& steps, bool use_steps) {
+    Weighed w;
+    w.best_misfit = 2.0;
+    const std::size_t best = weigh(steps, w.best_misfit);
+    w.best = particles[best].state;
+    w.mean = weighted_mean(w.best);
+    estimate.mean = w.mean;
+    estimate.best = w.best;
+
+    const double best_like = measurement.normal_likelihood(w.best_misfit);
+    if (awaiting_p_init) {
+        p_init = best_like;
+        awaiting_p_init = false;
+    }
+    estimate.confidence = p_init > 0.0 ? std::clamp(best_like / p_init, 0.0, 1.0) : 0.0;
+    w.weak_edges = best_like < params.lost_ratio * p_init;
+    // Whether the next frame measures grey steps is judged on the skin edges alone: judged
+    // with the steps, finding them would switch them off on the next frame and the density
+    // would alternate between two landscapes, frame by frame.
+    edges_were_weak = use_steps ? measurement.normal_likelihood(measurement.misfit(
+                                      membership, no_map, *shape, w.best)) < params.lost_ratio * p_init
+                                : w.weak_edges;
+    return w;
+}
+
+// While the edges are weak the hand may be touching a face or a skin-coloured object, and a
+// capture now could merge it: a candidate larger than the tracked hand waits for a frame
+// where the hand stands apart. A smaller one may still drop what a merged template holds,
+// but not by a verdict taken on such a frame, where part of either outline may be unseen.
+// The area the edges last fitted can itself be wrong (a contour shrunk onto a piece of the
+// hand still fits edges there), so a candidate is stepped on at least one frame first, and
+// one whose outline has agreed with the image clearly better than the tracked one's on
+// every frame so far is not dropped for its size. True when the candidate took over.
+bool HandTracker::Impl::settle_trial(const cv::Mat& bgr, const HandState& out, double agreement, bool weak_edges) {
     if (weak_edges && trial && trial->frames() > 0 && !trial->clearly_better() &&
         grows_hand(cv::contourArea(trial->candidate().outline) * trial->state().scale *
                    trial->state().scale))
         trial.reset();
-    if (trial && try_template(bgr, out, fit.converged ? fit.agreement : 0.0, !weak_edges)) return;
-    follow(bgr, out, motion, weak_edges);
+    return trial && try_template(bgr, out, agreement, !weak_edges);
 }
 
 // Resample (systematic, O(N)), then predict through the zero-order dynamics plus the

@@ -113,6 +113,14 @@ struct HandTracker::Impl : TrackerSession {
         double min_x, min_y, max_x, max_y, max_scale;
     };
     Spread predict(const ImageMotion& motion);
+    bool map_skin(const cv::Mat& bgr, const Spread& spread);
+    struct Weighed {
+        HandState best, mean;
+        double best_misfit;
+        bool weak_edges;
+    };
+    Weighed weigh_and_judge(const cv::Mat1b& steps, bool use_steps);
+    bool settle_trial(const cv::Mat& bgr, const HandState& out, double agreement, bool weak_edges);
     std::size_t weigh(const cv::Mat1b& steps, double& best_misfit);
     HandState weighted_mean(const HandState& best) const;
     bool hand_still_there(const HandState& s, const cv::Mat1b& steps, const cv::Mat& bgr) const;
