@@ -37,19 +37,35 @@ cv::Rect2d hand_view(cv::Size frame, double aspect, const EyeEstimate& eye)
     return {centre.x - w / 2.0, centre.y - h / 2.0, w, h};
 }
 
+// The region's width across the view, centred on it.
+cv::Rect2d region_view(cv::Size frame, double aspect, const cv::Rect2d& region)
+{
+    double w = std::clamp(region.width, 2.0, double(frame.width));
+    double h = w / aspect;
+    if (h > frame.height) {
+        h = frame.height;
+        w = h * aspect;
+    }
+    const cv::Point2d centre(region.x + region.width / 2.0, region.y + region.height / 2.0);
+    return {centre.x - w / 2.0, centre.y - h / 2.0, w, h};
+}
+
 }  // namespace
 
-cv::Rect AttentionWindow::update(cv::Size frame, double aspect, const EyeEstimate& eye)
+cv::Rect AttentionWindow::update(cv::Size frame, double aspect, const EyeEstimate& eye,
+                                 const std::optional<cv::Rect2d>& region)
 {
     if (!(aspect > 0.0) || frame.width <= 0 || frame.height <= 0)
         return {0, 0, std::max(frame.width, 0), std::max(frame.height, 0)};
     const bool follow = eye.valid();
-    const cv::Rect2d target = follow ? hand_view(frame, aspect, eye) : full_view(frame, aspect);
+    const cv::Rect2d target = region ? region_view(frame, aspect, *region)
+                              : follow ? hand_view(frame, aspect, eye)
+                                       : full_view(frame, aspect);
     if (!valid_) {
         window_ = target;
         valid_ = true;
     } else {
-        const double rate = follow ? kFollowRate : kReleaseRate;
+        const double rate = region ? kTargetRate : follow ? kFollowRate : kReleaseRate;
         window_.x += rate * (target.x - window_.x);
         window_.y += rate * (target.y - window_.y);
         window_.width += rate * (target.width - window_.width);

@@ -111,6 +111,7 @@ static GstFlowReturn gst_hand_tracker_aggregate_frames(GstVideoAggregator* vagg,
         if (ret != GST_FLOW_OK)
             return ret;
         log_result(self, e, e.tracker->last());
+        pick_target(self, settings, e.tracker->last());
         if (e.head)
             steer_head(self, settings, e.tracker->last());
     }

@@ -92,6 +92,10 @@ GstFlowReturn compose_output(GstHandTracker* self, const Settings& settings, Gst
     choice.shown = shown;
     choice.draw = settings.draw;
     choice.attended = settings.output == GST_HAND_TRACKER_OUTPUT_ATTENDED && shown == 0 && in.have[0];
+    if (choice.attended && e.stream.target)
+        choice.target = gc::gst::target_in_view(e.stream.target, settings.target_region_mm,
+                                                e.calibration ? *e.calibration : gc::default_calibration(in.views[0].size()),
+                                                result);
     context.incomplete = !complete;
     context.full_view = !choice.attended;
     std::span<const gc::Particle> particles;

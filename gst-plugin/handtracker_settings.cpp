@@ -24,6 +24,8 @@ enum {
     PROP_DETECTOR,
     PROP_MODEL_DIR,
     PROP_INPUT_MODE_OVERRIDE,
+    PROP_DWELL,
+    PROP_TARGET_REGION,
     PROP_INPUT_FLAGS_OVERRIDE,
 };
 
@@ -181,6 +183,19 @@ void install_tracker_properties(GObjectClass* gobject_class)
                             "GESTURECAM_MODEL_DIR, else the installed models, else the source tree's core/models",
                             nullptr, GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
     g_object_class_install_property(
+        gobject_class, PROP_DWELL,
+        g_param_spec_double("dwell", "Dwell",
+                            "Seconds a pointing must be held steady before output=attended frames what it points "
+                            "at (target-distance along the ray); lowering the hand for as long lets it go",
+                            0.1, 60.0, kDefaultDwellS,
+                            GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_PLAYING)));
+    g_object_class_install_property(
+        gobject_class, PROP_TARGET_REGION,
+        g_param_spec_double("target-region", "Target region",
+                            "Width in millimetres of the region output=attended frames around a pointed-at target",
+                            50.0, 20000.0, kDefaultTargetRegionMm,
+                            GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_PLAYING)));
+    g_object_class_install_property(
         gobject_class, PROP_INPUT_MODE_OVERRIDE,
         g_param_spec_enum("input-mode-override", "Input mode override",
                           "How frames on the sink pad hold both views, when their caps do not say (none: the "
@@ -271,6 +286,12 @@ bool set_tracker_setting(TrackerSettings& s, guint prop_id, const GValue* value,
         rebuild = true;
         break;
     }
+    case PROP_DWELL:
+        s.dwell_s = g_value_get_double(value);
+        break;
+    case PROP_TARGET_REGION:
+        s.target_region_mm = g_value_get_double(value);
+        break;
     case PROP_INPUT_MODE_OVERRIDE:
         s.input_mode_override = GstVideoMultiviewFramePacking(g_value_get_enum(value));
         break;
@@ -330,6 +351,12 @@ bool get_tracker_setting(const TrackerSettings& s, guint prop_id, GValue* value)
         break;
     case PROP_MODEL_DIR:
         g_value_set_string(value, s.model_dir.empty() ? nullptr : s.model_dir.c_str());
+        break;
+    case PROP_DWELL:
+        g_value_set_double(value, s.dwell_s);
+        break;
+    case PROP_TARGET_REGION:
+        g_value_set_double(value, s.target_region_mm);
         break;
     case PROP_INPUT_MODE_OVERRIDE:
         g_value_set_enum(value, s.input_mode_override);

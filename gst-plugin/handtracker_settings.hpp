@@ -23,6 +23,8 @@ constexpr GstHandTrackerOutput kDefaultOutput = GST_HAND_TRACKER_OUTPUT_LEFT;
 constexpr GstHandTrackerMessageUpdates kDefaultMessageUpdates = GST_HAND_TRACKER_MESSAGES_EVERY_FRAME;
 constexpr gc::SteerMode kDefaultSteer = gc::SteerMode::Fixate;
 constexpr double kDefaultTargetDistanceMm = 2000.0;
+constexpr double kDefaultDwellS = 1.0;
+constexpr double kDefaultTargetRegionMm = 500.0;
 
 // Property values, read and written under the object lock.
 struct TrackerSettings {
@@ -39,6 +41,8 @@ struct TrackerSettings {
     std::string head_token_file;  // empty: the URI's token, if any
     gc::SteerMode steer = kDefaultSteer;
     double target_distance_mm = kDefaultTargetDistanceMm;
+    double dwell_s = kDefaultDwellS;                  // a pointing held this long picks the attended target
+    double target_region_mm = kDefaultTargetRegionMm;  // the width the attended view frames there
     gc::HandDetector detector = gc::HandDetector::Learned;
     std::string model_dir;  // empty: the learned models are found without configuration
     // How `sink` frames hold both views when their caps do not say (or say wrongly).

@@ -12,6 +12,7 @@
 #include "common/line_output.hpp"
 #include "headctl/head_link.hpp"
 #include "stereo/calibration.hpp"
+#include "stereo/pointing_dwell.hpp"
 #include "tracker/pointing_tracker.hpp"
 
 #include <opencv2/core.hpp>
@@ -33,6 +34,8 @@ struct StreamState {
     cv::Size view_size;  // of the tracked views, to reset on renegotiation
     bool stereo = false;
     AttentionWindow attention;
+    PointingDwell dwell;
+    std::optional<cv::Vec3d> target;  // what a held pointing picked (head frame, mm)
     std::optional<TrackState> last_posted_state;
     // The input timestamps of the views tracked last (packed or left, right).
     std::array<GstClockTime, 2> tracked_inputs = {GST_CLOCK_TIME_NONE, GST_CLOCK_TIME_NONE};

@@ -117,4 +117,22 @@ GstFlowReturn track_views(GstHandTracker* self, const Settings& settings, const 
     return GST_FLOW_OK;
 }
 
+void pick_target(GstHandTracker* self, const TrackerSettings& settings, const FrameResult& r)
+{
+    TrackerState& e = *self->state;
+    DwellParams params;
+    params.dwell_s = settings.dwell_s;
+    params.release_s = settings.dwell_s;
+    params.target_distance_mm = settings.target_distance_mm;
+    const double t_s = r.pts_ns >= 0 ? double(r.pts_ns) * 1e-9 : double(r.frame) / 30.0;
+    const std::optional<cv::Vec3d> target = e.stream.dwell.update(t_s, r.pointing, params);
+    const bool moved = target && e.stream.target && cv::norm(*target - *e.stream.target) > 1.0;
+    if (target && (!e.stream.target || moved))
+        GST_INFO_OBJECT(self, "frame %" G_GINT64_FORMAT ": a held pointing picked a target at (%.0f, %.0f, %.0f) mm",
+                        r.frame, (*target)[0], (*target)[1], (*target)[2]);
+    else if (!target && e.stream.target)
+        GST_INFO_OBJECT(self, "frame %" G_GINT64_FORMAT ": the target is released", r.frame);
+    e.stream.target = target;
+}
+
 }  // namespace gc::gst

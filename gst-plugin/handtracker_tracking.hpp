@@ -20,4 +20,8 @@ GstFlowReturn track_views(GstHandTracker* self, const TrackerSettings& settings,
 // tracked frame's summary (LOG).
 void log_result(GstHandTracker* self, TrackerState& e, const FrameResult& r);
 
+// Feeds the frame's pointing to the dwell that picks what output=attended frames (the hand
+// dropped for `dwell` seconds lets it go); logs a new or released target (INFO).
+void pick_target(GstHandTracker* self, const TrackerSettings& settings, const FrameResult& r);
+
 }  // namespace gc::gst

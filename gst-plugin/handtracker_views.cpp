@@ -1,5 +1,7 @@
 #include "handtracker_views.hpp"
 
+#include "stereo/pointing_dwell.hpp"
+
 #include <opencv2/imgproc.hpp>
 
 namespace gc::gst {
@@ -83,13 +85,25 @@ cv::Rect compose_view(const SlotViews& in, const ViewChoice& choice, const Frame
     }
     cv::Rect view(0, 0, source.cols, source.rows);
     if (choice.attended)
-        view = attention.update(source.size(), double(out_size.width) / out_size.height, result.left);
+        view = attention.update(source.size(), double(out_size.width) / out_size.height, result.left, choice.target);
     const cv::Mat cropped = base(view);
     if (cropped.size() == out_size)
         cropped.copyTo(scaled);
     else
         cv::resize(cropped, scaled, out_size, 0, 0, cropped.cols > out_size.width ? cv::INTER_AREA : cv::INTER_LINEAR);
     return view;
+}
+
+std::optional<cv::Rect2d> target_in_view(const std::optional<cv::Vec3d>& target, double region_mm,
+                                         const StereoCalibration& calibration, const FrameResult& result)
+{
+    if (!target)
+        return std::nullopt;
+    const auto region = region_in_left_view(*target, region_mm, calibration, result.head.value_or(HeadPose{}));
+    if (!region)
+        return std::nullopt;
+    const double w = region->width_px;
+    return cv::Rect2d(region->centre.x - w / 2.0, region->centre.y - w / 2.0, w, w);
 }
 
 }  // namespace gc::gst

@@ -11,6 +11,7 @@
 #include <gst/video/video.h>
 #include <opencv2/core.hpp>
 
+#include <optional>
 #include <span>
 
 namespace gc::gst {
@@ -51,7 +52,13 @@ struct ViewChoice {
     int shown = 0;          // the view shown: 0 left, 1 right
     bool attended = false;  // the left view cropped to the attention window
     bool draw = false;      // the tracking drawn over it
+    std::optional<cv::Rect2d> target;  // attended: the region a held pointing picked, framed instead of the hand
 };
+
+// Where the region `region_mm` wide around `target` (head frame) lies in the left view of
+// `result`'s frame; nullopt without a target or when it is behind the camera.
+std::optional<cv::Rect2d> target_in_view(const std::optional<cv::Vec3d>& target, double region_mm,
+                                         const StereoCalibration& calibration, const FrameResult& result);
 
 // Composes the output (at `out_size`) into `scaled`: the chosen view, drawn on in `canvas`
 // when asked, cropped by `attention` when attended, scaled; black when the view is missing.

@@ -1,0 +1,72 @@
+#include "stereo/pointing_dwell.hpp"
+
+#include "stereo/head_geometry.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace gc {
+namespace {
+
+double angle_deg(const cv::Vec3d& a, const cv::Vec3d& b)
+{
+    const double c = a.dot(b) / std::max(cv::norm(a) * cv::norm(b), 1e-12);
+    return std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / std::numbers::pi;
+}
+
+}  // namespace
+
+void PointingDwell::start_dwell(double t_s, const Pointing3D& pointing, const cv::Vec3d& target)
+{
+    dwell_start_s_ = t_s;
+    dwell_direction_ = pointing.direction_head;
+    target_sum_ = target;
+    target_count_ = 1;
+}
+
+std::optional<cv::Vec3d> PointingDwell::update(double t_s, const Pointing3D& pointing, const DwellParams& params)
+{
+    if (!pointing.valid) {
+        if (t_s - last_pointing_s_ > params.gap_s)
+            dwell_start_s_.reset();  // a pointing that is not held picks nothing
+        if (held_ && t_s - last_pointing_s_ >= params.release_s)
+            held_.reset();
+        return held_;
+    }
+    last_pointing_s_ = t_s;
+    const cv::Vec3d target = pointing.fingertip_head_mm + params.target_distance_mm * pointing.direction_head;
+    // Still aiming where the held target was picked: nothing to decide.
+    if (held_ && angle_deg(pointing.direction_head, held_direction_) <= params.steady_deg) {
+        dwell_start_s_.reset();
+        return held_;
+    }
+    if (!dwell_start_s_ || angle_deg(pointing.direction_head, dwell_direction_) > params.steady_deg) {
+        start_dwell(t_s, pointing, target);
+    } else {
+        target_sum_ += target;
+        ++target_count_;
+    }
+    if (t_s - *dwell_start_s_ >= params.dwell_s) {
+        // The mean of the dwell's targets: the tracker's jitter averages out.
+        held_ = target_sum_ * (1.0 / target_count_);
+        held_direction_ = dwell_direction_;
+        dwell_start_s_.reset();
+    }
+    return held_;
+}
+
+std::optional<ImageRegion> region_in_left_view(const cv::Vec3d& centre_mm, double size_mm,
+                                               const StereoCalibration& calibration, const HeadPose& pose)
+{
+    const cv::Vec3d p = camera_to_head(calibration.head, pose, Eye::Left).inverse().apply(centre_mm);
+    if (p[2] <= 1.0)
+        return std::nullopt;
+    const cv::Matx33d& K = calibration.M1;
+    ImageRegion r;
+    r.centre = {K(0, 0) * p[0] / p[2] + K(0, 2), K(1, 1) * p[1] / p[2] + K(1, 2)};
+    r.width_px = K(0, 0) * size_mm / p[2];
+    return r;
+}
+
+}  // namespace gc

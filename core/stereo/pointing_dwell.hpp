@@ -1,0 +1,54 @@
+// What a held pointing picks for the attended view: a pointing whose direction stays steady
+// for a dwell time picks the point a set distance along its ray; a pointing that is not held
+// picks nothing, and the target is let go once no pointing has been seen for a while. The
+// target lives in the head frame, which stays put while the head turns, so the view can
+// keep the speaker's hand in sight and still frame what was pointed at.
+#pragma once
+
+#include "common/types.hpp"
+#include "stereo/calibration.hpp"
+#include "stereo/pointing.hpp"
+
+#include <opencv2/core.hpp>
+
+#include <optional>
+
+namespace gc {
+
+struct DwellParams {
+    double dwell_s = 1.0;                // a pointing held this long picks its target
+    double steady_deg = 6.0;             // ...while its direction stays this close to its start
+    double release_s = 1.0;              // no pointing for this long lets the target go
+    double gap_s = 0.3;                  // a dwell survives the tracker missing the ray this long
+    double target_distance_mm = 2000.0;  // how far along the ray the target lies
+};
+
+class PointingDwell {
+public:
+    // One frame taken at `t_s` (seconds, increasing) with what the tracker saw; returns the
+    // target (head frame, millimetres) while one is held.
+    std::optional<cv::Vec3d> update(double t_s, const Pointing3D& pointing, const DwellParams& params);
+
+private:
+    void start_dwell(double t_s, const Pointing3D& pointing, const cv::Vec3d& target);
+
+    std::optional<double> dwell_start_s_;
+    cv::Vec3d dwell_direction_;
+    cv::Vec3d target_sum_;
+    int target_count_ = 0;
+    std::optional<cv::Vec3d> held_;
+    cv::Vec3d held_direction_;
+    double last_pointing_s_ = 0.0;
+};
+
+// A head-frame region of `size_mm` around `centre_mm` as the left camera sees it at `pose`:
+// where its centre lands (pixels, lens distortion left out) and how wide it looks.
+struct ImageRegion {
+    cv::Point2d centre;
+    double width_px = 0.0;
+};
+// Nullopt when the point lies behind the camera.
+std::optional<ImageRegion> region_in_left_view(const cv::Vec3d& centre_mm, double size_mm,
+                                               const StereoCalibration& calibration, const HeadPose& pose);
+
+}  // namespace gc
