@@ -8,6 +8,7 @@
 #include "handscenesrc_settings.hpp"
 #include "handscenesrc_state.hpp"
 #include "head_connection.hpp"
+#include "head_uri_property.hpp"
 #include "video_bgr.hpp"
 
 #include "headctl/head_client.hpp"
@@ -245,19 +246,19 @@ static GstFlowReturn gst_hand_scene_src_fill(GstPushSrc* src, GstBuffer* buffer)
         GST_ELEMENT_ERROR(self, CORE, NEGOTIATION, ("No caps were negotiated before the first frame."), (nullptr));
         return GST_FLOW_NOT_NEGOTIATED;
     }
-    GST_OBJECT_LOCK(self);
-    const SceneSettings settings = *self->settings;
-    GST_OBJECT_UNLOCK(self);
-
     const guint64 frame = st.stream.next_frame;
     if (frame > guint64(G_MAXINT)) {
         GST_ELEMENT_ERROR(self, STREAM, FAILED, ("The scene has no frame %" G_GUINT64_FORMAT ".", frame), (nullptr));
         return GST_FLOW_ERROR;
     }
     const GstClockTime pts = capture_timestamp(self, frame);
+    gst_object_sync_values(GST_OBJECT(self), pts);  // head-pan, head-tilt may be driven by a controller
+    GST_OBJECT_LOCK(self);
+    const SceneSettings settings = *self->settings;
+    GST_OBJECT_UNLOCK(self);
     if (gst_base_src_is_live(GST_BASE_SRC(self)) && !wait_for_running_time(self, pts))
         return GST_FLOW_FLUSHING;
-    if (const GstFlowReturn ret = render_frame(self, settings, frame, pose_at_capture(self, pts), buffer);
+    if (const GstFlowReturn ret = render_frame(self, settings, frame, pose_at_capture(self, settings, pts), buffer);
         ret != GST_FLOW_OK)
         return ret;
 
@@ -282,12 +283,15 @@ static gboolean gst_hand_scene_src_start(GstBaseSrc* src)
     st.stream = {};
     GST_OBJECT_LOCK(self);
     const std::string uri = self->settings->head;
+    const std::string token_file = self->settings->head_token_file;
     GST_OBJECT_UNLOCK(self);
     if (uri.empty())
         return TRUE;
     // Only the pose is read: this client never sends a command.
     gc::headctl::HeadClientConfig config;
     config.uri = uri;
+    if (!gc::gst::read_head_token(GST_ELEMENT(self), token_file, config.token))
+        return FALSE;
     config.backoff_max = std::chrono::milliseconds(500);
     config.clock = gc::gst::element_clock(GST_ELEMENT(self));
     config.on_state_change = gc::gst::connection_reporter(GST_ELEMENT(self), uri);

@@ -12,14 +12,14 @@
 
 namespace gc::gst {
 
-HeadPose pose_at_capture(GstHandSceneSrc* self, GstClockTime pts)
+HeadPose pose_at_capture(GstHandSceneSrc* self, const SceneSettings& settings, GstClockTime pts)
 {
     const SceneState& st = *self->state;
     // The head's pose when this frame is exposed (its running time is its timestamp): a
     // live frame is rendered at that moment, so the pose is extrapolated from the head's
     // last report (at most one status interval old) along its velocity. Home until the
-    // head is first heard from; its last pose while it is away.
-    gc::HeadPose pose = st.stream.pose;
+    // head is first heard from; its last pose while it is away. Without a head: the rig's.
+    gc::HeadPose pose = st.head ? st.stream.pose : settings.rig;
     if (st.head) {
         const GstClockTime running = gst_segment_to_running_time(&GST_BASE_SRC(self)->segment, GST_FORMAT_TIME, pts);
         if (std::optional<gc::HeadPose> at = st.head->pose_at(gc::gst::capture_time(GST_ELEMENT(self), running)))
@@ -39,22 +39,18 @@ GstFlowReturn render_frame(GstHandSceneSrc* self, const SceneSettings& settings,
     }
     try {
         gc::sim::EyeTruth* truth = settings.truth_messages ? &st.truth : nullptr;
-        if (st.head) {
-            // A head turned further than the simulated room reaches (one wall ahead): keep
-            // the last pose that could be shown rather than stopping the stream.
-            try {
-                st.scene->render(int(frame), settings.eye, pose, st.bgr, truth);
-                st.stream.pose = pose;
-            } catch (const std::invalid_argument& err) {
-                if (!st.stream.warned_pose)
-                    GST_ELEMENT_WARNING(self, STREAM, FAILED,
-                                        ("The head turned past what the simulated room can show; rendering from "
-                                         "the last pose it could."),
-                                        ("%s", err.what()));
-                st.stream.warned_pose = true;
-                st.scene->render(int(frame), settings.eye, st.stream.pose, st.bgr, truth);
-            }
-        } else {
+        // A head turned further than the simulated room reaches (one wall ahead): keep the
+        // last pose that could be shown rather than stopping the stream.
+        try {
+            st.scene->render(int(frame), settings.eye, pose, st.bgr, truth);
+            st.stream.pose = pose;
+        } catch (const std::invalid_argument& err) {
+            if (!st.stream.warned_pose)
+                GST_ELEMENT_WARNING(self, STREAM, FAILED,
+                                    ("The head turned past what the simulated room can show; rendering from "
+                                     "the last pose it could."),
+                                    ("%s", err.what()));
+            st.stream.warned_pose = true;
             st.scene->render(int(frame), settings.eye, st.stream.pose, st.bgr, truth);
         }
         st.writer.write(st.bgr, out);

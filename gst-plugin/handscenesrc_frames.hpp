@@ -6,8 +6,9 @@
 
 namespace gc::gst {
 
-// The head's pose when the frame at `pts` is exposed; the last pose rendered from without a head.
-HeadPose pose_at_capture(GstHandSceneSrc* self, GstClockTime pts);
+// The head's pose when the frame at `pts` is exposed; without a head, the rig's (head-pan,
+// head-tilt as synced to `pts`).
+HeadPose pose_at_capture(GstHandSceneSrc* self, const SceneSettings& settings, GstClockTime pts);
 
 // Renders `frame` from `pose` into `buffer`; an error on the bus when it cannot.
 GstFlowReturn render_frame(GstHandSceneSrc* self, const SceneSettings& settings, guint64 frame, const HeadPose& pose,

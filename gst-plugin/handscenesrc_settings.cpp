@@ -1,5 +1,7 @@
 #include "handscenesrc_settings.hpp"
 
+#include "head_uri_property.hpp"
+
 #include <gst/gst.h>
 
 namespace gc::gst {
@@ -18,6 +20,9 @@ enum {
     PROP_IS_LIVE,
     PROP_TRUTH_MESSAGES,
     PROP_HEAD,
+    PROP_HEAD_TOKEN_FILE,
+    PROP_HEAD_PAN,
+    PROP_HEAD_TILT,
 };
 
 #define GST_TYPE_HAND_SCENE_EYE (gst_hand_scene_eye_get_type())
@@ -139,8 +144,27 @@ void install_scene_properties(GObjectClass* klass)
         g_param_spec_string("head", "Head URI",
                             "The head the simulated cameras sit on (tcp://host:port, e.g. headsim): every frame is "
                             "rendered from its pose at the frame's capture time, so handtracker steering that head "
-                            "closes the loop; use with is-live=true. Unset: the head at its home pose",
+                            "closes the loop; use with is-live=true. Unset: a fixed rig (head-pan, head-tilt). "
+                            "A token reads back as token=***: prefer head-token-file",
                             nullptr, flags));
+    g_object_class_install_property(
+        klass, PROP_HEAD_TOKEN_FILE,
+        g_param_spec_string("head-token-file", "Head token file",
+                            "A file whose first line is the head's token (GCHP), read at start; it replaces a "
+                            "token in the head URI. Unset: the URI's token, if any",
+                            nullptr, flags));
+    // Controllable, so that a GstController can move the rig frame by frame (the element
+    // syncs them to each frame's timestamp).
+    const auto rig_flags = GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_PLAYING |
+                                       GST_PARAM_CONTROLLABLE);
+    g_object_class_install_property(
+        klass, PROP_HEAD_PAN,
+        g_param_spec_double("head-pan", "Head pan", "Without head: the fixed rig's pan, degrees (positive: right)",
+                            -90.0, 90.0, 0.0, rig_flags));
+    g_object_class_install_property(
+        klass, PROP_HEAD_TILT,
+        g_param_spec_double("head-tilt", "Head tilt", "Without head: the fixed rig's tilt, degrees (positive: up)",
+                            -90.0, 90.0, 0.0, rig_flags));
 }
 
 void mark_scene_enums_as_plugin_api()
@@ -178,11 +202,20 @@ bool set_scene_setting(SceneSettings& s, guint prop_id, const GValue* value)
     case PROP_TRUTH_MESSAGES:
         s.truth_messages = g_value_get_boolean(value);
         break;
-    case PROP_HEAD: {
-        const gchar* uri = g_value_get_string(value);
-        s.head = uri ? uri : "";
+    case PROP_HEAD:
+        set_head_uri(s.head, value);
+        break;
+    case PROP_HEAD_TOKEN_FILE: {
+        const gchar* path = g_value_get_string(value);
+        s.head_token_file = path ? path : "";
         break;
     }
+    case PROP_HEAD_PAN:
+        s.rig.pan_deg = g_value_get_double(value);
+        break;
+    case PROP_HEAD_TILT:
+        s.rig.tilt_deg = g_value_get_double(value);
+        break;
     default:
         return false;
     }
@@ -217,7 +250,16 @@ bool get_scene_setting(const SceneSettings& s, guint prop_id, GValue* value)
         g_value_set_boolean(value, s.truth_messages);
         break;
     case PROP_HEAD:
-        g_value_set_string(value, s.head.empty() ? nullptr : s.head.c_str());
+        get_head_uri(s.head, value);
+        break;
+    case PROP_HEAD_TOKEN_FILE:
+        g_value_set_string(value, s.head_token_file.empty() ? nullptr : s.head_token_file.c_str());
+        break;
+    case PROP_HEAD_PAN:
+        g_value_set_double(value, s.rig.pan_deg);
+        break;
+    case PROP_HEAD_TILT:
+        g_value_set_double(value, s.rig.tilt_deg);
         break;
     default:
         return false;

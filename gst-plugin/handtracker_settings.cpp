@@ -1,6 +1,6 @@
 #include "handtracker_settings.hpp"
 
-#include "headctl/token.hpp"
+#include "head_uri_property.hpp"
 
 namespace gc::gst {
 
@@ -258,13 +258,9 @@ bool set_tracker_setting(TrackerSettings& s, guint prop_id, const GValue* value,
         s.json_location = path ? path : "";
         break;
     }
-    case PROP_HEAD: {
-        // What reading the property gave (the token hidden) leaves the URI as it is.
-        const gchar* uri = g_value_get_string(value);
-        if (std::string(uri ? uri : "") != gc::headctl::redact_uri(s.head))
-            s.head = uri ? uri : "";
+    case PROP_HEAD:
+        set_head_uri(s.head, value);
         break;
-    }
     case PROP_HEAD_TOKEN_FILE: {
         const gchar* path = g_value_get_string(value);
         s.head_token_file = path ? path : "";
@@ -335,7 +331,7 @@ bool get_tracker_setting(const TrackerSettings& s, guint prop_id, GValue* value)
         g_value_set_string(value, s.json_location.empty() ? nullptr : s.json_location.c_str());
         break;
     case PROP_HEAD:
-        g_value_set_string(value, s.head.empty() ? nullptr : gc::headctl::redact_uri(s.head).c_str());
+        get_head_uri(s.head, value);
         break;
     case PROP_HEAD_TOKEN_FILE:
         g_value_set_string(value, s.head_token_file.empty() ? nullptr : s.head_token_file.c_str());

@@ -1,6 +1,7 @@
 // The gesturecam plugin: registers its elements.
 #include "gsthandscenesrc.hpp"
 #include "gsthandtracker.hpp"
+#include "gstimagesizelimit.hpp"
 
 #include <gst/gst.h>
 
@@ -9,6 +10,7 @@ static gboolean plugin_init(GstPlugin* plugin)
     gboolean ok = FALSE;
     ok |= GST_ELEMENT_REGISTER(handtracker, plugin);
     ok |= GST_ELEMENT_REGISTER(handscenesrc, plugin);
+    ok |= GST_ELEMENT_REGISTER(imagesizelimit, plugin);
     return ok;
 }
 

@@ -10,8 +10,10 @@ left=${1:?left image pattern}
 right=${2:?right image pattern}
 out=${3:-out/files}
 mkdir -p "$out"
+# imagesizelimit refuses a picture over 8192 pixels a side from its header, naming its size:
+# pngdec would decode it whole before anything downstream could refuse it.
 source_of() {
-  echo "multifilesrc location=$1 index=0 caps=image/png,framerate=30/1 ! pngdec ! videoconvert"
+  echo "multifilesrc location=$1 index=0 caps=image/png,framerate=30/1 ! imagesizelimit ! pngdec ! videoconvert"
 }
 # shellcheck disable=SC2046
 gst-launch-1.0 -e \

@@ -96,6 +96,17 @@ ElementPtr tracker_of(GstElement* pipeline)
     return ElementPtr(gst_bin_get_by_name(GST_BIN(pipeline), "t"));
 }
 
+// One live synthetic eye for 1 s; the caller sets handscenesrc's head properties.
+ElementPtr scene_source_pipeline()
+{
+    return gc::test::parse_pipeline("handscenesrc name=s is-live=true truth-messages=false num-buffers=30 ! fakesink");
+}
+
+ElementPtr scene_source_of(GstElement* pipeline)
+{
+    return ElementPtr(gst_bin_get_by_name(GST_BIN(pipeline), "s"));
+}
+
 std::string string_property(GstElement* element, const char* name)
 {
     gchar* value = nullptr;
@@ -129,15 +140,18 @@ TEST(HeadToken, IsHiddenInWarningsAndMessages)
 {
     gc::test::init_gstreamer();
     const std::string uri = "tcp://127.0.0.1:" + std::to_string(gc::test::closed_port()) + "?token=" + kSecret;
-    ElementPtr pipeline = tracker_pipeline();
-    ASSERT_TRUE(pipeline);
-    g_object_set(tracker_of(pipeline.get()).get(), "head", uri.c_str(), nullptr);
-    const BusText run = play(pipeline.get());
-    EXPECT_TRUE(run.eos);
-    EXPECT_GE(run.warnings, 1);  // nothing listens there
-    ASSERT_FALSE(run.connection_states.empty());
-    EXPECT_EQ(run.text.find(kSecret), std::string::npos) << run.text;
-    EXPECT_NE(run.text.find("token=***"), std::string::npos) << run.text;
+    for (const bool tracker : {true, false}) {
+        ElementPtr pipeline = tracker ? tracker_pipeline() : scene_source_pipeline();
+        ASSERT_TRUE(pipeline);
+        g_object_set((tracker ? tracker_of(pipeline.get()) : scene_source_of(pipeline.get())).get(), "head",
+                     uri.c_str(), nullptr);
+        const BusText run = play(pipeline.get());
+        EXPECT_TRUE(run.eos);
+        EXPECT_GE(run.warnings, 1);  // nothing listens there
+        ASSERT_FALSE(run.connection_states.empty());
+        EXPECT_EQ(run.text.find(kSecret), std::string::npos) << run.text;
+        EXPECT_NE(run.text.find("token=***"), std::string::npos) << run.text;
+    }
 }
 
 TEST(HeadToken, IsHiddenInTheErrorForAnInvalidUri)
@@ -204,6 +218,42 @@ TEST(HeadToken, ATokenInTheUriIsHiddenWhenReadBackAndKeptWhenSetAgain)
     g_object_set(tracker.get(), "head", shown.c_str(), nullptr);
     const BusText run = play(pipeline.get());
     EXPECT_EQ(run.connection_states, std::vector<std::string>{"connected"}) << run.text;
+}
+
+// handscenesrc reads the same head: its `head` reads back without the token, setting back
+// what was read keeps it, and a file authenticates it as it does handtracker.
+TEST(HeadToken, TheSceneSourceHidesItAndReadsItFromAFile)
+{
+    gc::test::init_gstreamer();
+    gc::closedloop_test::RunningHead head(head_with_token());
+    ElementPtr pipeline = scene_source_pipeline();
+    ASSERT_TRUE(pipeline);
+    ElementPtr source = scene_source_of(pipeline.get());
+    g_object_set(source.get(), "head", (head.uri() + "?token=" + kSecret).c_str(), nullptr);
+    const std::string shown = string_property(source.get(), "head");
+    EXPECT_EQ(shown, head.uri() + "?token=***");
+    g_object_set(source.get(), "head", shown.c_str(), nullptr);
+    const BusText kept = play(pipeline.get());
+    EXPECT_TRUE(kept.eos);
+    EXPECT_EQ(kept.connection_states, std::vector<std::string>{"connected"}) << kept.text;
+
+    const TokenFile file(kSecret);
+    ElementPtr from_file = scene_source_pipeline();
+    ASSERT_TRUE(from_file);
+    g_object_set(scene_source_of(from_file.get()).get(), "head", head.uri().c_str(), "head-token-file",
+                 file.path.c_str(), nullptr);
+    const BusText authenticated = play(from_file.get());
+    EXPECT_EQ(authenticated.connection_states, std::vector<std::string>{"connected"}) << authenticated.text;
+    EXPECT_EQ(authenticated.warnings, 0) << authenticated.text;
+    EXPECT_EQ(authenticated.text.find(kSecret), std::string::npos) << authenticated.text;
+
+    ElementPtr unreadable = scene_source_pipeline();
+    ASSERT_TRUE(unreadable);
+    g_object_set(scene_source_of(unreadable.get()).get(), "head", head.uri().c_str(), "head-token-file",
+                 "/nonexistent/head-token", nullptr);
+    const BusText failed = play(unreadable.get(), 10 * GST_SECOND);
+    EXPECT_TRUE(failed.failed);
+    EXPECT_NE(failed.text.find("/nonexistent/head-token"), std::string::npos) << failed.text;
 }
 
 TEST(HeadToken, AnUnreadableTokenFileFailsTheStartAndIsNamed)

@@ -1,11 +1,14 @@
 // File-based pipeline: a stereo sequence recorded with handscenesrc to PNG files is tracked
 // back by gesturecam-track and by a multifilesrc -> handtracker pipeline. Both run the one
-// PointingTracker code path, so they must write the same JSON lines.
+// PointingTracker code path, so they must write the same JSON lines. pipelines/files.sh
+// refuses a picture over the frame limit from its header.
 #include <gst/gst.h>
 #include <gtest/gtest.h>
 
 #include <glib/gstdio.h>
+#include <zlib.h>
 
+#include <cstdint>
 #include <fstream>
 #include <regex>
 #include <string>
@@ -117,6 +120,56 @@ TEST(FilePipeline, ToolAndElementWriteTheSameJson)
     }
     // The comparison means something only if the tracker did some tracking.
     EXPECT_GT(tracking, 0);
+}
+
+// A PNG that is only its signature and a header declaring width x height (RGB, 8 bits).
+void write_png_header(const std::string& path, std::uint32_t width, std::uint32_t height)
+{
+    auto be32 = [](std::string& out, std::uint32_t v) {
+        for (int shift = 24; shift >= 0; shift -= 8)
+            out.push_back(char((v >> shift) & 0xFF));
+    };
+    std::string ihdr = "IHDR";
+    be32(ihdr, width);
+    be32(ihdr, height);
+    ihdr += std::string("\x08\x02\x00\x00\x00", 5);
+    std::string file = "\x89PNG\r\n\x1a\n";
+    be32(file, 13);
+    file += ihdr;
+    be32(file, std::uint32_t(crc32(0, reinterpret_cast<const Bytef*>(ihdr.data()), uInt(ihdr.size()))));
+    std::ofstream(path, std::ios::binary) << file;
+}
+
+// A sequence whose third picture declares 30000 x 30000 pixels: pipelines/files.sh stops
+// with an error naming that size and the limit (before, pngdec dropped it, or with real
+// pixel data decoded all 2.7 GB of it first).
+TEST(FilePipeline, FilesScriptRefusesAPictureOverTheLimitByItsHeader)
+{
+    gst_init(nullptr, nullptr);
+    const std::string dir = env("GESTURECAM_BUILD_ROOT") + "/tests/pipeline/oversized";
+    ASSERT_EQ(g_mkdir_with_parents((dir + "/seq").c_str(), 0755), 0);
+    ASSERT_EQ(play("videotestsrc num-buffers=4 ! video/x-raw,width=64,height=48,format=RGB ! pngenc ! "
+                   "multifilesink location=" + dir + "/seq/%05d.png"),
+              "");
+    write_png_header(dir + "/seq/00002.png", 30000, 30000);
+
+    const std::string script = env("GESTURECAM_SOURCE_ROOT") + "/pipelines/files.sh";
+    const std::string pattern = dir + "/seq/%05d.png";
+    const std::string out = dir + "/out";
+    gchar* argv[] = {const_cast<gchar*>(script.c_str()), const_cast<gchar*>(pattern.c_str()),
+                     const_cast<gchar*>(pattern.c_str()), const_cast<gchar*>(out.c_str()), nullptr};
+    gint status = -1;
+    gchar* output = nullptr;
+    gchar* errors = nullptr;
+    GError* spawn_error = nullptr;
+    ASSERT_TRUE(g_spawn_sync(nullptr, argv, nullptr, G_SPAWN_DEFAULT, nullptr, nullptr, &output, &errors, &status,
+                             &spawn_error))
+        << (spawn_error ? spawn_error->message : "");
+    const std::string said = std::string(output ? output : "") + (errors ? errors : "");
+    g_free(output);
+    g_free(errors);
+    EXPECT_FALSE(g_spawn_check_wait_status(status, nullptr)) << said;
+    EXPECT_NE(said.find("30000 x 30000 pixels is over the frame limit of 8192"), std::string::npos) << said;
 }
 
 }  // namespace
