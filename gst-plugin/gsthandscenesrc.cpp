@@ -4,8 +4,10 @@
 // sit on that head: each frame is rendered from the head's pose at its capture time.
 #include "gsthandscenesrc.hpp"
 
+#include "handscenesrc_frames.hpp"
+#include "handscenesrc_settings.hpp"
+#include "handscenesrc_state.hpp"
 #include "head_connection.hpp"
-#include "pointing_report.hpp"
 #include "video_bgr.hpp"
 
 #include "headctl/head_client.hpp"
@@ -13,143 +15,19 @@
 #include "sim/scene.hpp"
 
 #include <gst/video/video.h>
-#include <opencv2/core.hpp>
 
 #include <chrono>
 #include <exception>
 #include <memory>
-#include <optional>
 #include <string>
 
-GST_DEBUG_CATEGORY_STATIC(gst_hand_scene_src_debug);
+GST_DEBUG_CATEGORY(gst_hand_scene_src_debug);
 #define GST_CAT_DEFAULT gst_hand_scene_src_debug
 
-namespace {
-
-enum {
-    PROP_0,
-    PROP_EYE,
-    PROP_SCENE,
-    PROP_MOTION,
-    PROP_SEED,
-    PROP_NOISE,
-    PROP_LIGHTING_CHANGE,
-    PROP_VARIETY,
-    PROP_IS_LIVE,
-    PROP_TRUTH_MESSAGES,
-    PROP_HEAD,
-};
-
-constexpr guint64 kDefaultSeed = 1;
-constexpr double kDefaultNoise = 2.0;
-
-struct SceneSettings {
-    gc::Eye eye = gc::Eye::Left;
-    gc::sim::Preset preset = gc::sim::Preset::Clean;
-    gc::sim::Motion motion = gc::sim::Motion::Mixed;
-    guint64 seed = kDefaultSeed;
-    double noise = kDefaultNoise;
-    bool lighting_change = false;
-    gc::sim::Variety variety = gc::sim::Variety::None;
-    bool truth_messages = true;
-    std::string head;  // URI of the head the cameras sit on; empty: a fixed rig at home pose
-};
-
-struct SceneState {
-    std::optional<gc::sim::Scene> scene;
-    GstVideoInfo info;
-    guint64 next_frame = 0;  // the offset of the next buffer
-    // Live: the running time at which frame 0 was taken; NONE until then.
-    GstClockTime live_origin = GST_CLOCK_TIME_NONE;
-    // Live: the wait for the next frame's capture time, and whether basesrc asked us to stop
-    // waiting. Both under the object lock.
-    GstClockID capture_wait = nullptr;
-    bool unlocked = false;
-    cv::Mat bgr;
-    cv::Mat yuv_scratch;
-    gc::sim::EyeTruth truth;
-    gc::HeadPose pose;  // the pose the last frame was rendered from
-    bool warned_pose = false;  // about a head pose the room cannot be rendered from
-    std::unique_ptr<gc::headctl::HeadClient> head;
-};
-
-}  // namespace
-
-struct _GstHandSceneSrc {
-    GstPushSrc parent;
-    SceneSettings* settings;
-    SceneState* state;
-};
+using namespace gc::gst;
 
 G_DEFINE_TYPE(GstHandSceneSrc, gst_hand_scene_src, GST_TYPE_PUSH_SRC)
 GST_ELEMENT_REGISTER_DEFINE(handscenesrc, "handscenesrc", GST_RANK_NONE, GST_TYPE_HAND_SCENE_SRC)
-
-#define GST_TYPE_HAND_SCENE_EYE (gst_hand_scene_eye_get_type())
-static GType gst_hand_scene_eye_get_type()
-{
-    static GType type = 0;
-    static const GEnumValue values[] = {
-        {int(gc::Eye::Left), "The left camera", "left"},
-        {int(gc::Eye::Right), "The right camera", "right"},
-        {0, nullptr, nullptr},
-    };
-    if (g_once_init_enter(&type))
-        g_once_init_leave(&type, g_enum_register_static("GstHandSceneEye", values));
-    return type;
-}
-
-#define GST_TYPE_HAND_SCENE_PRESET (gst_hand_scene_preset_get_type())
-static GType gst_hand_scene_preset_get_type()
-{
-    static GType type = 0;
-    static const GEnumValue values[] = {
-        {int(gc::sim::Preset::Clean), "Plain background (0.03 % skin-like pixels)", "clean"},
-        {int(gc::sim::Preset::Light), "Light clutter (3.7 % skin-like pixels)", "light"},
-        {int(gc::sim::Preset::Heavy), "Heavy clutter (9.4 % skin-like pixels)", "heavy"},
-        {int(gc::sim::Preset::FacePass), "Light clutter and a face that the hand's path crosses", "face-pass"},
-        {int(gc::sim::Preset::Varied), "A room of any kind, often skin-coloured, pictures of faces and hands, "
-                                       "up to two people; always of the wide variety", "varied"},
-        {0, nullptr, nullptr},
-    };
-    if (g_once_init_enter(&type))
-        g_once_init_leave(&type, g_enum_register_static("GstHandScenePreset", values));
-    return type;
-}
-
-#define GST_TYPE_HAND_SCENE_VARIETY (gst_hand_scene_variety_get_type())
-static GType gst_hand_scene_variety_get_type()
-{
-    static GType type = 0;
-    static const GEnumValue values[] = {
-        {int(gc::sim::Variety::None), "The preset's one hand, light and camera", "none"},
-        {int(gc::sim::Variety::Wide),
-         "Hand shape and skin, sleeve, people, light and camera (noise, blur, exposure, white balance, "
-         "vignetting, compression) drawn from the seed", "wide"},
-        {0, nullptr, nullptr},
-    };
-    if (g_once_init_enter(&type))
-        g_once_init_leave(&type, g_enum_register_static("GstHandSceneVariety", values));
-    return type;
-}
-
-#define GST_TYPE_HAND_SCENE_MOTION (gst_hand_scene_motion_get_type())
-static GType gst_hand_scene_motion_get_type()
-{
-    static GType type = 0;
-    static const GEnumValue values[] = {
-        {int(gc::sim::Motion::Static), "Holds still after the initial wave", "static"},
-        {int(gc::sim::Motion::Translate), "Moves in the image plane", "translate"},
-        {int(gc::sim::Motion::Rotate), "Rotates the pointing direction in the image plane", "rotate"},
-        {int(gc::sim::Motion::Scale), "Moves towards and away from the cameras", "scale"},
-        {int(gc::sim::Motion::Yaw), "Turns the hand plane about the vertical", "yaw"},
-        {int(gc::sim::Motion::Mixed), "All of the above at once", "mixed"},
-        {int(gc::sim::Motion::LeaveReturn), "Leaves the view, stays out for a while, comes back", "leave-return"},
-        {0, nullptr, nullptr},
-    };
-    if (g_once_init_enter(&type))
-        g_once_init_leave(&type, g_enum_register_static("GstHandSceneMotion", values));
-    return type;
-}
 
 static GstStaticPadTemplate src_template = GST_STATIC_PAD_TEMPLATE(
     "src", GST_PAD_SRC, GST_PAD_ALWAYS,
@@ -198,7 +76,7 @@ static gboolean gst_hand_scene_src_set_caps(GstBaseSrc* src, GstCaps* caps)
                           ("%s", err.what()));
         return FALSE;
     }
-    self->state->info = info;
+    self->state->stream.info = info;
     return TRUE;
 }
 
@@ -254,17 +132,17 @@ static GstClockTime capture_timestamp(GstHandSceneSrc* self, guint64 frame)
 {
     SceneState& st = *self->state;
     if (!gst_base_src_is_live(GST_BASE_SRC(self)))
-        return frame_time(st.info, frame);
-    if (!GST_CLOCK_TIME_IS_VALID(st.live_origin)) {
-        st.live_origin = 0;
+        return frame_time(st.stream.info, frame);
+    if (!GST_CLOCK_TIME_IS_VALID(st.stream.live_origin)) {
+        st.stream.live_origin = 0;
         if (GstClock* clock = gst_element_get_clock(GST_ELEMENT(self))) {
             const GstClockTime now = gst_clock_get_time(clock);
             const GstClockTime base = gst_element_get_base_time(GST_ELEMENT(self));
-            st.live_origin = now > base ? now - base : 0;
+            st.stream.live_origin = now > base ? now - base : 0;
             gst_object_unref(clock);
         }
     }
-    return st.live_origin + frame_time(st.info, frame);
+    return st.stream.live_origin + frame_time(st.stream.info, frame);
 }
 
 // A live source waits for its frames' capture times itself (fill), so basesrc does not sync:
@@ -328,15 +206,15 @@ static gboolean gst_hand_scene_src_is_seekable(GstBaseSrc* src) { return !gst_ba
 static gboolean gst_hand_scene_src_do_seek(GstBaseSrc* src, GstSegment* segment)
 {
     GstHandSceneSrc* self = GST_HAND_SCENE_SRC(src);
-    const GstVideoInfo& info = self->state->info;
+    const GstVideoInfo& info = self->state->stream.info;
     segment->time = segment->start;
     if (info.finfo && GST_VIDEO_INFO_FPS_N(&info) > 0) {
         // The first frame that starts at or after the segment start.
         const guint64 d = GST_SECOND * guint64(GST_VIDEO_INFO_FPS_D(&info));
         const guint64 n = guint64(GST_VIDEO_INFO_FPS_N(&info));
-        self->state->next_frame = gst_util_uint64_scale_ceil(segment->start, n, d);
+        self->state->stream.next_frame = gst_util_uint64_scale_ceil(segment->start, n, d);
     } else {
-        self->state->next_frame = 0;
+        self->state->stream.next_frame = 0;
     }
     return TRUE;
 }
@@ -345,7 +223,7 @@ static gboolean gst_hand_scene_src_query(GstBaseSrc* src, GstQuery* query)
 {
     GstHandSceneSrc* self = GST_HAND_SCENE_SRC(src);
     if (GST_QUERY_TYPE(query) == GST_QUERY_LATENCY && gst_base_src_is_live(src)) {
-        const GstVideoInfo& info = self->state->info;
+        const GstVideoInfo& info = self->state->stream.info;
         if (!info.finfo || GST_VIDEO_INFO_FPS_N(&info) <= 0)
             return FALSE;
         // A frame is complete one frame duration after its timestamp.
@@ -359,28 +237,6 @@ static gboolean gst_hand_scene_src_query(GstBaseSrc* src, GstQuery* query)
 // ---------------------------------------------------------------------------------------
 // Frames
 
-static void post_truth(GstHandSceneSrc* self, guint64 frame, GstClockTime pts, const SceneSettings& settings)
-{
-    const gc::sim::Scene& scene = *self->state->scene;
-    const gc::sim::EyeTruth& t = self->state->truth;
-    const gc::sim::HandTruth hand = scene.hand_truth(scene.hand_pose(int(frame)));
-    GstStructure* s = gst_structure_new(
-        "hand-truth", "frame", G_TYPE_UINT64, frame, "timestamp", G_TYPE_UINT64, pts, "eye", G_TYPE_STRING,
-        settings.eye == gc::Eye::Left ? "left" : "right", "visible", G_TYPE_BOOLEAN, gboolean(t.visible), "palm-x",
-        G_TYPE_DOUBLE, t.palm_px.x, "palm-y", G_TYPE_DOUBLE, t.palm_px.y, "fingertip-x", G_TYPE_DOUBLE,
-        t.fingertip_px.x, "fingertip-y", G_TYPE_DOUBLE, t.fingertip_px.y, "pointing-deg", G_TYPE_DOUBLE,
-        t.pointing_deg, "bbox-x", G_TYPE_INT, t.bbox.x, "bbox-y", G_TYPE_INT, t.bbox.y, "bbox-width", G_TYPE_INT,
-        t.bbox.width, "bbox-height", G_TYPE_INT, t.bbox.height, nullptr);
-    gc::gst::set_vec3(s, "fingertip-head-mm", hand.fingertip_mm);
-    gc::gst::set_vec3(s, "palm-head-mm", hand.palm_mm);
-    gc::gst::set_vec3(s, "direction-head", hand.direction);
-    const gc::HeadPose& pose = self->state->pose;
-    gst_structure_set(s, "head-pan-deg", G_TYPE_DOUBLE, pose.pan_deg, "head-tilt-deg", G_TYPE_DOUBLE, pose.tilt_deg,
-                      "head-verge-left-deg", G_TYPE_DOUBLE, pose.verge_left_deg, "head-verge-right-deg", G_TYPE_DOUBLE,
-                      pose.verge_right_deg, nullptr);
-    gst_element_post_message(GST_ELEMENT(self), gst_message_new_element(GST_OBJECT(self), s));
-}
-
 static GstFlowReturn gst_hand_scene_src_fill(GstPushSrc* src, GstBuffer* buffer)
 {
     GstHandSceneSrc* self = GST_HAND_SCENE_SRC(src);
@@ -393,7 +249,7 @@ static GstFlowReturn gst_hand_scene_src_fill(GstPushSrc* src, GstBuffer* buffer)
     const SceneSettings settings = *self->settings;
     GST_OBJECT_UNLOCK(self);
 
-    const guint64 frame = st.next_frame;
+    const guint64 frame = st.stream.next_frame;
     if (frame > guint64(G_MAXINT)) {
         GST_ELEMENT_ERROR(self, STREAM, FAILED, ("The scene has no frame %" G_GUINT64_FORMAT ".", frame), (nullptr));
         return GST_FLOW_ERROR;
@@ -401,58 +257,18 @@ static GstFlowReturn gst_hand_scene_src_fill(GstPushSrc* src, GstBuffer* buffer)
     const GstClockTime pts = capture_timestamp(self, frame);
     if (gst_base_src_is_live(GST_BASE_SRC(self)) && !wait_for_running_time(self, pts))
         return GST_FLOW_FLUSHING;
-    // The head's pose when this frame is exposed (its running time is its timestamp): a
-    // live frame is rendered at that moment, so the pose is extrapolated from the head's
-    // last report (at most one status interval old) along its velocity. Home until the
-    // head is first heard from; its last pose while it is away.
-    gc::HeadPose pose = st.pose;
-    if (st.head) {
-        const GstClockTime running = gst_segment_to_running_time(&GST_BASE_SRC(self)->segment, GST_FORMAT_TIME, pts);
-        if (std::optional<gc::HeadPose> at = st.head->pose_at(gc::gst::capture_time(GST_ELEMENT(self), running)))
-            pose = *at;
-    }
-    GstVideoFrame out;
-    if (!gst_video_frame_map(&out, &st.info, buffer, GST_MAP_WRITE)) {
-        GST_ELEMENT_ERROR(self, STREAM, FAILED, ("Cannot map the output buffer."), (nullptr));
-        return GST_FLOW_ERROR;
-    }
-    try {
-        gc::sim::EyeTruth* truth = settings.truth_messages ? &st.truth : nullptr;
-        if (st.head) {
-            // A head turned further than the simulated room reaches (one wall ahead): keep
-            // the last pose that could be shown rather than stopping the stream.
-            try {
-                st.scene->render(int(frame), settings.eye, pose, st.bgr, truth);
-                st.pose = pose;
-            } catch (const std::invalid_argument& err) {
-                if (!st.warned_pose)
-                    GST_ELEMENT_WARNING(self, STREAM, FAILED,
-                                        ("The head turned past what the simulated room can show; rendering from "
-                                         "the last pose it could."),
-                                        ("%s", err.what()));
-                st.warned_pose = true;
-                st.scene->render(int(frame), settings.eye, st.pose, st.bgr, truth);
-            }
-        } else {
-            st.scene->render(int(frame), settings.eye, st.pose, st.bgr, truth);
-        }
-        gc::gst::write_bgr(st.bgr, out, st.yuv_scratch);
-    } catch (const std::exception& err) {
-        gst_video_frame_unmap(&out);
-        GST_ELEMENT_ERROR(self, STREAM, FAILED, ("Cannot render frame %" G_GUINT64_FORMAT ".", frame),
-                          ("%s", err.what()));
-        return GST_FLOW_ERROR;
-    }
-    gst_video_frame_unmap(&out);
+    if (const GstFlowReturn ret = render_frame(self, settings, frame, pose_at_capture(self, pts), buffer);
+        ret != GST_FLOW_OK)
+        return ret;
 
     GST_BUFFER_PTS(buffer) = pts;
     GST_BUFFER_DTS(buffer) = GST_CLOCK_TIME_NONE;
-    GST_BUFFER_DURATION(buffer) = frame_time(st.info, frame + 1) - frame_time(st.info, frame);
+    GST_BUFFER_DURATION(buffer) = frame_time(st.stream.info, frame + 1) - frame_time(st.stream.info, frame);
     GST_BUFFER_OFFSET(buffer) = frame;
     GST_BUFFER_OFFSET_END(buffer) = frame + 1;
     if (frame == 0)
         GST_BUFFER_FLAG_SET(buffer, GST_BUFFER_FLAG_DISCONT);
-    st.next_frame = frame + 1;
+    st.stream.next_frame = frame + 1;
 
     if (settings.truth_messages)
         post_truth(self, frame, pts, settings);
@@ -463,11 +279,7 @@ static gboolean gst_hand_scene_src_start(GstBaseSrc* src)
 {
     GstHandSceneSrc* self = GST_HAND_SCENE_SRC(src);
     SceneState& st = *self->state;
-    st.next_frame = 0;
-    st.live_origin = GST_CLOCK_TIME_NONE;
-    st.pose = {};
-    st.warned_pose = false;
-    gst_video_info_init(&st.info);
+    st.stream = {};
     GST_OBJECT_LOCK(self);
     const std::string uri = self->settings->head;
     GST_OBJECT_UNLOCK(self);
@@ -506,91 +318,29 @@ static gboolean gst_hand_scene_src_stop(GstBaseSrc* src)
 static void gst_hand_scene_src_set_property(GObject* object, guint prop_id, const GValue* value, GParamSpec* pspec)
 {
     GstHandSceneSrc* self = GST_HAND_SCENE_SRC(object);
-    if (prop_id == PROP_IS_LIVE) {
+    if (is_live_property(prop_id)) {
         gst_base_src_set_live(GST_BASE_SRC(self), g_value_get_boolean(value));
         return;
     }
     GST_OBJECT_LOCK(self);
-    SceneSettings& s = *self->settings;
-    switch (prop_id) {
-    case PROP_EYE:
-        s.eye = gc::Eye(g_value_get_enum(value));
-        break;
-    case PROP_SCENE:
-        s.preset = gc::sim::Preset(g_value_get_enum(value));
-        break;
-    case PROP_MOTION:
-        s.motion = gc::sim::Motion(g_value_get_enum(value));
-        break;
-    case PROP_SEED:
-        s.seed = g_value_get_uint64(value);
-        break;
-    case PROP_NOISE:
-        s.noise = g_value_get_double(value);
-        break;
-    case PROP_LIGHTING_CHANGE:
-        s.lighting_change = g_value_get_boolean(value);
-        break;
-    case PROP_VARIETY:
-        s.variety = gc::sim::Variety(g_value_get_enum(value));
-        break;
-    case PROP_TRUTH_MESSAGES:
-        s.truth_messages = g_value_get_boolean(value);
-        break;
-    case PROP_HEAD: {
-        const gchar* uri = g_value_get_string(value);
-        s.head = uri ? uri : "";
-        break;
-    }
-    default:
-        G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
-        break;
-    }
+    const bool known = set_scene_setting(*self->settings, prop_id, value);
     GST_OBJECT_UNLOCK(self);
+    if (!known)
+        G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
 }
 
 static void gst_hand_scene_src_get_property(GObject* object, guint prop_id, GValue* value, GParamSpec* pspec)
 {
     GstHandSceneSrc* self = GST_HAND_SCENE_SRC(object);
-    if (prop_id == PROP_IS_LIVE) {
+    if (is_live_property(prop_id)) {
         g_value_set_boolean(value, gst_base_src_is_live(GST_BASE_SRC(self)));
         return;
     }
     GST_OBJECT_LOCK(self);
-    const SceneSettings& s = *self->settings;
-    switch (prop_id) {
-    case PROP_EYE:
-        g_value_set_enum(value, int(s.eye));
-        break;
-    case PROP_SCENE:
-        g_value_set_enum(value, int(s.preset));
-        break;
-    case PROP_MOTION:
-        g_value_set_enum(value, int(s.motion));
-        break;
-    case PROP_SEED:
-        g_value_set_uint64(value, s.seed);
-        break;
-    case PROP_NOISE:
-        g_value_set_double(value, s.noise);
-        break;
-    case PROP_LIGHTING_CHANGE:
-        g_value_set_boolean(value, s.lighting_change);
-        break;
-    case PROP_VARIETY:
-        g_value_set_enum(value, int(s.variety));
-        break;
-    case PROP_TRUTH_MESSAGES:
-        g_value_set_boolean(value, s.truth_messages);
-        break;
-    case PROP_HEAD:
-        g_value_set_string(value, s.head.empty() ? nullptr : s.head.c_str());
-        break;
-    default:
-        G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
-        break;
-    }
+    const bool known = get_scene_setting(*self->settings, prop_id, value);
     GST_OBJECT_UNLOCK(self);
+    if (!known)
+        G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
 }
 
 static void gst_hand_scene_src_finalize(GObject* object)
@@ -614,54 +364,7 @@ static void gst_hand_scene_src_class_init(GstHandSceneSrcClass* klass)
     gobject_class->get_property = gst_hand_scene_src_get_property;
     gobject_class->finalize = gst_hand_scene_src_finalize;
 
-    const auto flags = GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY);
-    g_object_class_install_property(gobject_class, PROP_EYE,
-                                    g_param_spec_enum("eye", "Eye", "Which camera of the stereo head to render",
-                                                      GST_TYPE_HAND_SCENE_EYE, int(gc::Eye::Left), flags));
-    g_object_class_install_property(
-        gobject_class, PROP_SCENE,
-        g_param_spec_enum("scene", "Scene", "Background clutter preset", GST_TYPE_HAND_SCENE_PRESET,
-                          int(gc::sim::Preset::Clean), flags));
-    g_object_class_install_property(
-        gobject_class, PROP_MOTION,
-        g_param_spec_enum("motion", "Motion", "Scripted hand motion (every script starts with a short wave)",
-                          GST_TYPE_HAND_SCENE_MOTION, int(gc::sim::Motion::Mixed), flags));
-    g_object_class_install_property(
-        gobject_class, PROP_SEED,
-        g_param_spec_uint64("seed", "Seed",
-                            "Background layout, skin tone and noise: the same seed renders the same scene", 0,
-                            G_MAXUINT64, kDefaultSeed, flags));
-    g_object_class_install_property(
-        gobject_class, PROP_NOISE,
-        g_param_spec_double("noise", "Noise", "Standard deviation of the sensor noise, grey levels", 0.0, 64.0,
-                            kDefaultNoise, flags));
-    g_object_class_install_property(
-        gobject_class, PROP_LIGHTING_CHANGE,
-        g_param_spec_boolean("lighting-change", "Lighting change",
-                             "A slow global change of brightness and colour temperature", FALSE, flags));
-    g_object_class_install_property(
-        gobject_class, PROP_VARIETY,
-        g_param_spec_enum("variety", "Variety",
-                          "What else the seed varies: nothing (the preset as it always was) or the hand, "
-                          "people, light and camera",
-                          GST_TYPE_HAND_SCENE_VARIETY, int(gc::sim::Variety::None), flags));
-    g_object_class_install_property(
-        gobject_class, PROP_IS_LIVE,
-        g_param_spec_boolean("is-live", "Is live", "Behave as a live camera: frames come at the frame rate",
-                             FALSE, flags));
-    g_object_class_install_property(
-        gobject_class, PROP_TRUTH_MESSAGES,
-        g_param_spec_boolean("truth-messages", "Truth messages",
-                             "Post a hand-truth element message with the ground truth of every frame", TRUE,
-                             GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_PLAYING)));
-
-    g_object_class_install_property(
-        gobject_class, PROP_HEAD,
-        g_param_spec_string("head", "Head URI",
-                            "The head the simulated cameras sit on (tcp://host:port, e.g. headsim): every frame is "
-                            "rendered from its pose at the frame's capture time, so handtracker steering that head "
-                            "closes the loop; use with is-live=true. Unset: the head at its home pose",
-                            nullptr, flags));
+    install_scene_properties(gobject_class);
 
     gst_element_class_add_static_pad_template(element_class, &src_template);
     gst_element_class_set_static_metadata(
@@ -683,17 +386,13 @@ static void gst_hand_scene_src_class_init(GstHandSceneSrcClass* klass)
     basesrc_class->unlock_stop = gst_hand_scene_src_unlock_stop;
     pushsrc_class->fill = gst_hand_scene_src_fill;
 
-    gst_type_mark_as_plugin_api(GST_TYPE_HAND_SCENE_EYE, GstPluginAPIFlags(0));
-    gst_type_mark_as_plugin_api(GST_TYPE_HAND_SCENE_PRESET, GstPluginAPIFlags(0));
-    gst_type_mark_as_plugin_api(GST_TYPE_HAND_SCENE_MOTION, GstPluginAPIFlags(0));
-    gst_type_mark_as_plugin_api(GST_TYPE_HAND_SCENE_VARIETY, GstPluginAPIFlags(0));
+    mark_scene_enums_as_plugin_api();
 }
 
 static void gst_hand_scene_src_init(GstHandSceneSrc* self)
 {
     self->settings = new SceneSettings();
     self->state = new SceneState();
-    gst_video_info_init(&self->state->info);
     GstBaseSrc* base = GST_BASE_SRC(self);
     gst_base_src_set_format(base, GST_FORMAT_TIME);
     gst_base_src_set_live(base, FALSE);

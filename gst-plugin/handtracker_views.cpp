@@ -4,17 +4,11 @@
 
 namespace gc::gst {
 
-namespace {
-
-bool ready(const GstVideoFrame* frame) { return frame && frame->buffer; }
-
-}  // namespace
-
 void read_views(BgrReader readers[2], cv::Mat halves[2], const GstVideoFrame* packed, const GstVideoFrame* left,
                 const GstVideoFrame* right, SlotViews& out)
 {
     if (packed) {
-        if (!ready(packed))
+        if (!views_ready(packed))
             return;
         const cv::Mat& whole = readers[0].read(*packed);
         const bool top_bottom = GST_VIDEO_INFO_MULTIVIEW_MODE(&packed->info) == GST_VIDEO_MULTIVIEW_MODE_TOP_BOTTOM;
@@ -31,7 +25,7 @@ void read_views(BgrReader readers[2], cv::Mat halves[2], const GstVideoFrame* pa
     }
     const GstVideoFrame* frames[2] = {left, right};
     for (int i = 0; i < 2; ++i) {
-        if (!ready(frames[i]))
+        if (!views_ready(frames[i]))
             continue;
         const cv::Mat& bgr = readers[i].read(*frames[i]);
         // The tracker works on whole rows; padded strides are packed first.

@@ -15,6 +15,9 @@
 
 namespace gc::gst {
 
+// A pad's prepared frame holds a buffer (a pad without data has none).
+inline bool views_ready(const GstVideoFrame* frame) { return frame && frame->buffer; }
+
 // The views of one output slot: [0] left, [1] right; `have[i]` when that view has a frame.
 struct SlotViews {
     cv::Mat views[2];

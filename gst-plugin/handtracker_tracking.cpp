@@ -1,0 +1,120 @@
+#include "handtracker_tracking.hpp"
+
+#include "handtracker_head.hpp"
+
+#include <exception>
+#include <memory>
+#include <stdexcept>
+
+#define GST_CAT_DEFAULT gst_hand_tracker_debug
+
+namespace gc::gst {
+
+using Settings = TrackerSettings;
+
+Settings read_settings(GstHandTracker* self)
+{
+    GST_OBJECT_LOCK(self);
+    Settings s = *self->settings;
+    GST_OBJECT_UNLOCK(self);
+    return s;
+}
+
+bool build_tracker(GstHandTracker* self, const Settings& settings)
+{
+    TrackerState& e = *self->state;
+    try {
+        if (settings.calibration != e.calibration_path) {
+            e.calibration.reset();
+            if (!settings.calibration.empty())
+                e.calibration = gc::load_calibration(settings.calibration);
+            e.calibration_path = settings.calibration;
+        }
+    } catch (const std::exception& err) {
+        GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("Cannot use the calibration file \"%s\".", settings.calibration.c_str()),
+                          ("%s", err.what()));
+        return false;
+    }
+    gc::TrackerParams params;
+    params.particles = settings.particles;
+    params.seed = settings.seed;
+    params.lost_ratio = settings.lost_threshold;
+    params.lost_frames = settings.lost_frames;
+    params.detector = settings.detector;
+    params.model_dir = settings.model_dir;
+    try {
+        e.tracker = std::make_unique<gc::PointingTracker>(params, e.calibration);
+    } catch (const std::runtime_error& err) {
+        GST_ELEMENT_ERROR(self, RESOURCE, NOT_FOUND, ("Cannot load the learned hand models."),
+                          ("%s (set model-dir, or detector=motion to track without them)", err.what()));
+        return false;
+    }
+    e.stream = {};
+    return true;
+}
+
+void log_result(GstHandTracker* self, TrackerState& e, const gc::FrameResult& r)
+{
+    const std::array<const gc::EyeEstimate*, 2> eyes = {&r.left, &r.right};
+    for (int i = 0; i < (r.stereo ? 2 : 1); ++i) {
+        const gc::EyeEstimate& eye = *eyes[i];
+        const char* name = i == 0 ? "left" : "right";
+        if (eye.state != e.logged_state[i])
+            GST_INFO_OBJECT(self, "frame %" G_GINT64_FORMAT ": %s view %s -> %s", r.frame, name,
+                            gc::to_string(e.logged_state[i]).data(), gc::to_string(eye.state).data());
+        if (eye.gesture != e.logged_gesture[i])
+            GST_INFO_OBJECT(self, "frame %" G_GINT64_FORMAT ": %s view gesture %s", r.frame, name,
+                            gc::to_string(eye.gesture).data());
+        e.logged_state[i] = eye.state;
+        e.logged_gesture[i] = eye.gesture;
+    }
+    GST_LOG_OBJECT(self, "frame %" G_GINT64_FORMAT ": %s, fingertip (%.1f, %.1f), ray %s", r.frame,
+                   gc::to_string(r.state).data(), r.left.fingertip.x, r.left.fingertip.y,
+                   r.pointing.valid ? "yes" : "no");
+}
+
+GstFlowReturn track_views(GstHandTracker* self, const Settings& settings, const gc::gst::SlotViews& in,
+                          bool stereo, GstVideoAggregatorPad* pose_pad, const GstVideoFrame* pose_frame,
+                          GstBuffer* outbuf)
+{
+    TrackerState& e = *self->state;
+    const cv::Size size = in.views[0].size();
+    if (!e.stream.view_size.empty() && (size != e.stream.view_size || stereo != e.stream.stereo)) {
+        GST_INFO_OBJECT(self, "views changed to %dx%d: tracking starts over", size.width, size.height);
+        e.tracker->reset();
+        e.stream.attention.reset();
+    }
+    e.stream.view_size = size;
+    e.stream.stereo = stereo;
+    // The head's pose when these views were taken and the image motion it caused; without
+    // a head: no pose, no motion.
+    gc::HeadAtCapture at;
+    if (const GstFlowReturn ret = head_at_capture(self, settings, size, pose_pad, pose_frame, outbuf, at);
+        ret != GST_FLOW_OK)
+        return ret;
+    try {
+        const gint64 pts = GST_CLOCK_TIME_IS_VALID(GST_BUFFER_PTS(outbuf)) ? gint64(GST_BUFFER_PTS(outbuf)) : -1;
+        if (stereo)
+            e.tracker->process_stereo(in.views[0], in.views[1], pts, at.pose, at.left_motion, at.right_motion);
+        else
+            e.tracker->process_mono(in.views[0], pts, at.left_motion);
+    } catch (const gc::CalibrationError& err) {
+        GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("The calibration does not fit the stream."), ("%s", err.what()));
+        return GST_FLOW_ERROR;
+    } catch (const std::invalid_argument& err) {
+        GST_ELEMENT_ERROR(self, CORE, NEGOTIATION, ("%s", err.what()), (nullptr));
+        return GST_FLOW_NOT_NEGOTIATED;
+    } catch (const std::exception& err) {
+        // One bad frame must not end the stream: the tracker starts over and the frame goes
+        // on untracked.
+        e.tracker->reset();
+        ++e.failed_frames;
+        GST_ELEMENT_WARNING(self, STREAM, FAILED,
+                            ("Tracking failed on a frame (%" G_GUINT64_FORMAT " so far); the tracker starts over.",
+                             e.failed_frames),
+                            ("%s", err.what()));
+    }
+    return GST_FLOW_OK;
+}
+
+}  // namespace gc::gst
