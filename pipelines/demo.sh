@@ -4,30 +4,32 @@
 # the head to keep the hand in the middle of the view (steer=fixate) and outputs the
 # attended view with the tracking overlay -> H.264 -> out/demo.mp4, one JSON line per frame
 # in out/demo.jsonl; then the figures of the run. Installs what is missing and builds first.
+# OUT names another folder for the three files.
 # Environment: FRAMES (default 300, at 30 frames/s in real time), SCENE (clean|light|heavy|
-# face_pass, default light), MOTION (default translate), SEED (default 3), PARTICLES
-# (default 1000), STEER (off|fixate|point, default fixate).
+# face-pass|varied, default light), MOTION (static|translate|rotate|scale|yaw|mixed|
+# leave-return, default translate), SEED (default 3), PARTICLES (default 1000), STEER
+# (off|fixate|point, default fixate). Names are handscenesrc's; face_pass is read as face-pass.
 set -euo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
-cd "$root"
-. tests/deps.sh
-gesturecam_install_deps
-gesturecam_setup build -Dbuildtype=release
-meson compile -C build -j "$(nproc)"
+. "$(dirname "$0")/lib/plugin.sh"
+gesturecam_build_targets gstgesturecam headsim
+gesturecam_use_plugin
+cd "$gesturecam_root"
+out=${OUT:-out}
 
 frames=${FRAMES:-300}
 scene=${SCENE:-light}
+scene=${scene//_/-}
 motion=${MOTION:-translate}
+motion=${motion//_/-}
 seed=${SEED:-3}
 particles=${PARTICLES:-1000}
 steer=${STEER:-fixate}
-export GST_PLUGIN_PATH="$root/build/gst-plugin${GST_PLUGIN_PATH:+:$GST_PLUGIN_PATH}"
-mkdir -p out
-rm -f out/demo.mp4 out/demo.jsonl out/demo.bus.txt
+mkdir -p "$out"
+rm -f "$out/demo.mp4" "$out/demo.jsonl" "$out/demo.bus.txt"
 
 # The simulated head on a free loopback port; stopped on exit.
 headsim_out=$(mktemp)
-build/headctl/headsim --listen 127.0.0.1:0 --latency-ms 20 >"$headsim_out" &
+"$gesturecam_build/headctl/headsim" --listen 127.0.0.1:0 --latency-ms 20 >"$headsim_out" &
 headsim_pid=$!
 trap 'kill "$headsim_pid" 2>/dev/null || true; wait "$headsim_pid" 2>/dev/null || true; rm -f "$headsim_out"' EXIT
 for _ in $(seq 100); do grep -q '^listening' "$headsim_out" && break; sleep 0.05; done
@@ -50,16 +52,16 @@ gst-launch-1.0 -m -e \
   $(eye left true) ! t.sink_left \
   $(eye right false) ! t.sink_right \
   handtracker name=t particles="$particles" head="$head" steer="$steer" draw=true output=attended \
-    message-updates=on-change json-location=out/demo.jsonl \
-  ! videoconvert ! x264enc tune=zerolatency speed-preset=veryfast ! mp4mux ! filesink location=out/demo.mp4 \
-  >out/demo.bus.txt
+    message-updates=on-change json-location="$out/demo.jsonl" \
+  ! videoconvert ! x264enc tune=zerolatency speed-preset=veryfast ! mp4mux ! filesink location="$out/demo.mp4" \
+  >"$out/demo.bus.txt"
 end=$(date +%s.%N)
-grep -E '^(WARNING|ERROR|INFO)' -A1 out/demo.bus.txt || true
+grep -E '^(WARNING|ERROR|INFO)' -A1 "$out/demo.bus.txt" || true
 
-python3 - "$start" "$end" "$steer" <<'PY'
+python3 - "$start" "$end" "$steer" "$out" <<'PY'
 import json, re, sys
-start, end, steer = float(sys.argv[1]), float(sys.argv[2]), sys.argv[3]
-rows = [json.loads(line) for line in open("out/demo.jsonl")]
+start, end, steer, out = float(sys.argv[1]), float(sys.argv[2]), sys.argv[3], sys.argv[4]
+rows = [json.loads(line) for line in open(f"{out}/demo.jsonl")]
 n = len(rows)
 tracked = sum(r["state"] == "tracking" for r in rows)
 first = next((r for r in rows if r["state"] == "tracking"), None)
@@ -70,7 +72,7 @@ def field(line, name, kind="double"):
     return m.group(1) if m else None
 
 truth = []  # (timestamp ns, visible, palm x, palm y, pan, tilt) of the left view
-for line in open("out/demo.bus.txt"):
+for line in open(f"{out}/demo.bus.txt"):
     if "hand-truth" not in line or 'element "left"' not in line:
         continue
     truth.append((int(field(line, "timestamp", "guint64")), field(line, "visible", "boolean") == "true",
@@ -88,5 +90,5 @@ if first and truth:
     pans, tilts = [t[4] for t in truth], [t[5] for t in truth]
     print(f"head pan {min(pans):+.1f} .. {max(pans):+.1f} deg, tilt {min(tilts):+.1f} .. {max(tilts):+.1f} deg")
 print(f"wall time: {end - start:.1f} s for {n / 30:.1f} s of video (live)")
-print("video: out/demo.mp4   JSON lines: out/demo.jsonl   bus messages: out/demo.bus.txt")
+print(f"video: {out}/demo.mp4   JSON lines: {out}/demo.jsonl   bus messages: {out}/demo.bus.txt")
 PY

@@ -4,8 +4,8 @@
 # Frames are recorded once from the built-in scene as raw BGR, so neither rendering nor
 # decoding is timed. Usage: pipelines/throughput.sh [PARTICLES] [RUNS] [FRAMES]
 set -euo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
-export GST_PLUGIN_PATH="$root/build/gst-plugin${GST_PLUGIN_PATH:+:$GST_PLUGIN_PATH}"
+. "$(dirname "$0")/lib/plugin.sh"
+gesturecam_use_plugin
 particles=${1:-1000}
 runs=${2:-5}
 frames=${3:-300}

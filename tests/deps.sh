@@ -5,6 +5,7 @@ GESTURECAM_PACKAGES=(
   libopencv-dev libopencv-contrib-dev libeigen3-dev opencv-doc
   libgstreamer1.0-dev libgstreamer-plugins-base1.0-dev
   gstreamer1.0-tools gstreamer1.0-plugins-base gstreamer1.0-plugins-good gstreamer1.0-plugins-ugly
+  gstreamer1.0-libav time
   libgtest-dev valgrind python3
 )
 

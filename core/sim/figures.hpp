@@ -1,5 +1,5 @@
 // The person around the hand: the clothed arm (forearm and upper arm as shaded tubes) and,
-// for the face_pass preset, a person's head and shoulders as a billboard behind the hand.
+// for the face-pass preset, a person's head and shoulders as a billboard behind the hand.
 #pragma once
 
 #include "sim/appearance.hpp"

@@ -18,7 +18,7 @@ public:
 
     HandPose at(double t) const;
 
-    // face_pass: between `start` and `start + duration` seconds the palm's view direction
+    // face-pass: between `start` and `start + duration` seconds the palm's view direction
     // (x / z, y / z) is blended towards `target` and back (sin^2), so at the middle the
     // palm is exactly on that ray, whatever the motion does. The speed limit is re-applied.
     void set_pass(double start, double duration, cv::Vec2d target);

@@ -1,8 +1,10 @@
-// Text names of the scene presets, motions and varieties, as used on command lines and element
-// properties.
+// Text names of the scene presets, motions and varieties: the element's enum nicks, used on
+// command lines too. Names are spelt with '-'; '_' is accepted where a user types one.
 #include "sim/scene.hpp"
 
+#include <algorithm>
 #include <array>
+#include <string>
 #include <utility>
 
 namespace gc::sim {
@@ -13,7 +15,7 @@ constexpr std::array<std::pair<Preset, std::string_view>, 5> kPresets{{
     {Preset::Clean, "clean"},
     {Preset::Light, "light"},
     {Preset::Heavy, "heavy"},
-    {Preset::FacePass, "face_pass"},
+    {Preset::FacePass, "face-pass"},
     {Preset::Varied, "varied"},
 }};
 
@@ -24,7 +26,7 @@ constexpr std::array<std::pair<Motion, std::string_view>, 7> kMotions{{
     {Motion::Scale, "scale"},
     {Motion::Yaw, "yaw"},
     {Motion::Mixed, "mixed"},
-    {Motion::LeaveReturn, "leave_return"},
+    {Motion::LeaveReturn, "leave-return"},
 }};
 
 constexpr std::array<std::pair<Variety, std::string_view>, 2> kVarieties{{
@@ -44,8 +46,10 @@ template <class Value, std::size_t N>
 std::optional<Value> value_of(const std::array<std::pair<Value, std::string_view>, N>& table,
                               std::string_view name)
 {
+    std::string spelt(name);
+    std::replace(spelt.begin(), spelt.end(), '_', '-');
     for (const auto& [v, n] : table)
-        if (n == name) return v;
+        if (n == spelt) return v;
     return std::nullopt;
 }
 

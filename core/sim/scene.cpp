@@ -228,11 +228,11 @@ void Scene::Impl::pick_hand(Rng& hand_rng)
     distance_mm = std::clamp(config.hand_distance_mm * looks->distance_factor, 300.0, 2500.0);
 }
 
-// face_pass: a person sits behind the hand's path, and the hand starts (waves, is acquired)
+// face-pass: a person sits behind the hand's path, and the hand starts (waves, is acquired)
 // beside the face, not on it: the face is a hand's reach plus the face's own half height
 // (in the hand's plane) away from where the palm waves, to one side towards the image
 // centre, and the hand makes a seeded pass across it 2.2-3.2 s after the wave (the
-// crossing, whatever the motion does meanwhile; after the return for leave_return).
+// crossing, whatever the motion does meanwhile; after the return for leave-return).
 void Scene::Impl::place_face_pass(double half_x, double half_y)
 {
     const SceneConfig& c = config;

@@ -17,7 +17,7 @@
 namespace gc::sim {
 
 // Background clutter; measured skin-pixel fractions near the thesis's scenes:
-// clean 0.03 %, light 3.74 %, heavy 9.35 %; face_pass: light clutter plus a face that the
+// clean 0.03 %, light 3.74 %, heavy 9.35 %; face-pass: light clutter plus a face that the
 // hand's path crosses. varied: a room drawn from many kinds (wall materials, photo-like
 // posters of faces and hands, skin-coloured walls and objects, none to two people), always
 // with the wide variety.

@@ -17,9 +17,9 @@ reference key points.
 
 options:
   --particles LIST   particle counts (default 20,50,100,200,500,1000,2000,5000)
-  --scenes LIST      clean,light,heavy,face_pass (default: all four)
+  --scenes LIST      clean,light,heavy,face-pass (default: all four)
   --motion NAME      scripted hand motion: static, translate, rotate, scale, yaw, mixed,
-                     leave_return (default mixed)
+                     leave-return (default mixed)
   --detectors LIST   learned,motion (default both); the first is the one compared with
                      OpenCV's trackers
   --frames N         frames per sequence (default 150)
@@ -64,7 +64,7 @@ gc::sim::Preset parse_scene(std::string_view opt, std::string_view item)
     const auto p = gc::sim::preset_from_string(item);
     if (!p)
         throw UsageError(std::string(opt) + ": unknown scene '" + std::string(item) +
-                         "' (clean, light, heavy, face_pass)");
+                         "' (clean, light, heavy, face-pass)");
     return *p;
 }
 

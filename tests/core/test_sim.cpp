@@ -33,8 +33,8 @@ cv::Point2d project(const cv::Matx33d& K, const cv::Vec3d& X)
 
 double distance(cv::Point2d a, cv::Point2d b) { return std::hypot(a.x - b.x, a.y - b.y); }
 
-// The skin-coloured pixels that face_pass adds to the light preset of the same seed (same
-// room, noise and hand): the person. `a` gets face_pass's frame and `t` its truth.
+// The skin-coloured pixels that face-pass adds to the light preset of the same seed (same
+// room, noise and hand): the person. `a` gets face-pass's frame and `t` its truth.
 cv::Mat1b added_skin(const Scene& face, const Scene& light, int frame, cv::Mat& a, EyeTruth& t)
 {
     cv::Mat b, diff;
@@ -73,6 +73,16 @@ TEST(SimNames, RoundTrip)
         EXPECT_EQ(motion_from_string(to_string(m)), m);
     EXPECT_FALSE(preset_from_string("cluttered").has_value());
     EXPECT_FALSE(motion_from_string("").has_value());
+}
+
+// One spelling everywhere: the element's enum nicks (face-pass, leave-return) are the names the
+// tools print; what a user types with '_' is read as the same thing.
+TEST(SimNames, SpeltLikeTheElementsNicksAndReadEitherWay)
+{
+    EXPECT_EQ(to_string(Preset::FacePass), "face-pass");
+    EXPECT_EQ(to_string(Motion::LeaveReturn), "leave-return");
+    EXPECT_EQ(preset_from_string("face_pass"), Preset::FacePass);
+    EXPECT_EQ(motion_from_string("leave_return"), Motion::LeaveReturn);
 }
 
 TEST(SimScene, RejectsBadConfiguration)
@@ -311,7 +321,7 @@ TEST(SimScene, FacePassPutsAFaceOnTheHandsPath)
     EXPECT_GT(most, 0.003);
 }
 
-// face_pass: the hand waves (and is acquired) beside the face, not on it, and crosses it
+// face-pass: the hand waves (and is acquired) beside the face, not on it, and crosses it
 // later. The face's pixels are those that differ from the light preset of the same seed
 // (same room, noise and hand) and are skin-coloured for a model fitted to the hand.
 TEST(SimScene, FacePassStartsBesideTheFaceAndCrossesIt)
@@ -343,7 +353,7 @@ TEST(SimScene, FacePassStartsBesideTheFaceAndCrossesIt)
     }
 }
 
-// The truth carries the face's skin (face, ears, neck, nose) for face_pass, and nothing for
+// The truth carries the face's skin (face, ears, neck, nose) for face-pass, and nothing for
 // the other presets: it must match the skin-coloured pixels the person adds to the room.
 TEST(SimScene, FacePassTruthHoldsTheFacesSkin)
 {
@@ -708,7 +718,7 @@ TEST(SimVariety, SeedsSpanSkinHandsSensorsAndSleeves)
     EXPECT_GE(sleeved, 8);
 }
 
-// face_pass with the variety (people of other sizes and tones, sometimes two, the hand at
+// face-pass with the variety (people of other sizes and tones, sometimes two, the hand at
 // another distance) still starts beside the face and crosses it later.
 TEST(SimVariety, FacePassStillCrossesTheFace)
 {

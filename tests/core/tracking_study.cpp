@@ -1,6 +1,6 @@
 // Not a test: the per-seed figures behind the tables of docs/adr/. For each scene seed it
 // tracks one eye (the left unless told) of a 200-frame `mixed` sequence and prints the
-// sequence's SNR and, for face_pass, the frames where the hand covers at least 5 % of the
+// sequence's SNR and, for face-pass, the frames where the hand covers at least 5 % of the
 // face's skin and, of those, the ones where the tracker was lost or off the hand
 // (IoU < 0.5), as in HandTracker.KeepsTheHandWhileItCrossesAFace. Of the frames off the hand,
 // `lost` were reported lost (the rest tracked something else), and `entry` is the IoU on the
