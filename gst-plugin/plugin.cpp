@@ -1,4 +1,5 @@
 // The gesturecam plugin: registers its elements.
+#include "gsthandoverlay.hpp"
 #include "gsthandscenesrc.hpp"
 #include "gsthandtracker.hpp"
 
@@ -9,6 +10,7 @@ static gboolean plugin_init(GstPlugin* plugin)
     gboolean ok = FALSE;
     ok |= GST_ELEMENT_REGISTER(handtracker, plugin);
     ok |= GST_ELEMENT_REGISTER(handscenesrc, plugin);
+    ok |= GST_ELEMENT_REGISTER(handoverlay, plugin);
     return ok;
 }
 
