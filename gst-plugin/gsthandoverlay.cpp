@@ -61,10 +61,12 @@ static GstFlowReturn gst_hand_overlay_transform_frame_ip(GstVideoFilter* filter,
     const GstHandPointingMeta* meta = gst_buffer_get_hand_pointing_meta(frame->buffer);
     if (!meta)
         return GST_FLOW_OK;
+    GST_OBJECT_LOCK(self);
+    const bool right = self->view == GST_HAND_OVERLAY_VIEW_RIGHT;
+    GST_OBJECT_UNLOCK(self);
     try {
         auto& s = *self->scratch;
         s.reader.read(*frame).copyTo(s.canvas);
-        const bool right = self->view == GST_HAND_OVERLAY_VIEW_RIGHT;
         const gc::EyeEstimate eye = gc::gst::eye_from_meta(*meta, right, s.canvas.size());
         const gc::Pointing3D pointing = gc::gst::pointing_from_meta(*meta);
         s.overlay.draw(s.canvas, eye, {}, pointing.valid ? &pointing : nullptr);
