@@ -1,4 +1,5 @@
 // The gesturecam plugin: registers its elements.
+#include "gsthandoverlay.hpp"
 #include "gsthandscenesrc.hpp"
 #include "gsthandtracker.hpp"
 #include "gstimagesizelimit.hpp"
@@ -11,6 +12,7 @@ static gboolean plugin_init(GstPlugin* plugin)
     ok |= GST_ELEMENT_REGISTER(handtracker, plugin);
     ok |= GST_ELEMENT_REGISTER(handscenesrc, plugin);
     ok |= GST_ELEMENT_REGISTER(imagesizelimit, plugin);
+    ok |= GST_ELEMENT_REGISTER(handoverlay, plugin);
     return ok;
 }
 

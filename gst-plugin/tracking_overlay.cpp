@@ -97,13 +97,15 @@ void TrackingOverlay::draw(cv::Mat& bgr, const EyeEstimate& eye, std::span<const
                        kContourColour, cv::MARKER_CROSS, 12, 2);
     }
 
-    char text[160];
+    // The gesture is named only where the key points told it (the learned detector).
+    const char* gesture = eye.gesture == Gesture::Unknown ? "" : to_string(eye.gesture).data();
+    char text[192];
     if (pointing && pointing->valid)
-        std::snprintf(text, sizeof text, "%s %.2f  az %+.1f el %+.1f deg  z %.0f mm",
-                      to_string(eye.state).data(), eye.confidence, pointing->azimuth_deg,
+        std::snprintf(text, sizeof text, "%s %.2f %s  az %+.1f el %+.1f deg  z %.0f mm",
+                      to_string(eye.state).data(), eye.confidence, gesture, pointing->azimuth_deg,
                       pointing->elevation_deg, pointing->fingertip_mm[2]);
     else
-        std::snprintf(text, sizeof text, "%s %.2f", to_string(eye.state).data(), eye.confidence);
+        std::snprintf(text, sizeof text, "%s %.2f %s", to_string(eye.state).data(), eye.confidence, gesture);
     const double font = std::max(0.4, bgr.rows / 800.0);
     cv::putText(bgr, text, cv::Point(8, int(24 * font / 0.6)), cv::FONT_HERSHEY_SIMPLEX, font,
                 cv::Scalar(0, 0, 0), 3, cv::LINE_AA);

@@ -1,6 +1,7 @@
-// The `draw` overlay: the tracked contour, the particles' marginal distributions along
-// the frame borders (x along the bottom, y along the right edge, as in the thesis's
-// figures), the pointing direction and the state, drawn with OpenCV on a BGR image.
+// The tracking overlay of handtracker's `draw` and of handoverlay: the tracked contour, the
+// particles' marginal distributions along the frame borders (x along the bottom, y along the
+// right edge, as in the thesis's figures), the pointing direction, the state and the gesture,
+// drawn with OpenCV on a BGR image.
 #pragma once
 
 #include "stereo/pointing.hpp"

@@ -1,14 +1,17 @@
 // headsim: the simulated head server (GCHP/1 over TCP).
 #include "headctl/head_server.hpp"
 #include "headctl/token.hpp"
+#include "tools/cli_app.hpp"
 
-#include <getopt.h>
 #include <signal.h>
 
 #include <charconv>
 #include <cmath>
 #include <cstring>
 #include <iostream>
+#include <optional>
+#include <string>
+#include <vector>
 
 namespace {
 
@@ -38,6 +41,8 @@ Simulated motorised head serving GCHP/1 (docs/head-protocol.md).
                          of one axis (pan, tilt, verge_l, verge_r); repeatable
   --velocity-timeout S   a velocity move not renewed within S seconds stops (default 1; 0 = never)
   --verbose              log connections on stderr
+  --version              the version
+  -h, --help             this text
 On start it prints "listening ADDR:PORT" on stdout. SIGTERM or SIGINT stops it cleanly.
 )";
 
@@ -76,62 +81,66 @@ void parse_limits(std::string_view text, HeadLimits& limits) {
     limits[*axis] = AxisLimits{v[0], v[1], v[2], v[3]};
 }
 
+// The options' texts as CLI11 read them, converted by apply().
+struct GivenText {
+    std::optional<std::string> listen, token, token_file, max_clients, latency_ms, angle_error, seed, velocity_timeout;
+    std::vector<std::string> limits;
+};
+
+void add_options(CLI::App& app, HeadServerConfig& config, GivenText& t) {
+    app.add_option("--listen", t.listen);
+    CLI::Option* token = app.add_option("--token", t.token);
+    app.add_option("--token-file", t.token_file)->excludes(token);
+    app.add_flag("--allow-remote", config.allow_remote_without_token);
+    app.add_option("--max-clients", t.max_clients);
+    app.add_option("--latency-ms", t.latency_ms);
+    app.add_option("--angle-error", t.angle_error);
+    app.add_option("--seed", t.seed);
+    app.add_option("--limits", t.limits)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    app.add_option("--velocity-timeout", t.velocity_timeout);
+    app.add_flag("--verbose", config.verbose);
+}
+
+// Checks and converts the texts into `config`; throws std::invalid_argument.
+void apply(const GivenText& t, HeadServerConfig& config) {
+    if (t.listen) parse_listen(*t.listen, config);
+    if (t.token) {
+        config.token = *t.token;
+        if (config.token.empty()) throw std::invalid_argument("--token: must not be empty");
+    }
+    if (t.token_file) config.token = read_token_file(*t.token_file);
+    if (t.max_clients) {
+        const double n = number("--max-clients", *t.max_clients);
+        if (n < 1 || n > 10000 || n != std::floor(n)) throw std::invalid_argument("--max-clients: must be 1..10000");
+        config.max_clients = static_cast<std::size_t>(n);
+    }
+    if (t.latency_ms) config.model.latency_s = number("--latency-ms", *t.latency_ms) / 1000.0;
+    if (t.angle_error) config.model.angle_error_deg = number("--angle-error", *t.angle_error);
+    if (t.seed) {
+        const double n = number("--seed", *t.seed);
+        if (n < 0 || n != std::floor(n)) throw std::invalid_argument("--seed: must be a non-negative integer");
+        config.model.seed = static_cast<std::uint64_t>(n);
+    }
+    for (const std::string& l : t.limits) parse_limits(l, config.model.limits);
+    if (t.velocity_timeout) config.model.velocity_timeout_s = number("--velocity-timeout", *t.velocity_timeout);
+    if (config.token.empty()) config.token = token_from_environment();
+    config.model.validate();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     HeadServerConfig config;
-    const option options[] = {
-        {"listen", required_argument, nullptr, 'l'},     {"token", required_argument, nullptr, 't'},
-        {"token-file", required_argument, nullptr, 'f'}, {"allow-remote", no_argument, nullptr, 'r'},
-        {"max-clients", required_argument, nullptr, 'c'}, {"latency-ms", required_argument, nullptr, 'L'},
-        {"angle-error", required_argument, nullptr, 'e'}, {"seed", required_argument, nullptr, 's'},
-        {"limits", required_argument, nullptr, 'm'},      {"velocity-timeout", required_argument, nullptr, 'v'},
-        {"verbose", no_argument, nullptr, 'V'},           {"help", no_argument, nullptr, 'h'},
-        {nullptr, 0, nullptr, 0},
-    };
+    GivenText given;
+    CLI::App app("Simulated motorised head serving GCHP/1", "headsim");
+    gc::cli::configure(app, kUsage);
+    add_options(app, config, given);
+    if (const int status = gc::cli::parse(app, argc, argv); status >= 0) return status;
+    hide_secret_arguments(argc, argv);
     try {
-        int opt;
-        while ((opt = getopt_long(argc, argv, "h", options, nullptr)) != -1) {
-            switch (opt) {
-                case 'l': parse_listen(optarg, config); break;
-                case 't':
-                    if (!config.token.empty()) throw std::invalid_argument("give one of --token and --token-file");
-                    config.token = optarg;
-                    hide_argument(optarg);
-                    if (config.token.empty()) throw std::invalid_argument("--token: must not be empty");
-                    break;
-                case 'f':
-                    if (!config.token.empty()) throw std::invalid_argument("give one of --token and --token-file");
-                    config.token = read_token_file(optarg);
-                    break;
-                case 'r': config.allow_remote_without_token = true; break;
-                case 'c': {
-                    const double n = number("--max-clients", optarg);
-                    if (n < 1 || n > 10000 || n != std::floor(n)) throw std::invalid_argument("--max-clients: must be 1..10000");
-                    config.max_clients = static_cast<std::size_t>(n);
-                    break;
-                }
-                case 'L': config.model.latency_s = number("--latency-ms", optarg) / 1000.0; break;
-                case 'e': config.model.angle_error_deg = number("--angle-error", optarg); break;
-                case 's': {
-                    const double n = number("--seed", optarg);
-                    if (n < 0 || n != std::floor(n)) throw std::invalid_argument("--seed: must be a non-negative integer");
-                    config.model.seed = static_cast<std::uint64_t>(n);
-                    break;
-                }
-                case 'm': parse_limits(optarg, config.model.limits); break;
-                case 'v': config.model.velocity_timeout_s = number("--velocity-timeout", optarg); break;
-                case 'V': config.verbose = true; break;
-                case 'h': std::cout << kUsage; return 0;
-                default: std::cerr << kUsage; return 2;
-            }
-        }
-        if (optind < argc) throw std::invalid_argument(std::string("unexpected argument '") + argv[optind] + "'");
-        if (config.token.empty()) config.token = token_from_environment();
-        config.model.validate();
+        apply(given, config);
     } catch (const std::exception& e) {
-        std::cerr << "headsim: " << e.what() << "\n";
-        return 2;
+        return gc::cli::usage_hint("headsim", e.what());
     }
 
     try {

@@ -49,4 +49,18 @@ void hide_token_in_uri_argument(char* uri) {
     for (const TextSpan& value : token_values(uri)) std::fill_n(uri + value.offset, value.length, '*');
 }
 
+void hide_secret_arguments(int argc, char** argv) {
+    for (int i = 1; i < argc; ++i) {
+        const std::string_view a = argv[i];
+        if ((a == "--token" || a == "--uri") && i + 1 < argc) {
+            ++i;
+            a == "--uri" ? hide_token_in_uri_argument(argv[i]) : hide_argument(argv[i]);
+        } else if (a.starts_with("--token=")) {
+            hide_argument(argv[i] + a.find('=') + 1);
+        } else if (a.starts_with("--uri=")) {
+            hide_token_in_uri_argument(argv[i] + a.find('=') + 1);
+        }
+    }
+}
+
 }  // namespace gc::headctl

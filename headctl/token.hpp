@@ -29,4 +29,8 @@ std::string token_from_environment();
 void hide_argument(char* argument);
 void hide_token_in_uri_argument(char* uri);
 
+// Applies the two to a whole command line once it has been parsed: the value of every
+// --token (as "--token T" or "--token=T") and the token in every --uri's value.
+void hide_secret_arguments(int argc, char** argv);
+
 }  // namespace gc::headctl

@@ -7,6 +7,8 @@ GESTURECAM_PACKAGES=(
   gstreamer1.0-tools gstreamer1.0-plugins-base gstreamer1.0-plugins-good gstreamer1.0-plugins-ugly
   gstreamer1.0-libav time
   libgtest-dev valgrind python3
+  gobject-introspection libgirepository1.0-dev python3-gi gir1.2-gst-plugins-base-1.0
+  libcli11-dev
 )
 
 gesturecam_install_deps() {

@@ -31,10 +31,10 @@ struct BenchOptions {
     bool real_dir_given = false;  // named on the command line (else the source tree's)
     int real_frames = 1 << 30;  // the real pair's first frames that are tracked
     bool json = false;
-    bool help = false;
 };
 
-// Throws gc::cli::UsageError on a wrong command line.
-BenchOptions parse_bench_options(int argc, char** argv);
+// Parses the command line into `o`: -1 to go on, else the status to exit with (0 after --help
+// or --version, 2 after a one-line hint on a wrong command line).
+int parse_bench_options(int argc, char** argv, BenchOptions& o);
 
 }  // namespace gc::tools

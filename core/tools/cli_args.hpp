@@ -1,11 +1,10 @@
-// Command-line parsing shared by the tools: "--name value" and "--name=value" options, strict
+// Option values shared by the tools (CLI11 reads the command line, tools/cli_app.hpp): strict
 // numbers (the whole text must parse, inside the allowed range) and comma-separated lists.
 #pragma once
 
 #include <charconv>
 #include <cstdint>
 #include <limits>
-#include <span>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -14,59 +13,10 @@
 
 namespace gc::cli {
 
-// A wrong command line; the tools print the message and the usage, and exit with status 2.
+// A wrong command line; the tools print the message on one line and exit with status 2.
 class UsageError : public std::runtime_error {
 public:
     using std::runtime_error::runtime_error;
-};
-
-// Walks argv option by option.
-class ArgReader {
-public:
-    ArgReader(int argc, char** argv) : args_(argv + 1, argc > 0 ? argc - 1 : 0) {}
-
-    // Moves to the next option; false when there is none left.
-    bool next()
-    {
-        if (pos_ >= args_.size())
-            return false;
-        std::string_view arg = args_[pos_++];
-        if (!arg.starts_with("--") || arg.size() == 2)
-            throw UsageError("unexpected argument '" + std::string(arg) + "' (options start with --)");
-        const std::size_t eq = arg.find('=');
-        name_ = arg.substr(0, eq);
-        has_inline_ = eq != std::string_view::npos;
-        inline_value_ = has_inline_ ? arg.substr(eq + 1) : std::string_view{};
-        return true;
-    }
-
-    std::string_view name() const { return name_; }
-
-    // The option's value: after '=' or the next argument.
-    std::string_view value()
-    {
-        if (has_inline_) {
-            has_inline_ = false;
-            return inline_value_;
-        }
-        if (pos_ >= args_.size())
-            throw UsageError("option " + std::string(name_) + " needs a value");
-        return args_[pos_++];
-    }
-
-    // For options that take no value.
-    void no_value() const
-    {
-        if (has_inline_)
-            throw UsageError("option " + std::string(name_) + " takes no value");
-    }
-
-private:
-    std::span<char*> args_;
-    std::size_t pos_ = 0;
-    std::string_view name_;
-    std::string_view inline_value_;
-    bool has_inline_ = false;
 };
 
 // The shortest text that reads back as `v` (locale-independent).

@@ -5,7 +5,6 @@
 #include "tools/bench_options.hpp"
 #include "tools/bench_report.hpp"
 #include "tools/bench_stats.hpp"
-#include "tools/cli_args.hpp"
 
 #include <opencv2/core/utility.hpp>
 
@@ -92,16 +91,8 @@ int run_bench(const BenchOptions& o)
 int main(int argc, char** argv)
 {
     BenchOptions options;
-    try {
-        options = parse_bench_options(argc, argv);
-    } catch (const gc::cli::UsageError& e) {
-        std::cerr << "gesturecam-bench: " << e.what() << "\n\n" << kBenchUsage;
-        return 2;
-    }
-    if (options.help) {
-        std::cout << kBenchUsage;
-        return 0;
-    }
+    if (const int status = parse_bench_options(argc, argv, options); status >= 0)
+        return status;
     try {
         return run_bench(options);
     } catch (const std::exception& e) {

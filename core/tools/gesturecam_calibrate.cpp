@@ -3,6 +3,7 @@
 // and the mean epipolar error of the detected corners.
 #include "stereo/calibration.hpp"
 #include "stereo/calibration_io.hpp"
+#include "tools/cli_app.hpp"
 #include "tools/image_file.hpp"
 
 #include <opencv2/calib3d.hpp>
@@ -33,7 +34,9 @@ const char* const kUsage =
     "  --board WxH                inner corners of the chessboard (default 9x6)\n"
     "  --square MM                side of one square in millimetres (default 25)\n"
     "  --out FILE                 calibration file to write, .yml or .xml (default calibration.yml)\n"
-    "  --verbose                  print each pair's detection result\n";
+    "  --verbose                  print each pair's detection result\n"
+    "  --version                  the version\n"
+    "  -h, --help                 this text\n";
 
 struct Options {
     std::vector<std::string> left, right;
@@ -43,9 +46,7 @@ struct Options {
     bool verbose = false;
 };
 
-struct UsageError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
+using gc::cli::UsageError;
 
 cv::Size parse_board(const std::string& s)
 {
@@ -71,28 +72,29 @@ double parse_square(const std::string& s)
     return v;
 }
 
-Options parse(int argc, char** argv)
+// Parses the command line into `o`: -1 to go on, else the status to exit with.
+int parse(int argc, char** argv, Options& o)
 {
-    Options o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
-        const auto value = [&]() -> std::string {
-            if (i + 1 >= argc) throw UsageError(arg + ": missing value");
-            return argv[++i];
-        };
-        if (arg == "--left") o.left.push_back(value());
-        else if (arg == "--right") o.right.push_back(value());
-        else if (arg == "--board") o.board = parse_board(value());
-        else if (arg == "--square") o.square_mm = parse_square(value());
-        else if (arg == "--out") o.out = value();
-        else if (arg == "--verbose") o.verbose = true;
-        else if (arg == "--help" || arg == "-h") {
-            std::cout << kUsage;
-            std::exit(0);
-        } else throw UsageError("unknown option '" + arg + "'");
+    std::string board, square;
+    CLI::App app("Stereo calibration of the camera pair from chessboard image pairs", "gesturecam-calibrate");
+    gc::cli::configure(app, kUsage);
+    app.add_option("--left", o.left)->required()->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    app.add_option("--right", o.right)->required()->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    app.add_option("--board", board);
+    app.add_option("--square", square);
+    app.add_option("--out", o.out);
+    app.add_flag("--verbose", o.verbose);
+    if (const int status = gc::cli::parse(app, argc, argv); status >= 0)
+        return status;
+    try {
+        if (!board.empty())
+            o.board = parse_board(board);
+        if (!square.empty())
+            o.square_mm = parse_square(square);
+    } catch (const UsageError& e) {
+        return gc::cli::usage_hint("gesturecam-calibrate", e.what());
     }
-    if (o.left.empty() || o.right.empty()) throw UsageError("--left and --right are required");
-    return o;
+    return -1;
 }
 
 bool is_pattern(const std::string& s) { return s.find('%') != std::string::npos; }
@@ -270,11 +272,13 @@ int run(const Options& o)
 
 int main(int argc, char** argv)
 {
+    Options options;
+    if (const int status = parse(argc, argv, options); status >= 0)
+        return status;
     try {
-        return run(parse(argc, argv));
+        return run(options);
     } catch (const UsageError& e) {
-        std::cerr << "gesturecam-calibrate: " << e.what() << "\n" << kUsage;
-        return 2;
+        return gc::cli::usage_hint("gesturecam-calibrate", e.what());
     } catch (const std::exception& e) {
         std::cerr << "gesturecam-calibrate: " << e.what() << "\n";
         return 1;

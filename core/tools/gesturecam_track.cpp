@@ -4,13 +4,15 @@
 // Exit status: 0 success (warnings may be printed), 1 an input, calibration or output problem
 // (an undecodable frame included, unless --skip-bad-frames), 2 a wrong command line.
 #include "common/line_output.hpp"
-#include "tools/cli_args.hpp"
+#include "tools/cli_app.hpp"
 #include "tools/frame_source.hpp"
 #include "tracker/pointing_tracker.hpp"
 
 #include <opencv2/core/utils/logger.hpp>
 
+#include <chrono>
 #include <cstdint>
+#include <cstdio>
 #include <iostream>
 #include <limits>
 #include <optional>
@@ -42,7 +44,10 @@ options:
   --max-frames N        stop after the first N frames of the input
   --skip-bad-frames     skip a frame that cannot be decoded (with a warning) instead of
                         stopping with an error
-  --help                this text
+  --progress S          a progress line on stderr every S seconds of a run (default 2;
+                        0: none)
+  --version             the version
+  -h, --help            this text
 
 Frames larger than 8192 pixels a side are refused.
 
@@ -59,57 +64,55 @@ struct Options {
     std::optional<double> fps;
     std::int64_t max_frames = std::numeric_limits<std::int64_t>::max();
     bool skip_bad_frames = false;
-    bool help = false;
+    double progress_s = 2.0;  // seconds between progress lines on stderr; 0: none
 };
 
-Options parse_options(int argc, char** argv)
+// The values as given, checked and converted once CLI11 has parsed the command line.
+struct GivenText {
+    std::string particles, seed, detector, fps, max_frames, progress;
+};
+
+// CLI11 reads the command line into `o` and `t`; throws gc::cli::UsageError for a value that
+// does not convert.
+void add_options(CLI::App& app, Options& o, GivenText& t)
+{
+    app.add_option("--left", o.left)->required();
+    app.add_option("--right", o.right);
+    app.add_option("--calibration", o.calibration);
+    app.add_option("--particles", t.particles);
+    app.add_option("--seed", t.seed);
+    app.add_option("--detector", t.detector);
+    app.add_option("--model-dir", o.params.model_dir);
+    app.add_option("--out", o.out);
+    app.add_option("--fps", t.fps);
+    app.add_option("--max-frames", t.max_frames);
+    app.add_option("--progress", t.progress);
+    app.add_flag("--skip-bad-frames", o.skip_bad_frames);
+}
+
+void convert(const GivenText& t, Options& o)
 {
     using gc::cli::parse_number;
-    Options o;
-    gc::cli::ArgReader args(argc, argv);
-    while (args.next()) {
-        const std::string_view name = args.name();
-        if (name == "--help") {
-            args.no_value();
-            o.help = true;
-        } else if (name == "--left") {
-            o.left = args.value();
-        } else if (name == "--right") {
-            o.right = std::string(args.value());
-        } else if (name == "--calibration") {
-            o.calibration = std::string(args.value());
-        } else if (name == "--particles") {
-            o.params.particles = parse_number<int>(name, args.value(), 1, 100000);
-        } else if (name == "--seed") {
-            o.params.seed = parse_number<std::uint64_t>(name, args.value());
-        } else if (name == "--detector") {
-            const std::string_view d = args.value();
-            if (d != "learned" && d != "motion")
-                throw gc::cli::UsageError("--detector must be learned or motion, not " + std::string(d));
-            o.params.detector = d == "motion" ? gc::HandDetector::Motion : gc::HandDetector::Learned;
-        } else if (name == "--model-dir") {
-            o.params.model_dir = std::string(args.value());
-        } else if (name == "--out") {
-            o.out = std::string(args.value());
-        } else if (name == "--fps") {
-            o.fps = parse_number<double>(name, args.value(), 1e-3, 1e4);
-        } else if (name == "--skip-bad-frames") {
-            args.no_value();
-            o.skip_bad_frames = true;
-        } else if (name == "--max-frames") {
-            o.max_frames = parse_number<std::int64_t>(name, args.value(), 1,
-                                                      std::numeric_limits<std::int64_t>::max());
-        } else {
-            throw gc::cli::UsageError("unknown option " + std::string(name));
-        }
+    if (!t.particles.empty())
+        o.params.particles = parse_number<int>("--particles", t.particles, 1, 100000);
+    if (!t.seed.empty())
+        o.params.seed = parse_number<std::uint64_t>("--seed", t.seed);
+    if (!t.detector.empty()) {
+        if (t.detector != "learned" && t.detector != "motion")
+            throw gc::cli::UsageError("--detector must be learned or motion, not " + t.detector);
+        o.params.detector = t.detector == "motion" ? gc::HandDetector::Motion : gc::HandDetector::Learned;
     }
-    if (!o.help && o.left.empty())
-        throw gc::cli::UsageError("--left is required");
+    if (!t.fps.empty())
+        o.fps = parse_number<double>("--fps", t.fps, 1e-3, 1e4);
+    if (!t.max_frames.empty())
+        o.max_frames = parse_number<std::int64_t>("--max-frames", t.max_frames, 1,
+                                                  std::numeric_limits<std::int64_t>::max());
+    if (!t.progress.empty())
+        o.progress_s = parse_number<double>("--progress", t.progress, 0.0, 1e6);
     if (o.right && o.right->empty())
         throw gc::cli::UsageError("--right needs a non-empty value");
     if (o.out && o.out->empty())
         throw gc::cli::UsageError("--out needs a non-empty value");
-    return o;
 }
 
 std::string size_text(const cv::Size& s)
@@ -155,6 +158,7 @@ public:
     }
 
     bool stereo() const { return right_.has_value(); }
+    std::optional<std::int64_t> frame_count() const { return left_.frame_count(); }
     std::int64_t index() const { return index_; }  // of the pair given last
     std::int64_t next_index() const { return left_.next_index(); }
     std::int64_t skipped() const { return skipped_; }
@@ -201,6 +205,38 @@ private:
     std::int64_t skipped_ = 0;
 };
 
+// A line on stderr every `interval_s` seconds of a run (none for a shorter run): frames done,
+// of how many, and how fast.
+class ProgressLine {
+public:
+    ProgressLine(double interval_s, std::optional<std::int64_t> total)
+        : interval_(std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(interval_s))),
+          total_(total), start_(Clock::now()), next_(start_ + interval_)
+    {
+    }
+
+    void frame_done(std::int64_t frames)
+    {
+        const Clock::time_point now = Clock::now();
+        if (interval_.count() <= 0.0 || now < next_)
+            return;
+        next_ = now + interval_;
+        const double elapsed = std::chrono::duration<double>(now - start_).count();
+        char text[160];
+        std::snprintf(text, sizeof text, "gesturecam-track: %lld frames%s, %.1f frames/s\n",
+                      static_cast<long long>(frames), total_ ? (" of " + std::to_string(*total_)).c_str() : "",
+                      elapsed > 0.0 ? static_cast<double>(frames) / elapsed : 0.0);
+        std::cerr << text << std::flush;
+    }
+
+private:
+    using Clock = std::chrono::steady_clock;
+    Clock::duration interval_;
+    std::optional<std::int64_t> total_;
+    Clock::time_point start_;
+    Clock::time_point next_;
+};
+
 // The JSON line of `result`, numbered with the frame's index in the input (which differs from
 // the tracker's count once frames were skipped).
 std::string json_line(const gc::FrameResult& result, std::int64_t index)
@@ -240,6 +276,10 @@ void run(const Options& o)
 
     std::int64_t frames = 0;
     std::int64_t tracked = 0;
+    std::optional<std::int64_t> total = input.frame_count();
+    if (total && *total > o.max_frames)
+        total = o.max_frames;
+    ProgressLine progress(o.progress_s, total);
     do {
         const std::int64_t index = input.index();
         // The container's time when it has one, else the frame index at --fps.
@@ -251,7 +291,7 @@ void run(const Options& o)
                                                   : tracker.process_mono(left_frame, pts);
         tracked += r.state == gc::TrackState::Tracking ? 1 : 0;
         out.write_line(json_line(r, index));
-        ++frames;
+        progress.frame_done(++frames);
     } while (input.next_index() < o.max_frames && input.next(left_frame, right_frame) &&
              input.index() < o.max_frames);
     out.close();
@@ -266,15 +306,16 @@ void run(const Options& o)
 int main(int argc, char** argv)
 {
     Options options;
+    GivenText given;
+    CLI::App app("Tracks the pointing hand in a recorded stereo pair", "gesturecam-track");
+    gc::cli::configure(app, kUsage);
+    add_options(app, options, given);
+    if (const int status = gc::cli::parse(app, argc, argv); status >= 0)
+        return status;
     try {
-        options = parse_options(argc, argv);
+        convert(given, options);
     } catch (const gc::cli::UsageError& e) {
-        std::cerr << "gesturecam-track: " << e.what() << "\n\n" << kUsage;
-        return 2;
-    }
-    if (options.help) {
-        std::cout << kUsage;
-        return 0;
+        return gc::cli::usage_hint("gesturecam-track", e.what());
     }
     // The image-sequence reader warns when it reaches the end of a sequence: not news here.
     cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_ERROR);

@@ -2,6 +2,7 @@
 // detectors, the stereo rows, the real pair), with figures in their valid ranges; bad options
 // are rejected.
 #include "tools/json_reader.hpp"
+#include "tools/tool_version.hpp"
 
 #include <gtest/gtest.h>
 
@@ -239,11 +240,25 @@ TEST(BenchTool, RejectsBadOptions)
     }
     const RunResult r = run_bench("--scenes clean,nowhere");
     EXPECT_NE(r.err.find("nowhere"), std::string::npos) << r.err;
+    // One line that points at --help, not the whole usage.
+    EXPECT_EQ(count(r.err, "\n"), 1u) << r.err;
+    EXPECT_NE(r.err.find("--help"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("usage:"), std::string::npos) << r.err;
     // A named real pair folder that is not there fails before anything is measured.
     const RunResult missing = run_bench("--quick --real /nonexistent/handpose3d");
     EXPECT_EQ(missing.status, 1);
     EXPECT_NE(missing.err.find("/nonexistent/handpose3d"), std::string::npos) << missing.err;
     EXPECT_EQ(missing.err.find("seed"), std::string::npos) << "measured before failing: " << missing.err;
+}
+
+TEST(BenchTool, AnswersVersionAndHelp)
+{
+    const RunResult version = run_bench("--version");
+    EXPECT_EQ(version.status, 0);
+    EXPECT_EQ(version.out, "gesturecam-bench " + std::string(GC_TOOL_VERSION) + "\n");
+    const RunResult help = run_bench("-h");
+    EXPECT_EQ(help.status, 0);
+    EXPECT_NE(help.out.find("--no-peers"), std::string::npos) << help.out;
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include "sim/scene.hpp"
 #include "stereo/calibration.hpp"
 #include "tools/json_reader.hpp"
+#include "tools/tool_version.hpp"
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -14,6 +15,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -347,6 +349,39 @@ TEST_F(TrackTool, BadCommandLinesExitWithStatusTwo)
     const RunResult help = run("--help");
     EXPECT_EQ(help.status, 0);
     EXPECT_NE(help.out.find("--left"), std::string::npos);
+    EXPECT_EQ(run("-h").out, help.out);
+}
+
+TEST_F(TrackTool, BadOptionGetsAOneLineHint)
+{
+    for (const char* args : {"--left x --frobnicate", "--left x --particles 0", "--left x --skip-bad-frames=1"}) {
+        const RunResult r = run(args);
+        EXPECT_EQ(r.status, 2) << args;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << " -> " << r.err;
+        EXPECT_NE(r.err.find("--help"), std::string::npos) << r.err;
+        EXPECT_EQ(r.err.find("usage:"), std::string::npos) << r.err;
+    }
+}
+
+TEST_F(TrackTool, AnswersVersion)
+{
+    const RunResult r = run("--version");
+    EXPECT_EQ(r.status, 0);
+    EXPECT_EQ(r.out, "gesturecam-track " + std::string(GC_TOOL_VERSION) + "\n");
+}
+
+TEST_F(TrackTool, ProgressLinesOnStderr)
+{
+    const std::string mono = "--left " + quoted(pattern("left")) + " --particles 50 --max-frames 6";
+    // Every frame of this run takes longer than the interval asked for.
+    const RunResult r = run(mono + " --progress 0.000001");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("gesturecam-track: 1 frames of 6, "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("gesturecam-track: 6 frames of 6, "), std::string::npos) << r.err;
+    const RunResult quiet = run(mono + " --progress 0");
+    ASSERT_EQ(quiet.status, 0) << quiet.err;
+    EXPECT_EQ(quiet.err.find("frames/s"), std::string::npos) << quiet.err;
+    EXPECT_EQ(quiet.out, r.out);
 }
 
 }  // namespace

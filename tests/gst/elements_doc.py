@@ -6,7 +6,7 @@ rewrites it. The plugin's file name is written as build/gst-plugin/..., wherever
 Usage: elements_doc.py [--write] SOURCE_ROOT PLUGIN_DIR"""
 import difflib, os, re, subprocess, sys
 
-ELEMENTS = ["handtracker", "handscenesrc", "imagesizelimit"]
+ELEMENTS = ["handtracker", "handscenesrc", "imagesizelimit", "handoverlay"]
 HEADER = ("# Element reference\n\n"
           "Generated with `GST_PLUGIN_PATH=build/gst-plugin gst-inspect-1.0 ELEMENT`; "
           "`tests/gst/elements_doc.py --write . build/gst-plugin` rewrites it, and a test checks it.\n")

@@ -19,12 +19,13 @@ std::vector<std::string> plugin_elements()
     return names;
 }
 
-TEST(Elements, ThePluginHasBothElements)
+TEST(Elements, ThePluginHasItsThreeElements)
 {
     gc::test::init_gstreamer();
     const std::vector<std::string> names = plugin_elements();
     EXPECT_NE(std::find(names.begin(), names.end(), "handtracker"), names.end());
     EXPECT_NE(std::find(names.begin(), names.end(), "handscenesrc"), names.end());
+    EXPECT_NE(std::find(names.begin(), names.end(), "handoverlay"), names.end());
 }
 
 TEST(Elements, StateChangesUpAndDown)

@@ -137,4 +137,71 @@ TEST(Meta, ScaleTransformKeepsAnAttendedCrop)
     gst_buffer_unref(buffer);
 }
 
+TEST(Meta, EnumsHaveGTypesWithTheirNames)
+{
+    GEnumClass* gestures = G_ENUM_CLASS(g_type_class_ref(GST_TYPE_HAND_POINTING_GESTURE));
+    EXPECT_STREQ(g_enum_get_value(gestures, GST_HAND_POINTING_GESTURE_FIST)->value_nick, "fist");
+    EXPECT_STREQ(g_enum_get_value(gestures, GST_HAND_POINTING_GESTURE_POINTING)->value_nick, "pointing");
+    g_type_class_unref(gestures);
+    GEnumClass* states = G_ENUM_CLASS(g_type_class_ref(GST_TYPE_HAND_POINTING_STATE));
+    EXPECT_STREQ(g_enum_get_value(states, GST_HAND_POINTING_STATE_LOST)->value_nick, "lost");
+    g_type_class_unref(states);
+    GFlagsClass* flags = G_FLAGS_CLASS(g_type_class_ref(GST_TYPE_HAND_POINTING_FLAGS));
+    EXPECT_STREQ(g_flags_get_first_value(flags, GST_HAND_POINTING_FLAG_HAS_3D)->value_nick, "has-3d");
+    g_type_class_unref(flags);
+    EXPECT_TRUE(G_TYPE_IS_ENUM(GST_TYPE_HAND_POINTING_VIEW));
+}
+
+TEST(Meta, AccessorsReadTheFields)
+{
+    gc::test::init_gstreamer();
+    GstBuffer* buffer = gst_buffer_new_allocate(nullptr, 16, nullptr);
+    EXPECT_EQ(gst_hand_pointing_meta_from_buffer(buffer), nullptr);
+    GstHandPointingMeta* meta = add_filled_meta(buffer, GST_HAND_POINTING_FLAG_HAS_3D);
+    meta->elevation_deg = 4.0;
+    meta->fingertip_mm[2] = 900.0;
+    meta->left_gesture = GST_HAND_POINTING_GESTURE_POINTING;
+    ASSERT_EQ(gst_hand_pointing_meta_from_buffer(buffer), meta);
+    EXPECT_EQ(gst_hand_pointing_meta_get_frame(meta), 7u);
+    EXPECT_EQ(gst_hand_pointing_meta_get_state(meta), GST_HAND_POINTING_STATE_TRACKING);
+    EXPECT_EQ(gst_hand_pointing_meta_get_flags(meta), GST_HAND_POINTING_FLAG_HAS_3D);
+    gdouble azimuth = 0.0, elevation = 0.0, x = 0.0, y = 0.0, z = 0.0, angle = 0.0;
+    ASSERT_TRUE(gst_hand_pointing_meta_get_direction(meta, &azimuth, &elevation));
+    EXPECT_EQ(azimuth, -12.5);
+    EXPECT_EQ(elevation, 4.0);
+    ASSERT_TRUE(gst_hand_pointing_meta_get_fingertip_mm(meta, nullptr, nullptr, &z));
+    EXPECT_EQ(z, 900.0);
+    EXPECT_FALSE(gst_hand_pointing_meta_get_head_pose(meta, nullptr, nullptr, nullptr, nullptr));
+    EXPECT_EQ(gst_hand_pointing_meta_get_gesture(meta, GST_HAND_POINTING_VIEW_LEFT), GST_HAND_POINTING_GESTURE_POINTING);
+    ASSERT_TRUE(gst_hand_pointing_meta_get_fingertip(meta, GST_HAND_POINTING_VIEW_LEFT, &x, &y, &angle));
+    EXPECT_EQ(x, 130.0);
+    EXPECT_EQ(y, 20.0);
+    EXPECT_EQ(angle, 45.0);
+    guint n = 0;
+    const gfloat* contour = gst_hand_pointing_meta_get_contour(meta, GST_HAND_POINTING_VIEW_LEFT, &n);
+    ASSERT_EQ(n, 6u);
+    EXPECT_EQ(contour[2], 120.0f);
+    EXPECT_EQ(contour[5], 90.0f);
+    gst_buffer_unref(buffer);
+}
+
+TEST(Meta, AccessorsSayWhatIsUnknown)
+{
+    gc::test::init_gstreamer();
+    GstBuffer* buffer = gst_buffer_new_allocate(nullptr, 16, nullptr);
+    GstHandPointingMeta* meta = add_filled_meta(buffer, GST_HAND_POINTING_FLAG_NONE);
+    meta->right.state = GST_HAND_POINTING_STATE_TRACKING;  // ignored: the meta is mono
+    gdouble azimuth = 99.0;
+    EXPECT_FALSE(gst_hand_pointing_meta_get_direction(meta, &azimuth, nullptr));
+    EXPECT_EQ(azimuth, 99.0);
+    EXPECT_EQ(gst_hand_pointing_meta_get_view_state(meta, GST_HAND_POINTING_VIEW_RIGHT), GST_HAND_POINTING_STATE_ACQUIRING);
+    EXPECT_FALSE(gst_hand_pointing_meta_get_fingertip(meta, GST_HAND_POINTING_VIEW_RIGHT, nullptr, nullptr, nullptr));
+    guint n = 5;
+    gst_hand_pointing_meta_get_contour(meta, GST_HAND_POINTING_VIEW_RIGHT, &n);
+    EXPECT_EQ(n, 0u);
+    meta->left.state = GST_HAND_POINTING_STATE_LOST;
+    EXPECT_FALSE(gst_hand_pointing_meta_get_fingertip(meta, GST_HAND_POINTING_VIEW_LEFT, nullptr, nullptr, nullptr));
+    gst_buffer_unref(buffer);
+}
+
 }  // namespace

@@ -1,5 +1,6 @@
 // The headctl command-line client against a loopback simulated head: output and exit codes.
 #include "test_support.hpp"
+#include "tools/tool_version.hpp"
 
 #include <signal.h>
 #include <sys/wait.h>
@@ -14,16 +15,17 @@ namespace {
 struct Outcome {
     int exit_code = -1;
     std::string out;
+    std::string err;
 };
 
-// Runs the headctl executable with args (and `env` added to the environment); bounded to 10 s.
-Outcome run_headctl(std::vector<std::string> args, const std::vector<std::string>& env = {}) {
+// Runs build/headctl/`program` with args (and `env` added to the environment); bounded to 10 s.
+Outcome run_program(const std::string& program, std::vector<std::string> args, const std::vector<std::string>& env = {}) {
     const char* root = std::getenv("GESTURECAM_BUILD_ROOT");
-    const std::string path = std::string(root ? root : ".") + "/headctl/headctl";
+    const std::string path = std::string(root ? root : ".") + "/headctl/" + program;
     Outcome o;
     Spawned child;
     try {
-        child = spawn(path, std::move(args), env, false);
+        child = spawn(path, std::move(args), env, true);
     } catch (const std::exception&) {
         ADD_FAILURE() << "cannot run " << path;
         return o;
@@ -54,7 +56,14 @@ Outcome run_headctl(std::vector<std::string> args, const std::vector<std::string
         return o;
     }
     o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    // What it wrote on stderr (a few lines at most: the pipe's buffer holds them all).
+    char chunk[4096];
+    for (ssize_t n; (n = ::read(child.err.get(), chunk, sizeof chunk)) > 0;) o.err.append(chunk, static_cast<std::size_t>(n));
     return o;
+}
+
+Outcome run_headctl(std::vector<std::string> args, const std::vector<std::string>& env = {}) {
+    return run_program("headctl", std::move(args), env);
 }
 
 TEST(HeadctlCli, StatusMoveAndLimits) {
@@ -110,4 +119,37 @@ TEST(HeadctlCli, TakesTheTokenFromAFileOrTheEnvironment) {
 }
 
 }  // namespace
+TEST(HeadctlCli, JsonRepliesOneObjectPerLine) {
+    RunningServer server;
+    const Outcome status = run_headctl({"--uri", server.uri(), "--json", "status"});
+    EXPECT_EQ(status.exit_code, 0);
+    EXPECT_NE(status.out.find("\"pan\":0,\"tilt\":0,\"verge_l\":0,\"verge_r\":0,\"pan_moving\":false"),
+              std::string::npos) << status.out;
+    EXPECT_EQ(status.out.front(), '{');
+    EXPECT_EQ(std::count(status.out.begin(), status.out.end(), '\n'), 1);
+    const Outcome move = run_headctl({"--uri", server.uri(), "--json", "move", "rel", "pan=-5"});
+    EXPECT_EQ(move.exit_code, 0);
+    EXPECT_EQ(move.out, "{\"ok\":true,\"command\":\"move rel pan=-5\"}\n");
+    const Outcome limits = run_headctl({"--uri", server.uri(), "--json", "limits"});
+    EXPECT_EQ(limits.exit_code, 0);
+    EXPECT_NE(limits.out.find("{\"axis\":\"pan\",\"min\":-170,\"max\":170,"), std::string::npos) << limits.out;
+    EXPECT_EQ(std::count(limits.out.begin(), limits.out.end(), '\n'), 4);
+}
+
+TEST(HeadctlCli, VersionHelpAndAOneLineHint) {
+    for (const std::string program : {"headctl", "headsim"}) {
+        const Outcome version = run_program(program, {"--version"});
+        EXPECT_EQ(version.exit_code, 0);
+        EXPECT_EQ(version.out, program + " " + GC_TOOL_VERSION + "\n");
+        const Outcome help = run_program(program, {"-h"});
+        EXPECT_EQ(help.exit_code, 0);
+        EXPECT_NE(help.out.find("usage: " + program), std::string::npos) << help.out;
+        const Outcome bad = run_program(program, {"--frobnicate", "status"});
+        EXPECT_EQ(bad.exit_code, 2);
+        EXPECT_NE(bad.err.find("--frobnicate"), std::string::npos) << bad.err;
+        EXPECT_NE(bad.err.find("--help"), std::string::npos) << bad.err;
+        EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+    }
+}
+
 }  // namespace gc::headctl::testing

@@ -1,12 +1,14 @@
 // gesturecam-calibrate on OpenCV's stereo chessboard sample pairs (Debian's opencv-doc).
 #include "stereo/calibration.hpp"
 #include "stereo/extrinsics.hpp"
+#include "tools/tool_version.hpp"
 
 #include <gtest/gtest.h>
 
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -137,6 +139,9 @@ TEST_F(Chessboard, BadArgumentsAreReported)
     ToolRun bad = run("--left '" + l + "' --right '" + r + "' --board 9by6", dir_ / "log.txt");
     EXPECT_EQ(bad.status, 2);
     EXPECT_NE(bad.out.find("--board"), std::string::npos) << bad.out;
+    // One line pointing at --help, not the whole usage.
+    EXPECT_EQ(std::count(bad.out.begin(), bad.out.end(), '\n'), 1) << bad.out;
+    EXPECT_NE(bad.out.find("--help"), std::string::npos) << bad.out;
     bad = run("--left '" + l + "' --right '" + r + "," + r + "'", dir_ / "log.txt");
     EXPECT_EQ(bad.status, 2) << bad.out;
     bad = run("--left /nonexistent/a.png --right /nonexistent/b.png --out '" + (dir_ / "x.yml").string() + "'",
@@ -149,6 +154,16 @@ TEST_F(Chessboard, BadArgumentsAreReported)
     bad = run("--left '" + l + "' --right '" + r + "' --out '" + (dir_ / "x.yml").string() + "'", dir_ / "log.txt");
     EXPECT_EQ(bad.status, 1);
     EXPECT_NE(bad.out.find("at least"), std::string::npos) << bad.out;
+}
+
+TEST_F(Chessboard, AnswersVersionAndHelp)
+{
+    const ToolRun version = run("--version", dir_ / "log.txt");
+    EXPECT_EQ(version.status, 0);
+    EXPECT_EQ(version.out, std::string("gesturecam-calibrate ") + GC_TOOL_VERSION + "\n");
+    const ToolRun help = run("-h", dir_ / "log.txt");
+    EXPECT_EQ(help.status, 0);
+    EXPECT_NE(help.out.find("--board WxH"), std::string::npos) << help.out;
 }
 
 }  // namespace

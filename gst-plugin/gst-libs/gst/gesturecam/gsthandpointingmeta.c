@@ -143,6 +143,12 @@ gst_hand_pointing_meta_get_info (void)
   return info;
 }
 
+/**
+ * gst_buffer_add_hand_pointing_meta:
+ * @buffer: a writable #GstBuffer
+ *
+ * Returns: (transfer none): a zeroed meta (state ACQUIRING, scale 1) added to @buffer
+ */
 GstHandPointingMeta *
 gst_buffer_add_hand_pointing_meta (GstBuffer * buffer)
 {
