@@ -2,8 +2,8 @@
 
 #include "handtracker_views.hpp"
 #include "head_connection.hpp"
+#include "head_uri_property.hpp"
 
-#include "headctl/token.hpp"
 #include "headctl/uri.hpp"
 
 #include <chrono>
@@ -79,18 +79,7 @@ bool prepare_head(GstHandTracker* self, const Settings& settings)
             return false;
         }
     }
-    e.head_token.clear();
-    if (!settings.head_token_file.empty()) {
-        try {
-            e.head_token = gc::headctl::read_token_file(settings.head_token_file);
-        } catch (const std::exception& err) {
-            GST_ELEMENT_ERROR(self, RESOURCE, OPEN_READ,
-                              ("Cannot read the head token file \"%s\".", settings.head_token_file.c_str()),
-                              ("%s", err.what()));
-            return false;
-        }
-    }
-    return true;
+    return read_head_token(GST_ELEMENT(self), settings.head_token_file, e.head_token);
 }
 
 GstFlowReturn head_at_capture(GstHandTracker* self, const Settings& settings, cv::Size size,

@@ -66,5 +66,6 @@ int main(int argc, char** argv)
         std::printf("warning: %s\n", warning.c_str());
     for (const auto& [buffers, kib] : run.rss_kib)
         std::printf("RSS after frame %d: %.1f MB\n", buffers, kib / 1024.0);
+    gst_deinit();  // lets GST_TRACERS=leaks report what is still alive
     return run.eos && run.error.empty() && found == judged && judged > 0 ? 0 : 1;
 }
