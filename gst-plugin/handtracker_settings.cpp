@@ -64,9 +64,9 @@ static GType gst_hand_tracker_steer_get_type()
 {
     static GType type = 0;
     static const GEnumValue values[] = {
-        {int(gc::SteerMode::Off), "Only read the head's pose (for the camera-motion offsets)", "off"},
-        {int(gc::SteerMode::Fixate), "Keep the hand in the middle of the left view and verge on its depth", "fixate"},
-        {int(gc::SteerMode::Point), "Look where the hand points, target-distance along its ray", "point"},
+        {int(gc::headctl::SteerMode::Off), "Only read the head's pose (for the camera-motion offsets)", "off"},
+        {int(gc::headctl::SteerMode::Fixate), "Keep the hand in the middle of the left view and verge on its depth", "fixate"},
+        {int(gc::headctl::SteerMode::Point), "Look where the hand points, target-distance along its ray", "point"},
         {0, nullptr, nullptr},
     };
     if (g_once_init_enter(&type))
@@ -240,7 +240,7 @@ bool set_tracker_setting(TrackerSettings& s, guint prop_id, const GValue* value,
         break;
     }
     case PROP_STEER:
-        s.steer = gc::SteerMode(g_value_get_enum(value));
+        s.steer = gc::headctl::SteerMode(g_value_get_enum(value));
         break;
     case PROP_TARGET_DISTANCE:
         s.target_distance_mm = g_value_get_double(value);

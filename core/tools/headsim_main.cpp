@@ -1,5 +1,5 @@
 // headsim: the simulated head server (GCHP/1 over TCP).
-#include "headctl/head_server.hpp"
+#include "headctl/sim/head_server.hpp"
 #include "headctl/token.hpp"
 
 #include <getopt.h>
