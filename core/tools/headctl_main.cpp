@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 #include <thread>
 
 namespace {
@@ -82,12 +83,18 @@ HeadCommand parse_move(int argc, char** argv, int i) {
     return c;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+// What the command line asks for.
+struct CommandLine {
     std::string uri_text = "tcp://127.0.0.1:5050";
     std::string token;
     double timeout_ms = 2000;
+    std::string command;
+    int first_arg = 0;  // the index of the command's first argument
+};
+
+// Reads the options and the command; an exit status when the program ends here (--help, an
+// unknown option). Throws UsageError on a bad value.
+std::optional<int> parse_command_line(int argc, char** argv, CommandLine& cl) {
     const option options[] = {
         {"uri", required_argument, nullptr, 'u'},
         {"token", required_argument, nullptr, 't'},
@@ -96,89 +103,120 @@ int main(int argc, char** argv) {
         {"help", no_argument, nullptr, 'h'},
         {nullptr, 0, nullptr, 0},
     };
-    std::unique_ptr<HeadBackend> head;
-    std::string command;
-    int first_arg = 0;
-    try {
-        int opt;
-        // '+': options end at the command, so "move rel pan=-5" keeps its minus sign.
-        while ((opt = getopt_long(argc, argv, "+h", options, nullptr)) != -1) {
-            switch (opt) {
-                case 'u':
-                    uri_text = optarg;
-                    hide_token_in_uri_argument(optarg);
-                    break;
-                case 't':
-                case 'f':
-                    if (!token.empty()) throw UsageError("give one of --token and --token-file");
-                    token = opt == 'f' ? read_token_file(optarg) : optarg;
-                    if (opt == 't') hide_argument(optarg);
-                    break;
-                case 'T':
-                    timeout_ms = number("--timeout", optarg);
-                    if (timeout_ms <= 0 || timeout_ms > 600'000) throw UsageError("--timeout: must be in (0, 600000] ms");
-                    break;
-                case 'h': std::cout << kUsage; return 0;
-                default: std::cerr << kUsage; return kExitUsage;
-            }
+    int opt;
+    // '+': options end at the command, so "move rel pan=-5" keeps its minus sign.
+    while ((opt = getopt_long(argc, argv, "+h", options, nullptr)) != -1) {
+        switch (opt) {
+            case 'u':
+                cl.uri_text = optarg;
+                hide_token_in_uri_argument(optarg);
+                break;
+            case 't':
+            case 'f':
+                if (!cl.token.empty()) throw UsageError("give one of --token and --token-file");
+                cl.token = opt == 'f' ? read_token_file(optarg) : optarg;
+                if (opt == 't') hide_argument(optarg);
+                break;
+            case 'T':
+                cl.timeout_ms = number("--timeout", optarg);
+                if (cl.timeout_ms <= 0 || cl.timeout_ms > 600'000)
+                    throw UsageError("--timeout: must be in (0, 600000] ms");
+                break;
+            case 'h': std::cout << kUsage; return 0;
+            default: std::cerr << kUsage; return kExitUsage;
         }
-        if (optind >= argc) throw UsageError("no command given");
-        command = argv[optind];
-        first_arg = optind + 1;
-        const HeadUri uri = parse_head_uri(uri_text);
-        if (token.empty() && !uri.param("token")) token = token_from_environment();
-        head = make_backend(uri, token);
+    }
+    if (optind >= argc) throw UsageError("no command given");
+    cl.command = argv[optind];
+    cl.first_arg = optind + 1;
+    return std::nullopt;
+}
+
+// The move that `command` asks for, if any; throws UsageError on an unknown command or wrong arguments.
+std::optional<HeadCommand> parse_command(const CommandLine& cl, int argc, char** argv) {
+    const std::string& command = cl.command;
+    std::optional<HeadCommand> move;
+    if (command == "move") move = parse_move(argc, argv, cl.first_arg);
+    else if (command == "home") move = HeadCommand{CommandKind::Home, {}};
+    else if (command == "stop") move = HeadCommand{CommandKind::Stop, {}};
+    else if (command != "status" && command != "limits" && command != "watch")
+        throw UsageError("unknown command '" + command + "'");
+    const int extra = argc - cl.first_arg;
+    if ((command == "status" || command == "limits" || command == "home" || command == "stop") && extra != 0)
+        throw UsageError(command + " takes no arguments");
+    if (command == "watch" && extra > 2) throw UsageError("watch takes at most INTERVAL_MS and COUNT");
+    return move;
+}
+
+int print_limits(HeadBackend& head, std::chrono::steady_clock::time_point deadline) {
+    const auto limits = head.query_limits(deadline);
+    if (!limits) {
+        std::cerr << "headctl: " << head.name() << " does not report its limits\n";
+        return kExitRefused;
+    }
+    for (Axis a : kAllAxes) {
+        const AxisLimits& l = (*limits)[a];
+        std::printf("%-8s min=%.3f max=%.3f max_velocity=%.3f max_acceleration=%.3f\n",
+                    std::string(axis_name(a)).c_str(), l.min_deg, l.max_deg, l.max_velocity_dps,
+                    l.max_acceleration_dps2);
+    }
+    return 0;
+}
+
+// Prints the status every INTERVAL_MS (default 200), COUNT times (default 0: until a signal).
+template <typename Deadline>
+void watch(HeadBackend& head, int argc, char** argv, int first_arg, Deadline deadline) {
+    const int extra = argc - first_arg;
+    const double interval = extra >= 1 ? number("watch interval", argv[first_arg]) : 200.0;
+    const double count = extra >= 2 ? number("watch count", argv[first_arg + 1]) : 0.0;
+    if (interval < 1 || interval > 60'000) throw UsageError("watch interval must be 1..60000 ms");
+    if (count < 0 || count != std::floor(count)) throw UsageError("watch count must be a whole number >= 0");
+    struct sigaction sa{};
+    sa.sa_handler = on_signal;
+    sigaction(SIGINT, &sa, nullptr);
+    sigaction(SIGTERM, &sa, nullptr);
+    for (long n = 0; !g_interrupted && (count == 0 || n < static_cast<long>(count)); ++n) {
+        if (n) std::this_thread::sleep_for(std::chrono::microseconds(static_cast<long long>(interval * 1000)));
+        print_state(head.query_state(deadline()));
+    }
+}
+
+// Runs the command on the head; the exit status.
+int run(HeadBackend& head, const CommandLine& cl, int argc, char** argv) {
+    const auto timeout = std::chrono::microseconds(static_cast<long long>(cl.timeout_ms * 1000));
+    auto deadline = [&] { return std::chrono::steady_clock::now() + timeout; };
+    const std::optional<HeadCommand> move = parse_command(cl, argc, argv);
+    head.open(deadline());
+    if (move) {
+        head.send(*move, deadline());
+        std::cout << "ok " << describe(*move) << "\n";
+    } else if (cl.command == "status") {
+        print_state(head.query_state(deadline()));
+    } else if (cl.command == "limits") {
+        return print_limits(head, deadline());
+    } else {
+        watch(head, argc, argv, cl.first_arg, deadline);
+    }
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CommandLine cl;
+    std::unique_ptr<HeadBackend> head;
+    try {
+        if (const std::optional<int> status = parse_command_line(argc, argv, cl)) return *status;
+        const HeadUri uri = parse_head_uri(cl.uri_text);
+        if (cl.token.empty() && !uri.param("token")) cl.token = token_from_environment();
+        head = make_backend(uri, cl.token);
     } catch (const std::invalid_argument& e) {
         std::cerr << "headctl: " << e.what() << "\n" << kUsage;
         return kExitUsage;
     }
 
-    const auto timeout = std::chrono::microseconds(static_cast<long long>(timeout_ms * 1000));
-    auto deadline = [&] { return std::chrono::steady_clock::now() + timeout; };
     try {
-        std::optional<HeadCommand> move;
-        if (command == "move") move = parse_move(argc, argv, first_arg);
-        else if (command == "home") move = HeadCommand{CommandKind::Home, {}};
-        else if (command == "stop") move = HeadCommand{CommandKind::Stop, {}};
-        else if (command != "status" && command != "limits" && command != "watch")
-            throw UsageError("unknown command '" + command + "'");
-        const int extra = argc - first_arg;
-        if ((command == "status" || command == "limits" || command == "home" || command == "stop") && extra != 0)
-            throw UsageError(command + " takes no arguments");
-        if (command == "watch" && extra > 2) throw UsageError("watch takes at most INTERVAL_MS and COUNT");
-
-        head->open(deadline());
-        if (move) {
-            head->send(*move, deadline());
-            std::cout << "ok " << describe(*move) << "\n";
-        } else if (command == "status") {
-            print_state(head->query_state(deadline()));
-        } else if (command == "limits") {
-            const auto limits = head->query_limits(deadline());
-            if (!limits) {
-                std::cerr << "headctl: " << head->name() << " does not report its limits\n";
-                return kExitRefused;
-            }
-            for (Axis a : kAllAxes) {
-                const AxisLimits& l = (*limits)[a];
-                std::printf("%-8s min=%.3f max=%.3f max_velocity=%.3f max_acceleration=%.3f\n",
-                            std::string(axis_name(a)).c_str(), l.min_deg, l.max_deg, l.max_velocity_dps,
-                            l.max_acceleration_dps2);
-            }
-        } else {  // watch
-            const double interval = extra >= 1 ? number("watch interval", argv[first_arg]) : 200.0;
-            const double count = extra >= 2 ? number("watch count", argv[first_arg + 1]) : 0.0;
-            if (interval < 1 || interval > 60'000) throw UsageError("watch interval must be 1..60000 ms");
-            if (count < 0 || count != std::floor(count)) throw UsageError("watch count must be a whole number >= 0");
-            struct sigaction sa{};
-            sa.sa_handler = on_signal;
-            sigaction(SIGINT, &sa, nullptr);
-            sigaction(SIGTERM, &sa, nullptr);
-            for (long n = 0; !g_interrupted && (count == 0 || n < static_cast<long>(count)); ++n) {
-                if (n) std::this_thread::sleep_for(std::chrono::microseconds(static_cast<long long>(interval * 1000)));
-                print_state(head->query_state(deadline()));
-            }
-        }
+        return run(*head, cl, argc, argv);
     } catch (const UsageError& e) {
         std::cerr << "headctl: " << e.what() << "\n";
         return kExitUsage;
@@ -192,5 +230,4 @@ int main(int argc, char** argv) {
         std::cerr << "headctl: " << e.what() << "\n";
         return kExitRefused;
     }
-    return 0;
 }
