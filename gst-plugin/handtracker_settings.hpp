@@ -4,7 +4,7 @@
 
 #include "gsthandtracker.hpp"
 
-#include "headctl/head_link.hpp"
+#include "headctl/steering/head_link.hpp"
 #include "tracker/hand_tracker.hpp"
 
 #include <glib-object.h>
@@ -21,7 +21,7 @@ constexpr double kDefaultLostThreshold = 0.6;
 constexpr int kDefaultLostFrames = 3;
 constexpr GstHandTrackerOutput kDefaultOutput = GST_HAND_TRACKER_OUTPUT_LEFT;
 constexpr GstHandTrackerMessageUpdates kDefaultMessageUpdates = GST_HAND_TRACKER_MESSAGES_EVERY_FRAME;
-constexpr gc::SteerMode kDefaultSteer = gc::SteerMode::Fixate;
+constexpr gc::headctl::SteerMode kDefaultSteer = gc::headctl::SteerMode::Fixate;
 constexpr double kDefaultTargetDistanceMm = 2000.0;
 constexpr double kDefaultDwellS = 1.0;
 constexpr double kDefaultTargetRegionMm = 500.0;
@@ -39,7 +39,7 @@ struct TrackerSettings {
     std::string json_location;
     std::string head;  // the head's URI; empty: no head
     std::string head_token_file;  // empty: the URI's token, if any
-    gc::SteerMode steer = kDefaultSteer;
+    gc::headctl::SteerMode steer = kDefaultSteer;
     double target_distance_mm = kDefaultTargetDistanceMm;
     double dwell_s = kDefaultDwellS;                  // a pointing held this long picks the attended target
     double target_region_mm = kDefaultTargetRegionMm;  // the width the attended view frames there

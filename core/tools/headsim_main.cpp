@@ -1,5 +1,5 @@
 // headsim: the simulated head server (GCHP/1 over TCP).
-#include "headctl/head_server.hpp"
+#include "headctl/sim/head_server.hpp"
 #include "headctl/token.hpp"
 #include "tools/cli_app.hpp"
 
@@ -142,25 +142,8 @@ int main(int argc, char** argv) {
     } catch (const std::exception& e) {
         return gc::cli::usage_hint("headsim", e.what());
     }
-
     try {
-        HeadServer server(config);
-        if (config.token.empty() && !is_loopback_address(config.host))
-            std::cerr << "headsim: warning: listening on " << config.host
-                      << " without a token: anyone who can reach this port can move the head\n";
-        g_server = &server;
-        struct sigaction sa{};
-        sa.sa_handler = on_signal;
-        sigemptyset(&sa.sa_mask);
-        sigaction(SIGTERM, &sa, nullptr);
-        sigaction(SIGINT, &sa, nullptr);
-        signal(SIGPIPE, SIG_IGN);
-        const bool v6 = server.host().find(':') != std::string::npos;
-        std::cout << "listening " << (v6 ? "[" + server.host() + "]" : server.host()) << ":" << server.port()
-                  << std::endl;
-        server.run();
-        g_server = nullptr;
-        std::cerr << "headsim: stopped\n";
+        serve(config);
     } catch (const std::invalid_argument& e) {
         std::cerr << "headsim: " << e.what() << "\n";
         return 2;
