@@ -127,6 +127,27 @@ void apply(const GivenText& t, HeadServerConfig& config) {
     config.model.validate();
 }
 
+// Serves until SIGTERM or SIGINT.
+void serve(const HeadServerConfig& config) {
+    HeadServer server(config);
+    if (config.token.empty() && !is_loopback_address(config.host))
+        std::cerr << "headsim: warning: listening on " << config.host
+                  << " without a token: anyone who can reach this port can move the head\n";
+    g_server = &server;
+    struct sigaction sa{};
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGTERM, &sa, nullptr);
+    sigaction(SIGINT, &sa, nullptr);
+    signal(SIGPIPE, SIG_IGN);
+    const bool v6 = server.host().find(':') != std::string::npos;
+    std::cout << "listening " << (v6 ? "[" + server.host() + "]" : server.host()) << ":" << server.port()
+              << std::endl;
+    server.run();
+    g_server = nullptr;
+    std::cerr << "headsim: stopped\n";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
