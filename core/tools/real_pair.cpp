@@ -34,11 +34,9 @@ cv::Vec3d vec_of(const JsonValue& v) { return {v[0].number(), v[1].number(), v[2
 // Reference index fingertips of one view, by frame; frames without a hand are absent.
 std::map<int, cv::Point2d> view_reference(const std::string& path) {
     std::map<int, cv::Point2d> tips;
-    const JsonValue doc = read_json(path);
-    const auto& frames = doc["frames"].array();
-    for (std::size_t i = 0; i < frames.size(); ++i)
-        if (frames[i].has("landmarks") && !frames[i]["landmarks"].is_null())
-            tips[int(i)] = point_of(frames[i]["landmarks"][8]);
+    const std::vector<ReferenceHand> hands = read_reference_hands(path);
+    for (std::size_t i = 0; i < hands.size(); ++i)
+        if (hands[i]) tips[int(i)] = (*hands[i])[8];
     return tips;
 }
 
@@ -107,6 +105,21 @@ cv::VideoCapture open_video(const std::string& path) {
 }
 
 }  // namespace
+
+std::vector<ReferenceHand> read_reference_hands(const std::string& path) {
+    std::vector<ReferenceHand> hands;
+    const JsonValue doc = read_json(path);
+    for (const JsonValue& frame : doc["frames"].array()) {
+        if (!frame.has("landmarks") || frame["landmarks"].is_null() || frame["landmarks"].array().size() != 21) {
+            hands.emplace_back();
+            continue;
+        }
+        std::array<cv::Point2d, 21> hand;
+        for (int k = 0; k < 21; ++k) hand[k] = point_of(frame["landmarks"][k]);
+        hands.emplace_back(hand);
+    }
+    return hands;
+}
 
 RealPairFigures measure_real_pair(const RealPairOptions& o) {
     const std::string base = o.dir + "/handpose3d_";

@@ -7,7 +7,12 @@
 
 #include "tracker/hand_tracker.hpp"
 
+#include <opencv2/core.hpp>
+
+#include <array>
+#include <optional>
 #include <string>
+#include <vector>
 
 namespace gc::tools {
 
@@ -43,6 +48,13 @@ struct RealPairFigures {
     double ms_per_frame = 0.0;    // median wall time of one stereo frame
     double cpu_ms_per_frame = 0.0;  // median CPU time of one, every thread of the process
 };
+
+// MediaPipe's 21 key points of one frame of a view, in pixels; nothing where it found no hand.
+using ReferenceHand = std::optional<std::array<cv::Point2d, 21>>;
+
+// The reference key points of one view (`path`: handpose3d_camN.mediapipe.json), frame i at
+// index i. Throws std::runtime_error on a missing or unreadable file.
+std::vector<ReferenceHand> read_reference_hands(const std::string& path);
 
 // Decodes both recordings (frame i = the i-th decoded frame), tracks them in stereo and
 // scores the result. Throws std::runtime_error on missing or unreadable files.

@@ -3,6 +3,8 @@
 // the learned hand models and of the gesture classifier.
 #pragma once
 
+#include "tools/real_pair.hpp"
+
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
 #include <opencv2/videoio.hpp>
@@ -10,11 +12,9 @@
 #include <array>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <optional>
 #include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -41,27 +41,17 @@ inline std::filesystem::path real_pair_file(int view, const std::string& suffix)
 // MediaPipe's 21 points of a frame, in pixels, or nothing where it found no hand.
 using ReferenceHand = std::optional<std::array<cv::Point2f, 21>>;
 
-// frames[i].landmarks of the view's reference. OpenCV's JSON reader does not know `null`
-// (a frame without a hand), so it is read as an empty list.
+// frames[i].landmarks of the view's reference, read as gesturecam-bench reads them.
 inline std::vector<ReferenceHand> load_reference(int view) {
-    std::ifstream in(real_pair_file(view, ".mediapipe.json"));
-    EXPECT_TRUE(in) << "cannot read " << real_pair_file(view, ".mediapipe.json");
-    std::stringstream text;
-    text << in.rdbuf();
-    std::string json = text.str();
-    for (size_t at = json.find("null"); at != std::string::npos; at = json.find("null", at))
-        json.replace(at, 4, "[]");
-    cv::FileStorage fs(json, cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_JSON);
     std::vector<ReferenceHand> hands;
-    const cv::FileNode frames = fs["frames"];
-    for (const cv::FileNode& frame : frames) {
-        const cv::FileNode points = frame["landmarks"];
-        if (points.size() != 21) {
+    for (const gc::tools::ReferenceHand& read :
+         gc::tools::read_reference_hands(real_pair_file(view, ".mediapipe.json").string())) {
+        if (!read) {
             hands.emplace_back();
             continue;
         }
         std::array<cv::Point2f, 21> hand;
-        for (int k = 0; k < 21; ++k) hand[k] = cv::Point2f(float(points[k][0]), float(points[k][1]));
+        for (int k = 0; k < 21; ++k) hand[k] = cv::Point2f(float((*read)[k].x), float((*read)[k].y));
         hands.emplace_back(hand);
     }
     return hands;

@@ -1,6 +1,7 @@
 // gesturecam-bench: the quick smoke run prints well-formed JSON lines covering every table (both
 // detectors, the stereo rows, the real pair), with figures in their valid ranges; bad options
 // are rejected.
+#include "tool_run.hpp"
 #include "tools/json_reader.hpp"
 #include "tools/tool_version.hpp"
 
@@ -27,19 +28,8 @@ using gc::tools::JsonValue;
 
 namespace {
 
-struct RunResult {
-    int status = -1;
-    std::string out;
-    std::string err;
-};
-
-std::string read_text(const fs::path& p)
-{
-    std::ifstream in(p);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
+using gc_test::read_text;
+using gc_test::RunResult;
 
 RunResult run_bench(const std::string& args)
 {

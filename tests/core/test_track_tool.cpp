@@ -1,6 +1,7 @@
 // gesturecam-track end to end: a rendered stereo sequence written as PNG files goes in, JSON
 // lines come out; wrong inputs and options give a non-zero status and a message naming them.
 #include "line_watch.hpp"
+#include "tool_run.hpp"
 #include "sim/scene.hpp"
 #include "stereo/calibration.hpp"
 #include "tools/json_reader.hpp"
@@ -29,19 +30,8 @@ using gc::tools::JsonValue;
 
 namespace {
 
-struct RunResult {
-    int status = -1;
-    std::string out;
-    std::string err;
-};
-
-std::string read_text(const fs::path& p)
-{
-    std::ifstream in(p);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
+using gc_test::read_text;
+using gc_test::RunResult;
 
 std::vector<std::string> lines_of(const std::string& text)
 {

@@ -3,6 +3,7 @@
 // the start of a built program with its output on pipes.
 #pragma once
 
+#include "../closedloop/running_head.hpp"
 #include "headctl/sim/head_server.hpp"
 #include "headctl/net.hpp"
 
@@ -29,26 +30,17 @@ namespace gc::headctl::testing {
 
 using namespace std::chrono_literals;
 
-// A HeadServer on 127.0.0.1 serving on its own thread for the lifetime of the object.
-class RunningServer {
+// A HeadServer on 127.0.0.1 serving on its own thread for the lifetime of the object (the
+// closed-loop tests' RunningHead); the default port, 5050, becomes any free one.
+class RunningServer : public closedloop_test::RunningHead {
 public:
-    explicit RunningServer(HeadServerConfig config = {}) {
-        if (config.port == 5050) config.port = 0;
-        server_ = std::make_unique<HeadServer>(config);
-        thread_ = std::thread([this] { server_->run(); });
-    }
-    ~RunningServer() { stop(); }
-    void stop() {
-        if (!thread_.joinable()) return;
-        server_->request_stop();
-        thread_.join();
-    }
-    std::uint16_t port() const { return server_->port(); }
-    std::string uri() const { return "tcp://127.0.0.1:" + std::to_string(port()); }
+    explicit RunningServer(HeadServerConfig config = {}) : RunningHead(any_free_port(config)) {}
 
 private:
-    std::unique_ptr<HeadServer> server_;
-    std::thread thread_;
+    static HeadServerConfig any_free_port(HeadServerConfig config) {
+        if (config.port == 5050) config.port = 0;
+        return config;
+    }
 };
 
 // A program started with its output on pipes, whose read ends are non-blocking.

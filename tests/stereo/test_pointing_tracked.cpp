@@ -20,27 +20,8 @@ TEST(PointingTracked, RayFromTrackedEstimates)
     config.motion = gc::sim::Motion::Yaw;
     config.seed = 5;
     const gc::sim::Scene scene(config);
-    gc::TrackerParams params;
-    params.detector = gc::HandDetector::Motion;  // the contour-based path
-    params.particles = 300;
-    gc::StereoHandTracker trackers(params);
-    gc::PointingEstimator estimator(scene.calibration());
-    cv::Mat left, right;
-    std::vector<double> angle, depth;
-    int tracking = 0;
     const int frames = 60;
-    for (int f = 0; f < frames; ++f) {
-        scene.render(f, gc::Eye::Left, {}, left);
-        scene.render(f, gc::Eye::Right, {}, right);
-        const gc::StereoEstimate est = trackers.process(left, right);
-        if (!est.left.valid() || !est.right.valid()) continue;
-        ++tracking;
-        const gc::Pointing3D p = estimator.estimate(left, right, est.left, est.right);
-        if (!p.valid) continue;
-        const gc::sim::HandTruth truth = scene.hand_truth(scene.hand_pose(f));
-        angle.push_back(gc::test::angle_between_deg(p.direction_head, truth.direction));
-        depth.push_back(std::abs(p.fingertip_head_mm[2] - truth.fingertip_mm[2]));
-    }
+    const auto [tracking, angle, depth] = gc::test::track_scene(scene, 300, frames);
     std::printf("tracked %d / %d frames, %zu rays: angle error median %.2f deg, p90 %.2f deg; depth error "
                 "median %.1f mm\n",
                 tracking, frames, angle.size(), gc::test::percentile(angle, 0.5), gc::test::percentile(angle, 0.9),

@@ -1,11 +1,13 @@
 // Rendered stereo pairs of the synthetic scene with a placed hand, and the adapter that
 // turns the scene's ground truth into the per-eye estimates the 3D step consumes (what a
-// perfect tracker would report).
+// perfect tracker would report); and a scripted scene tracked end to end, its rays scored
+// against the truth.
 #pragma once
 
 #include "common/types.hpp"
 #include "sim/scene.hpp"
 #include "stereo/pointing.hpp"
+#include "tracker/stereo_tracker.hpp"
 
 #include <opencv2/imgproc.hpp>
 
@@ -79,6 +81,38 @@ inline double percentile(std::vector<double> v, double p)
     const auto lo = static_cast<std::size_t>(std::floor(idx));
     const auto hi = std::min(lo + 1, v.size() - 1);
     return v[lo] + (idx - lo) * (v[hi] - v[lo]);
+}
+
+// The first `frames` frames of `scene` tracked in stereo (the contour-based path) and the 3D
+// step on them: how many frames both eyes tracked, and each ray's angle and fingertip depth
+// error against the truth.
+struct TrackedRays {
+    int tracking = 0;
+    std::vector<double> angle, depth;
+};
+
+inline TrackedRays track_scene(const sim::Scene& scene, int particles, int frames)
+{
+    TrackerParams params;
+    params.detector = HandDetector::Motion;  // the contour-based path
+    params.particles = particles;
+    StereoHandTracker trackers(params);
+    PointingEstimator estimator(scene.calibration());
+    cv::Mat left, right;
+    TrackedRays r;
+    for (int f = 0; f < frames; ++f) {
+        scene.render(f, Eye::Left, {}, left);
+        scene.render(f, Eye::Right, {}, right);
+        const StereoEstimate est = trackers.process(left, right);
+        if (!est.left.valid() || !est.right.valid()) continue;
+        ++r.tracking;
+        const Pointing3D p = estimator.estimate(left, right, est.left, est.right);
+        if (!p.valid) continue;
+        const sim::HandTruth truth = scene.hand_truth(scene.hand_pose(f));
+        r.angle.push_back(angle_between_deg(p.direction_head, truth.direction));
+        r.depth.push_back(std::abs(p.fingertip_head_mm[2] - truth.fingertip_mm[2]));
+    }
+    return r;
 }
 
 }  // namespace gc::test

@@ -186,26 +186,8 @@ void tracked_scenes()
         config.motion = motion;
         config.seed = 5;
         const gc::sim::Scene scene(config);
-        gc::TrackerParams params;
-        params.detector = gc::HandDetector::Motion;  // the contour-based path
-        params.particles = 500;
-        gc::StereoHandTracker trackers(params);
-        gc::PointingEstimator estimator(scene.calibration());
-        cv::Mat left, right;
-        std::vector<double> angle, depth;
-        int tracking = 0, frames = 240;
-        for (int f = 0; f < frames; ++f) {
-            scene.render(f, gc::Eye::Left, {}, left);
-            scene.render(f, gc::Eye::Right, {}, right);
-            const gc::StereoEstimate est = trackers.process(left, right);
-            if (!est.left.valid() || !est.right.valid()) continue;
-            ++tracking;
-            const gc::Pointing3D p = estimator.estimate(left, right, est.left, est.right);
-            if (!p.valid) continue;
-            const gc::sim::HandTruth truth = scene.hand_truth(scene.hand_pose(f));
-            angle.push_back(gc::test::angle_between_deg(p.direction_head, truth.direction));
-            depth.push_back(std::abs(p.fingertip_head_mm[2] - truth.fingertip_mm[2]));
-        }
+        const int frames = 240;
+        const auto [tracking, angle, depth] = gc::test::track_scene(scene, 500, frames);
         all_angle.insert(all_angle.end(), angle.begin(), angle.end());
         std::printf("| %s | %s | %d / %d | %zu | %.1f deg | %.1f deg | %.0f mm |\n",
                     std::string(gc::sim::to_string(preset)).c_str(), std::string(gc::sim::to_string(motion)).c_str(),
