@@ -24,6 +24,7 @@ enum {
     PROP_DETECTOR,
     PROP_MODEL_DIR,
 };
+static_assert(kStatsProperty > PROP_MODEL_DIR, "the stats property's id follows the settings'");
 
 #define GST_TYPE_HAND_TRACKER_OUTPUT (gst_hand_tracker_output_get_type())
 static GType gst_hand_tracker_output_get_type()
@@ -178,6 +179,14 @@ void install_tracker_properties(GObjectClass* gobject_class)
                             "Folder of the learned models (palm_detection.onnx, hand_landmark.onnx); unset: "
                             "GESTURECAM_MODEL_DIR, else the installed models, else the source tree's core/models",
                             nullptr, GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
+    g_object_class_install_property(
+        gobject_class, kStatsProperty,
+        g_param_spec_boxed("stats", "Statistics",
+                           "Counts since start: tracked (frames tracked), skipped-qos (output frames dropped under "
+                           "QoS: no meta, message or JSON line; the next JSON line says how many), "
+                           "processing-time-max (ns, the longest of the last 30 frames) and latency (ns, the "
+                           "processing time added to the latency the element reports)",
+                           GST_TYPE_STRUCTURE, GParamFlags(G_PARAM_READABLE | G_PARAM_STATIC_STRINGS)));
 }
 
 void mark_tracker_enums_as_plugin_api()

@@ -42,6 +42,9 @@ struct TrackerSettings {
     std::string model_dir;  // empty: the learned models are found without configuration
 };
 
+// The id of the read-only `stats` property (TrackerStats), after those of the settings.
+constexpr guint kStatsProperty = 100;
+
 // Installs every property of the element's class.
 void install_tracker_properties(GObjectClass* klass);
 // Marks the properties' enum types as plugin API (documented with the element).
