@@ -227,9 +227,10 @@ static gboolean gst_hand_scene_src_query(GstBaseSrc* src, GstQuery* query)
         const GstVideoInfo& info = self->state->stream.info;
         if (!info.finfo || GST_VIDEO_INFO_FPS_N(&info) <= 0)
             return FALSE;
-        // A frame is complete one frame duration after its timestamp.
+        // A frame is complete one frame duration after its timestamp. Every frame is rendered
+        // into a buffer of its own, so downstream may hold any number of them: no maximum.
         const GstClockTime latency = frame_time(info, 1);
-        gst_query_set_latency(query, TRUE, latency, latency);
+        gst_query_set_latency(query, TRUE, latency, GST_CLOCK_TIME_NONE);
         return TRUE;
     }
     return GST_BASE_SRC_CLASS(gst_hand_scene_src_parent_class)->query(src, query);

@@ -60,9 +60,8 @@ static GstFlowReturn size_mismatch(GstHandTracker* self, const GstVideoFrame* le
     return GST_FLOW_NOT_NEGOTIATED;
 }
 
-static GstFlowReturn gst_hand_tracker_aggregate_frames(GstVideoAggregator* vagg, GstBuffer* outbuf)
+static GstFlowReturn process_slot(GstHandTracker* self, GstBuffer* outbuf, bool& tracked_out)
 {
-    GstHandTracker* self = GST_HAND_TRACKER(vagg);
     TrackerState& e = *self->state;
     const Settings settings = read_settings(self);
     if (self->rebuild->exchange(false) || !e.tracker) {
@@ -104,6 +103,7 @@ static GstFlowReturn gst_hand_tracker_aggregate_frames(GstVideoAggregator* vagg,
                                                 packed_pad ? GST_CLOCK_TIME_NONE : pts_of(right)};
     const bool repeated = complete && e.stream.tracked_inputs == inputs && GST_CLOCK_TIME_IS_VALID(inputs[0]);
     const bool tracked = complete && !repeated;
+    tracked_out = tracked;
     if (tracked) {
         e.stream.tracked_inputs = inputs;
         const GstFlowReturn ret = track_views(self, settings, in, stereo, packed_pad ? packed_pad : left_pad,
@@ -121,6 +121,38 @@ static GstFlowReturn gst_hand_tracker_aggregate_frames(GstVideoAggregator* vagg,
     if (ret != GST_FLOW_OK)
         return ret;
     return publish(self, settings, outbuf, tracked, shown, context);
+}
+
+// One output frame, timed: the time it takes is part of the latency the element reports, so a
+// live pipeline's sinks wait for it instead of finding every frame late.
+static GstFlowReturn gst_hand_tracker_aggregate_frames(GstVideoAggregator* vagg, GstBuffer* outbuf)
+{
+    GstHandTracker* self = GST_HAND_TRACKER(vagg);
+    const gint64 start_us = g_get_monotonic_time();
+    bool tracked = false;
+    const GstFlowReturn ret = process_slot(self, outbuf, tracked);
+    const GstClockTime took = GstClockTime(g_get_monotonic_time() - start_us) * GST_USECOND;
+    GST_LOG_OBJECT(self, "output frame %" GST_TIME_FORMAT " made in %.1f ms%s", GST_TIME_ARGS(GST_BUFFER_PTS(outbuf)),
+                   double(took) / GST_MSECOND, tracked ? "" : " (not tracked)");
+    if (const auto latency = self->stats->frame_processed(took, tracked)) {
+        GST_DEBUG_OBJECT(self, "processing latency now %" GST_TIME_FORMAT, GST_TIME_ARGS(*latency));
+        gst_aggregator_set_latency(GST_AGGREGATOR(self), *latency, *latency);
+    }
+    return ret;
+}
+
+// GstVideoAggregator drops an output frame that QoS says would be late and posts a QoS message
+// for it; the drop is counted here, as the subclass is not called for that frame.
+static gboolean gst_hand_tracker_post_message(GstElement* element, GstMessage* message)
+{
+    if (GST_MESSAGE_TYPE(message) == GST_MESSAGE_QOS && GST_MESSAGE_SRC(message) == GST_OBJECT(element)) {
+        GstHandTracker* self = GST_HAND_TRACKER(element);
+        self->stats->frame_skipped();
+        guint64 timestamp = GST_CLOCK_TIME_NONE;
+        gst_message_parse_qos(message, nullptr, nullptr, nullptr, &timestamp, nullptr);
+        GST_DEBUG_OBJECT(self, "output frame %" GST_TIME_FORMAT " skipped under QoS", GST_TIME_ARGS(timestamp));
+    }
+    return GST_ELEMENT_CLASS(gst_hand_tracker_parent_class)->post_message(element, message);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -148,6 +180,8 @@ static gboolean gst_hand_tracker_stop(GstAggregator* agg)
     e.head.reset();  // joins the head client's thread
     close_json_output(self);
     e.forget();
+    self->stats->reset();
+    gst_aggregator_set_latency(agg, 0, 0);
     return ok;
 }
 
@@ -179,6 +213,10 @@ static void gst_hand_tracker_set_property(GObject* object, guint prop_id, const 
 static void gst_hand_tracker_get_property(GObject* object, guint prop_id, GValue* value, GParamSpec* pspec)
 {
     GstHandTracker* self = GST_HAND_TRACKER(object);
+    if (prop_id == gc::gst::kStatsProperty) {
+        g_value_take_boxed(value, self->stats->to_structure());
+        return;
+    }
     GST_OBJECT_LOCK(self);
     const bool known = gc::gst::get_tracker_setting(*self->settings, prop_id, value);
     GST_OBJECT_UNLOCK(self);
@@ -193,6 +231,7 @@ static void gst_hand_tracker_finalize(GObject* object)
     delete self->settings;
     delete self->rebuild;
     delete self->flushed;
+    delete self->stats;
     G_OBJECT_CLASS(gst_hand_tracker_parent_class)->finalize(object);
 }
 
@@ -210,6 +249,7 @@ static void gst_hand_tracker_class_init(GstHandTrackerClass* klass)
     gobject_class->finalize = gst_hand_tracker_finalize;
 
     gc::gst::install_tracker_properties(gobject_class);
+    element_class->post_message = gst_hand_tracker_post_message;
 
     add_tracker_pad_templates(element_class);
 
@@ -237,4 +277,5 @@ static void gst_hand_tracker_init(GstHandTracker* self)
     self->state = new TrackerState();
     self->rebuild = new std::atomic<bool>(false);
     self->flushed = new std::atomic<bool>(false);
+    self->stats = new gc::gst::TrackerStats();
 }

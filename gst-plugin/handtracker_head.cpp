@@ -46,6 +46,7 @@ bool ensure_head_link(GstHandTracker* self, const Settings& settings, cv::Size s
     config.target_distance_mm = settings.target_distance_mm;
     config.clock = gc::gst::element_clock(GST_ELEMENT(self));
     config.on_state_change = gc::gst::connection_reporter(GST_ELEMENT(self), settings.head);
+    config.on_command = gc::gst::command_logger(GST_ELEMENT(self));
     // Only live views have an age: recorded ones are taken at their stream time, however
     // fast or slow they are read.
     if (!GST_CLOCK_TIME_IS_VALID(gst_aggregator_get_latency(GST_AGGREGATOR(self))))

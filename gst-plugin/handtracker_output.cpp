@@ -4,6 +4,7 @@
 #include <gst/video/gstvideometa.h>
 
 #include <exception>
+#include <string>
 
 namespace gc::gst {
 
@@ -46,7 +47,8 @@ void post_message(GstHandTracker* self, GstBuffer* outbuf, const gc::FrameResult
     GstClockTime running = GST_CLOCK_TIME_NONE, stream = GST_CLOCK_TIME_NONE;
     output_times(self, pts, running, stream);
     gst_structure_set(s, "timestamp", G_TYPE_UINT64, pts, "running-time", G_TYPE_UINT64, running, "stream-time",
-                      G_TYPE_UINT64, stream, "duration", G_TYPE_UINT64, GST_BUFFER_DURATION(outbuf), nullptr);
+                      G_TYPE_UINT64, stream, "duration", G_TYPE_UINT64, GST_BUFFER_DURATION(outbuf), "skipped-qos",
+                      G_TYPE_UINT64, self->stats->skipped(), nullptr);
     gst_element_post_message(GST_ELEMENT(self), gst_message_new_element(GST_OBJECT(self), s));
 }
 
@@ -129,6 +131,10 @@ GstFlowReturn publish(GstHandTracker* self, const Settings& settings, GstBuffer*
     if (!tracked || !e.json)
         return GST_FLOW_OK;
     e.json_line = gc::to_json_line(result);
+    // Output frames dropped under QoS since the previous line are counted on this one; the tool
+    // never drops, so its lines never have the key.
+    if (const guint64 skipped = self->stats->take_skipped_since_line())
+        e.json_line.insert(e.json_line.size() - 1, ",\"skipped_qos\":" + std::to_string(skipped));
     e.json_line += '\n';
     try {
         e.json->write_line(e.json_line);

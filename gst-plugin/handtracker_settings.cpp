@@ -28,6 +28,7 @@ enum {
     PROP_TARGET_REGION,
     PROP_INPUT_FLAGS_OVERRIDE,
 };
+static_assert(kStatsProperty > PROP_INPUT_FLAGS_OVERRIDE, "the stats property's id follows the settings'");
 
 #define GST_TYPE_HAND_TRACKER_OUTPUT (gst_hand_tracker_output_get_type())
 static GType gst_hand_tracker_output_get_type()
@@ -235,6 +236,14 @@ void install_tracker_properties(GObjectClass* gobject_class)
     install_report_properties(gobject_class);
     install_head_properties(gobject_class);
     install_detector_properties(gobject_class);
+    g_object_class_install_property(
+        gobject_class, kStatsProperty,
+        g_param_spec_boxed("stats", "Statistics",
+                           "Counts since start: tracked (frames tracked), skipped-qos (output frames dropped under "
+                           "QoS: no meta, message or JSON line; the next JSON line says how many), "
+                           "processing-time-max (ns, the longest of the last 30 frames) and latency (ns, the "
+                           "processing time added to the latency the element reports)",
+                           GST_TYPE_STRUCTURE, GParamFlags(G_PARAM_READABLE | G_PARAM_STATIC_STRINGS)));
 }
 
 void mark_tracker_enums_as_plugin_api()

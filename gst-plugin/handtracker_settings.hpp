@@ -50,6 +50,9 @@ struct TrackerSettings {
     GstVideoMultiviewFlags input_flags_override = GST_VIDEO_MULTIVIEW_FLAGS_NONE;
 };
 
+// The id of the read-only `stats` property (TrackerStats), after those of the settings.
+constexpr guint kStatsProperty = 100;
+
 // Installs every property of the element's class.
 void install_tracker_properties(GObjectClass* klass);
 // Marks the properties' enum types as plugin API (documented with the element).

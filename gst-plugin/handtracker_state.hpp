@@ -6,6 +6,7 @@
 
 #include "attention_window.hpp"
 #include "handtracker_settings.hpp"
+#include "handtracker_stats.hpp"
 #include "tracking_overlay.hpp"
 #include "video_bgr.hpp"
 
@@ -83,6 +84,7 @@ struct _GstHandTracker {
     gc::gst::TrackerState* state;
     std::atomic<bool>* rebuild;  // tracker parameters changed
     std::atomic<bool>* flushed;  // a flushing seek: the frames jump
+    gc::gst::TrackerStats* stats;
 };
 
 namespace gc::gst {

@@ -53,6 +53,16 @@ bool build_tracker(GstHandTracker* self, const Settings& settings)
     return true;
 }
 
+// What a view's state change means to someone reading the log.
+static const char* state_change(gc::TrackState from, gc::TrackState to)
+{
+    if (to == gc::TrackState::Tracking)
+        return from == gc::TrackState::Lost ? "re-acquired the hand" : "acquired the hand";
+    if (to == gc::TrackState::Lost)
+        return "lost the hand";
+    return "is looking for the hand";
+}
+
 void log_result(GstHandTracker* self, TrackerState& e, const gc::FrameResult& r)
 {
     const std::array<const gc::EyeEstimate*, 2> eyes = {&r.left, &r.right};
@@ -60,14 +70,21 @@ void log_result(GstHandTracker* self, TrackerState& e, const gc::FrameResult& r)
         const gc::EyeEstimate& eye = *eyes[i];
         const char* name = i == 0 ? "left" : "right";
         if (eye.state != e.logged_state[i])
-            GST_INFO_OBJECT(self, "frame %" G_GINT64_FORMAT ": %s view %s -> %s", r.frame, name,
-                            gc::to_string(e.logged_state[i]).data(), gc::to_string(eye.state).data());
+            GST_INFO_OBJECT(self, "frame %" G_GINT64_FORMAT ": %s view %s (%s -> %s)", r.frame, name,
+                            state_change(e.logged_state[i], eye.state), gc::to_string(e.logged_state[i]).data(),
+                            gc::to_string(eye.state).data());
         if (eye.gesture != e.logged_gesture[i])
-            GST_INFO_OBJECT(self, "frame %" G_GINT64_FORMAT ": %s view gesture %s", r.frame, name,
-                            gc::to_string(eye.gesture).data());
+            GST_INFO_OBJECT(self, "frame %" G_GINT64_FORMAT ": %s view gesture %s -> %s", r.frame, name,
+                            gc::to_string(e.logged_gesture[i]).data(), gc::to_string(eye.gesture).data());
         e.logged_state[i] = eye.state;
         e.logged_gesture[i] = eye.gesture;
+        GST_DEBUG_OBJECT(self, "frame %" G_GINT64_FORMAT ": %s view %s, confidence %.3f, fingertip (%.1f, %.1f), %.1f deg",
+                         r.frame, name, gc::to_string(eye.state).data(), eye.confidence, eye.fingertip.x,
+                         eye.fingertip.y, eye.pointing_deg);
     }
+    if (r.pointing.valid)
+        GST_DEBUG_OBJECT(self, "frame %" G_GINT64_FORMAT ": ray azimuth %.1f deg, elevation %.1f deg", r.frame,
+                         r.pointing.azimuth_deg, r.pointing.elevation_deg);
     GST_LOG_OBJECT(self, "frame %" G_GINT64_FORMAT ": %s, fingertip (%.1f, %.1f), ray %s", r.frame,
                    gc::to_string(r.state).data(), r.left.fingertip.x, r.left.fingertip.y,
                    r.pointing.valid ? "yes" : "no");

@@ -6,7 +6,24 @@
 #include <memory>
 #include <mutex>
 
+GST_DEBUG_CATEGORY_STATIC(gesturecam_head_debug);
+#define GST_CAT_DEFAULT gesturecam_head_debug
+
 namespace gc::gst {
+
+namespace {
+
+void init_head_debug()
+{
+    static const bool done = [] {
+        GST_DEBUG_CATEGORY_INIT(gesturecam_head_debug, "gesturecam-head", 0,
+                                "head link: connection, disconnection, commands");
+        return true;
+    }();
+    (void)done;
+}
+
+}  // namespace
 
 std::function<headctl::Timestamp()> element_clock(GstElement* element)
 {
@@ -47,8 +64,11 @@ struct ReportedState {
 std::function<void(headctl::ConnectionState, const std::string&)> connection_reporter(GstElement* element,
                                                                                      const std::string& uri)
 {
+    init_head_debug();
     auto reported = std::make_shared<ReportedState>();
     return [element, uri = headctl::redact_uri(uri), reported](headctl::ConnectionState state, const std::string& error) {
+        GST_INFO_OBJECT(element, "head %s %s%s%s", uri.c_str(), std::string(headctl::to_string(state)).c_str(),
+                        error.empty() ? "" : ": ", error.c_str());
         bool post_change = false, warn = false, back = false;
         {
             std::lock_guard lock(reported->mutex);
@@ -77,6 +97,15 @@ std::function<void(headctl::ConnectionState, const std::string&)> connection_rep
         if (back)
             GST_ELEMENT_INFO(element, RESOURCE, OPEN_READ_WRITE, ("Head at %s connected again.", uri.c_str()),
                              (nullptr));
+    };
+}
+
+
+std::function<void(const headctl::HeadCommand&)> command_logger(GstElement* element)
+{
+    init_head_debug();
+    return [element](const headctl::HeadCommand& command) {
+        GST_DEBUG_OBJECT(element, "head command: %s", headctl::describe(command).c_str());
     };
 }
 

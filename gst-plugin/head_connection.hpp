@@ -3,6 +3,7 @@
 // reported on the bus.
 #pragma once
 
+#include "headctl/head_backend.hpp"
 #include "headctl/head_client.hpp"
 
 #include <gst/gst.h>
@@ -24,8 +25,13 @@ headctl::Timestamp capture_time(GstElement* element, GstClockTime running_time);
 // the element's bus: a `head-connection` element message (uri, state, error) for every
 // change between connected and not, a warning when the head is lost or cannot be reached
 // (once per outage, not once per retry) and an info message when it is back. The URI is
-// shown with its token hidden.
+// shown with its token hidden. Every change, each retry's failure included, is also logged in
+// the gesturecam-head debug category (INFO).
 std::function<void(headctl::ConnectionState, const std::string&)> connection_reporter(GstElement* element,
                                                                                      const std::string& uri);
+
+// A command callback for the head link that logs each command sent to the head (DEBUG in
+// the gesturecam-head debug category, with the element as the object).
+std::function<void(const headctl::HeadCommand&)> command_logger(GstElement* element);
 
 }  // namespace gc::gst

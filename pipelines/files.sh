@@ -5,7 +5,7 @@
 # Usage: pipelines/files.sh LEFT RIGHT [OUT_DIR] [CALIBRATION]
 #   e.g. pipelines/files.sh rec-left.mp4 rec-right.mp4 out/rec
 #        pipelines/files.sh 'rec/left/%05d.png' 'rec/right/%05d.png' out/rec rig.yml
-# Environment: FRAMES (stop after that many frames of each view; default: all), FPS (the
+# Environment: FRAMES (track the first N pairs only: N JSON lines; default: all), FPS (the
 # frame rate of an image sequence, default 30).
 set -euo pipefail
 . "$(dirname "$0")/lib/plugin.sh"

@@ -176,6 +176,7 @@ struct HeadLink::Impl {
         }
         try {
             client->submit(command);
+            if (config.on_command) config.on_command(command);
         } catch (const std::invalid_argument&) {
             if (!head_has_vergence) throw;
             head_has_vergence = false;

@@ -48,6 +48,9 @@ struct HeadLinkConfig {
     std::function<headctl::Timestamp()> clock;
     // Called on the head client's thread at each connection change; must not block.
     std::function<void(headctl::ConnectionState, const std::string& error)> on_state_change;
+    // Called on the thread of end_frame() with each command handed to the head client, so a
+    // host can log it with its own logging; must not block.
+    std::function<void(const headctl::HeadCommand&)> on_command;
 
     void validate() const;  // throws std::invalid_argument naming the field
 };

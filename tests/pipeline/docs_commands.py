@@ -10,7 +10,8 @@ pipelines/ and tests/ lead to the tree under test, with these changes only:
   - commands left in the background end with their block;
   - FRAMES is set, which the scripts in pipelines/ take as a frame limit.
 The scripts run with the environment the table SCRIPTS gives (FRAMES, SOURCE=scene, SINK).
-A run fails on a non-zero exit, an ERROR line, or a timeout.
+A run fails on a non-zero exit, an ERROR line, a timeout, or a sink's warning that the
+pipeline's latency cannot be met ("Pipeline construction is invalid, please add queues").
 
 Usage: docs_commands.py SOURCE_ROOT BUILD_ROOT"""
 import glob
@@ -106,7 +107,7 @@ def failure(result):
     output = result.stdout + result.stderr
     if result.returncode != 0:
         return f"exit status {result.returncode}\n{output}"
-    errors = [line for line in output.splitlines() if line.startswith("ERROR")]
+    errors = [line for line in output.splitlines() if line.startswith("ERROR") or "please add queues" in line]
     if errors:
         return "\n".join(errors)
     return None
