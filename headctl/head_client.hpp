@@ -82,7 +82,7 @@ private:
     void wait_for(std::chrono::steady_clock::duration d);
 
     HeadClientConfig config_;
-    std::array<bool, kAxisCount> axes_{true, true, true, true};
+    std::array<bool, kAxisCount> axes_{true, true, true, true, true};
 
     mutable std::mutex mutex_;
     std::condition_variable wake_;

@@ -207,7 +207,8 @@ struct HeadLink::Impl {
     {
         headctl::FixateObservation seen;
         if (r.left.valid()) {
-            const cv::Matx33d& K = calibration.M1;
+            // The angle a pixel offset stands for narrows as the lens zooms in.
+            const cv::Matx33d K = zoomed_intrinsics(calibration.M1, capture.zoom);
             seen = headctl::offset_from_image(r.left.mean.x - K(0, 2), r.left.mean.y - K(1, 2), K(0, 0), K(1, 1));
             // The hand's own angular velocity: its line of sight in the head's base frame.
             const std::pair<double, double> direction{capture.pan_deg + capture.verge_left_deg + seen.offset_pan_deg,

@@ -1,4 +1,4 @@
-// The simulated head's mechanics: four axes with trapezoidal velocity profiles, soft limits,
+// The simulated head's mechanics: five axes with trapezoidal velocity profiles, soft limits,
 // command latency and a seeded mechanical angle error. Time is passed in by the caller
 // (seconds on any monotonic clock), so tests drive it with a fake clock.
 #pragma once
@@ -12,7 +12,7 @@
 namespace gc::headctl {
 
 // The simulated head's default axes: a neck that pans +-170 deg and tilts -45..45 deg, and
-// light, fast eyes that verge +-30 deg.
+// light, fast eyes that verge +-30 deg, and a 1x..20x zoom.
 HeadLimits default_simulated_limits();
 
 struct HeadModelConfig {

@@ -29,12 +29,13 @@ const char* kUsage = R"(usage: headctl [--uri URI] [--token-file FILE | --token 
 Commands:
   status                         print every axis's angle and motion
   limits                         print soft limits, maximum velocity and acceleration
-  move [abs|rel|vel] AXIS=VALUE...   move (default abs): degrees, or deg/s for vel
-  home                           move every axis to 0
+  move [abs|rel|vel] AXIS=VALUE...   move (default abs): degrees, or deg/s for vel;
+                                 zoom is a magnification (1 = widest, 2 = twice), or per s for vel
+  home                           move every angle to 0 and the zoom to 1
   stop                           stop every axis
   watch [INTERVAL_MS [COUNT]]    print the status repeatedly (default 200 ms, until Ctrl-C)
 URI: tcp://HOST:PORT (GCHP, default tcp://127.0.0.1:5050), visca-udp://HOST[:52381],
-     visca-tcp://HOST[:5678]. Axes: pan, tilt, verge_l, verge_r.
+     visca-tcp://HOST[:5678]. Axes: pan, tilt, verge_l, verge_r, zoom.
 Token (GCHP): --token-file FILE (its first line), else --token, else the URI's ?token=,
      else GESTURECAM_HEAD_TOKEN. A token on the command line is blanked there once read.
 Exit status: 0 done, 2 usage error, 3 head unreachable, 4 head refused the command.
@@ -54,9 +55,9 @@ double number(std::string_view what, std::string_view text) {
 }
 
 void print_state(const HeadState& s) {
-    std::printf("t=%lld pan=%.3f tilt=%.3f verge_l=%.3f verge_r=%.3f moving=%d,%d,%d,%d\n",
+    std::printf("t=%lld pan=%.3f tilt=%.3f verge_l=%.3f verge_r=%.3f zoom=%.3f moving=%d,%d,%d,%d,%d\n",
                 static_cast<long long>(s.server_time_us), s.pose.pan_deg, s.pose.tilt_deg, s.pose.verge_left_deg,
-                s.pose.verge_right_deg, s.moving[0], s.moving[1], s.moving[2], s.moving[3]);
+                s.pose.verge_right_deg, s.pose.zoom, s.moving[0], s.moving[1], s.moving[2], s.moving[3], s.moving[4]);
     std::fflush(stdout);
 }
 

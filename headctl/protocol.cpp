@@ -121,7 +121,7 @@ std::pair<std::string_view, std::string_view> split_key_value(std::string_view w
 
 Axis parse_axis(std::string_view name) {
     auto axis = axis_from_name(name);
-    if (!axis) fail(ErrorCode::BadArgument, "unknown axis " + quoted(name) + " (pan, tilt, verge_l, verge_r)");
+    if (!axis) fail(ErrorCode::BadArgument, "unknown axis " + quoted(name) + " (pan, tilt, verge_l, verge_r, zoom)");
     return *axis;
 }
 
@@ -137,6 +137,9 @@ std::string format_number(double v) {
     if (s == "-0") s = "0";
     return s;
 }
+
+// The axes every STATE and LIMITS carries; zoom may be missing (a head without one).
+constexpr std::size_t kAngleAxes = 4;
 
 void append_id(std::string& out, const std::optional<std::uint32_t>& id) {
     if (!id) return;
@@ -324,12 +327,14 @@ HeadState parse_state_fields(const std::vector<std::string_view>& words, std::si
             s.server_time_us = parse_integer<std::int64_t>("t", value);
             have_t = true;
         } else if (key == "moving") {
-            if (value.size() != 2 * kAxisCount - 1)
-                fail(ErrorCode::Syntax, "moving must list 4 flags as 0/1 separated by commas");
-            for (std::size_t k = 0; k < kAxisCount; ++k) {
+            // A head without zoom may list the four angle axes only.
+            const std::size_t flags = (value.size() + 1) / 2;
+            if ((flags != kAxisCount && flags != kAxisCount - 1) || value.size() != 2 * flags - 1)
+                fail(ErrorCode::Syntax, "moving must list 4 or 5 flags as 0/1 separated by commas");
+            for (std::size_t k = 0; k < flags; ++k) {
                 const char flag = value[2 * k];
-                if ((flag != '0' && flag != '1') || (k + 1 < kAxisCount && value[2 * k + 1] != ','))
-                    fail(ErrorCode::Syntax, "moving must list 4 flags as 0/1 separated by commas");
+                if ((flag != '0' && flag != '1') || (k + 1 < flags && value[2 * k + 1] != ','))
+                    fail(ErrorCode::Syntax, "moving must list 4 or 5 flags as 0/1 separated by commas");
                 s.moving[k] = flag == '1';
             }
             have_moving = true;
@@ -338,8 +343,10 @@ HeadState parse_state_fields(const std::vector<std::string_view>& words, std::si
             have[static_cast<std::size_t>(*axis)] = true;
         }  // other keys: later minor versions' additions, ignored
     }
-    if (!have_t || !have_moving || !std::all_of(have.begin(), have.end(), [](bool b) { return b; }))
+    const bool angles = std::all_of(have.begin(), have.begin() + kAngleAxes, [](bool b) { return b; });
+    if (!have_t || !have_moving || !angles)
         fail(ErrorCode::Syntax, "STATE needs t, pan, tilt, verge_l, verge_r and moving");
+    if (s.pose.zoom < 1.0) fail(ErrorCode::BadArgument, "zoom below 1 in STATE");
     return s;
 }
 
@@ -364,7 +371,7 @@ HeadLimits parse_limit_fields(const std::vector<std::string_view>& words, std::s
         limits[*axis] = AxisLimits{v[0], v[1], v[2], v[3]};
         have[static_cast<std::size_t>(*axis)] = true;
     }
-    if (!std::all_of(have.begin(), have.end(), [](bool b) { return b; }))
+    if (!std::all_of(have.begin(), have.begin() + kAngleAxes, [](bool b) { return b; }))
         fail(ErrorCode::Syntax, "LIMITS needs pan, tilt, verge_l and verge_r");
     try {
         validate(limits);

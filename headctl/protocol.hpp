@@ -54,10 +54,10 @@ struct Capabilities {
     bool operator==(const Capabilities&) const = default;
 };
 
-// The server's first line: "HELLO GCHP/1 axes=pan,tilt,verge_l,verge_r caps=abs,rel,vel[,auth]".
+// The server's first line: "HELLO GCHP/1 axes=pan,tilt,verge_l,verge_r,zoom caps=abs,rel,vel[,auth]".
 struct Greeting {
     int version = kProtocolVersion;
-    std::array<bool, kAxisCount> axes{true, true, true, true};
+    std::array<bool, kAxisCount> axes{true, true, true, true, true};
     Capabilities caps;
     bool operator==(const Greeting&) const = default;
 };

@@ -23,8 +23,9 @@ constexpr std::array<SchemeInfo, 3> kSchemes{{
 }};
 
 constexpr std::array<std::string_view, 1> kGchpKeys{"token"};
-constexpr std::array<std::string_view, 6> kViscaKeys{"address",           "pan_units_per_deg",  "tilt_units_per_deg",
-                                                     "pan_max_speed_dps", "tilt_max_speed_dps", "timeout_ms"};
+constexpr std::array<std::string_view, 9> kViscaKeys{
+    "address",   "pan_units_per_deg", "tilt_units_per_deg", "pan_max_speed_dps", "tilt_max_speed_dps",
+    "zoom_max",  "zoom_tele_units",   "zoom_max_speed",     "timeout_ms"};
 
 [[noreturn]] void fail(const std::string& message) { throw std::invalid_argument("head URI: " + message); }
 

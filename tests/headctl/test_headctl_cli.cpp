@@ -73,6 +73,23 @@ TEST(HeadctlCli, StatusMoveAndLimits) {
     EXPECT_EQ(std::count(watch.out.begin(), watch.out.end(), '\n'), 3);
 }
 
+TEST(HeadctlCli, ZoomIsAMagnification) {
+    RunningServer server;
+    EXPECT_NE(run_headctl({"--uri", server.uri(), "status"}).out.find(" zoom=1.000 "), std::string::npos);
+    const Outcome move = run_headctl({"--uri", server.uri(), "move", "zoom=2"});
+    EXPECT_EQ(move.exit_code, 0);
+    EXPECT_EQ(move.out, "ok move abs zoom=2\n");
+    std::string seen;
+    for (int i = 0; i < 100 && seen.find(" zoom=2.000 ") == std::string::npos; ++i) {
+        std::this_thread::sleep_for(20ms);
+        seen = run_headctl({"--uri", server.uri(), "status"}).out;
+    }
+    EXPECT_NE(seen.find(" zoom=2.000 "), std::string::npos) << seen;
+    EXPECT_EQ(run_headctl({"--uri", server.uri(), "move", "zoom=0.5"}).exit_code, 4);  // below the widest view
+    const Outcome limits = run_headctl({"--uri", server.uri(), "limits"});
+    EXPECT_NE(limits.out.find("zoom     min=1.000 max=20.000"), std::string::npos) << limits.out;
+}
+
 TEST(HeadctlCli, ExitCodesTellUsageConnectionAndRefusal) {
     HeadServerConfig config;
     config.token = "k3y";
