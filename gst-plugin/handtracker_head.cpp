@@ -44,6 +44,8 @@ bool ensure_head_link(GstHandTracker* self, const Settings& settings, cv::Size s
     config.token = e.head_token;
     config.steer = settings.steer;
     config.target_distance_mm = settings.target_distance_mm;
+    if (settings.home_preset >= 0)
+        config.fixate.home_preset = settings.home_preset;
     config.clock = gc::gst::element_clock(GST_ELEMENT(self));
     config.on_state_change = gc::gst::connection_reporter(GST_ELEMENT(self), settings.head);
     // Only live views have an age: recorded ones are taken at their stream time, however

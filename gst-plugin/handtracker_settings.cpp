@@ -1,5 +1,6 @@
 #include "handtracker_settings.hpp"
 
+#include "headctl/head_backend.hpp"
 #include "headctl/token.hpp"
 
 namespace gc::gst {
@@ -21,6 +22,7 @@ enum {
     PROP_HEAD_TOKEN_FILE,
     PROP_STEER,
     PROP_TARGET_DISTANCE,
+    PROP_HOME_PRESET,
     PROP_DETECTOR,
     PROP_MODEL_DIR,
 };
@@ -168,6 +170,13 @@ void install_tracker_properties(GObjectClass* gobject_class)
                             "steer=point: how far along the pointing ray, from the fingertip, the head looks (mm)",
                             1.0, 1.0e6, kDefaultTargetDistanceMm, flags));
     g_object_class_install_property(
+        gobject_class, PROP_HOME_PRESET,
+        g_param_spec_int("home-preset", "Home preset",
+                         "steer=fixate: the head's preset (saved on the head, e.g. headctl preset save N) that it "
+                         "returns to once the hand has been lost for a while; -1: the head's home position",
+                         -1, gc::headctl::kMaxPreset, -1,
+                         GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
+    g_object_class_install_property(
         gobject_class, PROP_DETECTOR,
         g_param_spec_enum("detector", "Detector", "How the hand is found and checked", GST_TYPE_HAND_TRACKER_DETECTOR,
                           int(gc::HandDetector::Learned),
@@ -245,6 +254,9 @@ bool set_tracker_setting(TrackerSettings& s, guint prop_id, const GValue* value,
     case PROP_TARGET_DISTANCE:
         s.target_distance_mm = g_value_get_double(value);
         break;
+    case PROP_HOME_PRESET:
+        s.home_preset = g_value_get_int(value);
+        break;
     case PROP_DETECTOR:
         s.detector = gc::HandDetector(g_value_get_enum(value));
         rebuild = true;
@@ -302,6 +314,9 @@ bool get_tracker_setting(const TrackerSettings& s, guint prop_id, GValue* value)
         break;
     case PROP_TARGET_DISTANCE:
         g_value_set_double(value, s.target_distance_mm);
+        break;
+    case PROP_HOME_PRESET:
+        g_value_set_int(value, s.home_preset);
         break;
     case PROP_DETECTOR:
         g_value_set_enum(value, int(s.detector));

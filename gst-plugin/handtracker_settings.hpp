@@ -38,6 +38,7 @@ struct TrackerSettings {
     std::string head_token_file;  // empty: the URI's token, if any
     gc::SteerMode steer = kDefaultSteer;
     double target_distance_mm = kDefaultTargetDistanceMm;
+    int home_preset = -1;  // the head's preset that steering returns to; -1: its home position
     gc::HandDetector detector = gc::HandDetector::Learned;
     std::string model_dir;  // empty: the learned models are found without configuration
 };

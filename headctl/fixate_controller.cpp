@@ -26,6 +26,8 @@ void FixateConfig::validate() const {
     check(max_acceleration_dps2, max_acceleration_dps2 > 0.0, "maximum acceleration (must be > 0)");
     check(limit_margin_deg, limit_margin_deg >= 0.0, "limit margin (must be >= 0)");
     check(hold_s, hold_s >= 0.0, "hold time (must be >= 0)");
+    if (home_preset && (*home_preset < 0 || *home_preset > kMaxPreset))
+        throw std::invalid_argument("fixate: home preset must be in 0..127");
     check(head_latency_s, head_latency_s >= 0.0 && head_latency_s <= 1.0, "head latency (must be in [0, 1] s)");
     headctl::validate(limits);
 }
@@ -107,6 +109,7 @@ std::optional<HeadCommand> FixateController::update(const FixateObservation& see
         homed_ = true;
         velocity_ = {};
         settled_ = {};
+        if (config_.home_preset) return preset_command(CommandKind::RecallPreset, *config_.home_preset);
         return HeadCommand{CommandKind::Home, {}};
     }
     const double step = config_.max_acceleration_dps2 * dt_s;

@@ -15,6 +15,8 @@ std::string describe(const HeadCommand& c) {
         case CommandKind::Velocity: out = "move vel"; break;
         case CommandKind::Stop: return "stop";
         case CommandKind::Home: return "home";
+        case CommandKind::SavePreset: return "preset save " + std::to_string(c.preset);
+        case CommandKind::RecallPreset: return "preset recall " + std::to_string(c.preset);
     }
     for (Axis a : kAllAxes) {
         if (!c.values.has(a)) continue;

@@ -64,6 +64,9 @@ void HeadClient::submit(const HeadCommand& command) {
     const bool is_move = command.kind == CommandKind::Absolute || command.kind == CommandKind::Relative ||
                          command.kind == CommandKind::Velocity;
     if (is_move && command.values.empty()) throw std::invalid_argument("head command: a move names no axis");
+    if (is_preset(command.kind) && (command.preset < 0 || command.preset > kMaxPreset))
+        throw std::invalid_argument("head command: preset " + std::to_string(command.preset) + " is not in 0.." +
+                                    std::to_string(kMaxPreset));
     {
         std::lock_guard lock(mutex_);
         ++stats_.commands_submitted;

@@ -175,7 +175,8 @@ struct HeadLink::Impl {
         if (!head_has_vergence) {
             command.values.clear(Axis::VergeLeft);
             command.values.clear(Axis::VergeRight);
-            if (command.values.empty() && command.kind != CommandKind::Home && command.kind != CommandKind::Stop)
+            if (command.values.empty() && command.kind != CommandKind::Home && command.kind != CommandKind::Stop &&
+                !headctl::is_preset(command.kind))
                 return;
         }
         try {

@@ -97,6 +97,19 @@ void HeadModel::home(double now_s) {
     enqueue(Kind::Absolute, home, now_s);
 }
 
+void HeadModel::save_preset(int number, double now_s) {
+    const HeadState s = state(now_s);
+    AxisValues here;
+    for (Axis a : kAllAxes) here.set(a, axis_value(s.pose, a));
+    presets_[number] = here;
+}
+
+void HeadModel::recall_preset(int number, double now_s) {
+    const auto p = presets_.find(number);
+    if (p == presets_.end()) throw std::out_of_range("preset " + std::to_string(number) + " was never saved");
+    move_absolute(p->second, now_s);
+}
+
 void HeadModel::enqueue(Kind kind, const AxisValues& values, double now_s) {
     advance(now_s);
     for (Axis a : kAllAxes) {

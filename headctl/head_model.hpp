@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <map>
 #include <random>
 
 namespace gc::headctl {
@@ -38,6 +39,10 @@ public:
     void move_velocity(const AxisValues& velocities_dps, double now_s);
     void stop(double now_s);
     void home(double now_s);
+    // A preset holds every axis's position at the moment it is saved (a moving head's, where
+    // it is then); recalling moves there. Recalling one never saved throws std::out_of_range.
+    void save_preset(int number, double now_s);
+    void recall_preset(int number, double now_s);
 
     // Integrates the motion up to now_s (earlier times are ignored) and reports it.
     HeadState state(double now_s);
@@ -72,6 +77,7 @@ private:
     // relative move is relative to.
     std::array<double, kAxisCount> commanded_{};
     std::deque<Pending> pending_;
+    std::map<int, AxisValues> presets_;
     double time_s_ = 0.0;
     std::mt19937_64 rng_;
     std::normal_distribution<double> error_{0.0, 1.0};

@@ -32,6 +32,7 @@ Commands:
   move [abs|rel|vel] AXIS=VALUE...   move (default abs): degrees, or deg/s for vel;
                                  zoom is a magnification (1 = widest, 2 = twice), or per s for vel
   home                           move every angle to 0 and the zoom to 1
+  preset save|recall N           store where the head is as preset N (0..127), or go back there
   stop                           stop every axis
   watch [INTERVAL_MS [COUNT]]    print the status repeatedly (default 200 ms, until Ctrl-C)
 URI: tcp://HOST:PORT (GCHP, default tcp://127.0.0.1:5050), visca-udp://HOST[:52381],
@@ -81,6 +82,15 @@ HeadCommand parse_move(int argc, char** argv, int i) {
     }
     if (c.values.empty()) throw UsageError("move: name at least one AXIS=VALUE");
     return c;
+}
+
+HeadCommand parse_preset(int argc, char** argv, int i) {
+    if (argc - i != 2) throw UsageError("preset: expected save|recall N");
+    const std::string_view action = argv[i];
+    if (action != "save" && action != "recall") throw UsageError("preset: expected save or recall, got '" + std::string(action) + "'");
+    const double n = number("preset number", argv[i + 1]);
+    if (n < 0 || n > kMaxPreset || n != std::floor(n)) throw UsageError("preset: the number must be a whole number in 0..127");
+    return preset_command(action == "save" ? CommandKind::SavePreset : CommandKind::RecallPreset, static_cast<int>(n));
 }
 
 }  // namespace
@@ -140,6 +150,7 @@ int main(int argc, char** argv) {
         std::optional<HeadCommand> move;
         if (command == "move") move = parse_move(argc, argv, first_arg);
         else if (command == "home") move = HeadCommand{CommandKind::Home, {}};
+        else if (command == "preset") move = parse_preset(argc, argv, first_arg);
         else if (command == "stop") move = HeadCommand{CommandKind::Stop, {}};
         else if (command != "status" && command != "limits" && command != "watch")
             throw UsageError("unknown command '" + command + "'");

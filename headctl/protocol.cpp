@@ -199,12 +199,13 @@ Greeting parse_greeting(std::string_view line) {
             for (auto item : items) g.axes[static_cast<std::size_t>(parse_axis(item))] = true;
         } else if (key == "caps") {
             have_caps = true;
-            g.caps = Capabilities{false, false, false, false};
+            g.caps = Capabilities{false, false, false, false, false};
             for (auto item : items) {  // unknown capabilities are a later minor version's: ignored
                 if (item == "abs") g.caps.absolute = true;
                 else if (item == "rel") g.caps.relative = true;
                 else if (item == "vel") g.caps.velocity = true;
                 else if (item == "auth") g.caps.auth_required = true;
+                else if (item == "preset") g.caps.presets = true;
             }
         }
     }
@@ -230,6 +231,7 @@ std::string format_greeting(const Greeting& g) {
     add(g.caps.absolute, "abs");
     add(g.caps.relative, "rel");
     add(g.caps.velocity, "vel");
+    add(g.caps.presets, "preset");
     add(g.caps.auth_required, "auth");
     return out + " caps=" + caps;
 }
@@ -257,6 +259,17 @@ Request parse_request(std::string_view line) {
             if (r.values.has(axis)) fail(ErrorCode::BadArgument, "axis " + std::string(key) + " given twice");
             r.values.set(axis, parse_number(key, value));
         }
+        return r;
+    }
+    if (iequals(verb, "PRESET")) {
+        if (nargs != 2) fail(ErrorCode::Syntax, "PRESET takes SAVE or RECALL and a number");
+        const std::string_view action = words[i];
+        if (iequals(action, "SAVE")) r.command = Command::PresetSave;
+        else if (iequals(action, "RECALL")) r.command = Command::PresetRecall;
+        else fail(ErrorCode::Syntax, "PRESET action " + quoted(action) + " is not SAVE or RECALL");
+        r.preset = parse_integer<int>("preset", words[i + 1]);
+        if (r.preset < 0 || r.preset > kMaxWirePreset)
+            fail(ErrorCode::BadArgument, "preset " + quoted(words[i + 1]) + " is not in 0..255");
         return r;
     }
     for (const auto& v : kSimpleVerbs) {
@@ -299,6 +312,12 @@ std::string format_request(const Request& r) {
         case Command::MoveAbsolute: move("ABS"); break;
         case Command::MoveRelative: move("REL"); break;
         case Command::MoveVelocity: move("VEL"); break;
+        case Command::PresetSave:
+        case Command::PresetRecall:
+            if (r.preset < 0 || r.preset > kMaxWirePreset) throw std::invalid_argument("a preset is 0..255");
+            out += r.command == Command::PresetSave ? "PRESET SAVE " : "PRESET RECALL ";
+            out += std::to_string(r.preset);
+            break;
         case Command::Auth: {
             const bool printable = std::all_of(r.token.begin(), r.token.end(),
                                                [](char c) { return c > 0x20 && c < 0x7f; });

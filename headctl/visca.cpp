@@ -95,6 +95,11 @@ Bytes zoom_drive(int address, int speed, Direction d) {
     return {header(address), 0x01, 0x04, 0x07, code, 0xFF};
 }
 
+Bytes memory(int address, MemoryAction action, int number) {
+    if (number < 0 || number > 0x7F) throw ViscaError("VISCA memory " + std::to_string(number) + " is not in 0..127");
+    return {header(address), 0x01, 0x04, 0x3F, static_cast<std::uint8_t>(action), static_cast<std::uint8_t>(number), 0xFF};
+}
+
 Bytes zoom_position_inquiry(int address) { return {header(address), 0x09, 0x04, 0x47, 0xFF}; }
 
 Reply parse_reply(std::span<const std::uint8_t> m) {

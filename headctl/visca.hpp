@@ -48,6 +48,10 @@ Bytes zoom_direct(int address, int zoom_units);
 Bytes zoom_drive(int address, int speed, Direction direction);
 Bytes zoom_position_inquiry(int address);
 
+// CAM_Memory: store the head's position and zoom under a number (0..127), recall or clear it.
+enum class MemoryAction { Reset = 0, Set = 1, Recall = 2 };
+Bytes memory(int address, MemoryAction action, int number);
+
 enum class ReplyKind { Ack, Completion, Error, Position, ZoomPosition };
 
 struct Reply {

@@ -175,6 +175,12 @@ void ViscaBackend::send(const HeadCommand& c, Deadline deadline) {
         throw HeadRejected(name() + " has no vergence axes");
     if (c.values.has(Axis::Zoom) && !has_zoom())
         throw HeadRejected(name() + " has no zoom axis (the URI's zoom_max is 1)");
+    if (is_preset(c.kind)) {
+        if (c.preset < 0 || c.preset > 0x7F) throw HeadRejected(name() + ": preset " + std::to_string(c.preset) + " is not in 0..127");
+        const auto action = c.kind == CommandKind::SavePreset ? visca::MemoryAction::Set : visca::MemoryAction::Recall;
+        exchange(visca::memory(settings_.address, action, c.preset), visca::ReplyKind::Ack, deadline);
+        return;
+    }
     const bool pan_tilt = c.values.has(Axis::Pan) || c.values.has(Axis::Tilt);
     const bool all = c.kind == CommandKind::Home || c.kind == CommandKind::Stop;
     if (pan_tilt || all) send_pan_tilt(c, deadline);
@@ -204,6 +210,8 @@ void ViscaBackend::send_zoom(const HeadCommand& c, Deadline deadline) {
             exchange(visca::zoom_drive(a, code, direction), visca::ReplyKind::Ack, deadline);
             return;
         }
+        case CommandKind::SavePreset:
+        case CommandKind::RecallPreset: return;  // sent by send()
     }
 }
 
@@ -213,6 +221,8 @@ void ViscaBackend::send_pan_tilt(const HeadCommand& c, Deadline deadline) {
     const int tilt_max = visca::kMaxTiltSpeed;
     const int a = settings_.address;
     switch (c.kind) {
+        case CommandKind::SavePreset:
+        case CommandKind::RecallPreset: return;  // sent by send()
         case CommandKind::Home:
             drive_dps_ = {};
             exchange(visca::pan_tilt_home(a), visca::ReplyKind::Ack, deadline);

@@ -41,6 +41,7 @@ struct Loop {
                 commands.push_back(*cmd);
                 if (cmd->kind == CommandKind::Velocity) head->move_velocity(cmd->values, t);
                 if (cmd->kind == CommandKind::Home) head->home(t);
+                if (cmd->kind == CommandKind::RecallPreset) head->recall_preset(cmd->preset, t);
             }
             poses.push_back(now);
             t += kFrame;
@@ -129,6 +130,26 @@ TEST(FixateController, HoldsThenHomesWhenTheHandIsLost) {
         EXPECT_EQ(loop.commands[i].values.get(Axis::Pan), 0.0);
     }
     EXPECT_NEAR(later.back().pan_deg, 0.0, 1e-6);
+}
+
+TEST(FixateController, ReturnsToTheHomePresetWhenOneIsSet) {
+    FixateConfig config;
+    config.hold_s = 0.5;
+    config.home_preset = 7;
+    Loop loop(config);
+    AxisValues watch;
+    watch.set(Axis::Pan, -25.0);
+    watch.set(Axis::Tilt, 5.0);
+    loop.head->move_absolute(watch, 0.0);
+    loop.head->save_preset(7, 2.0);
+    loop.t = 2.0;
+    loop.run(90, 10.0, 0.0);  // follows the hand away from the preset
+    loop.commands.clear();
+    const auto later = loop.run(90, 10.0, 0.0, false);
+    ASSERT_FALSE(loop.commands.empty());
+    EXPECT_EQ(loop.commands.back(), preset_command(CommandKind::RecallPreset, 7));
+    EXPECT_NEAR(later.back().pan_deg, -25.0, 1e-6);
+    EXPECT_NEAR(later.back().tilt_deg, 5.0, 1e-6);
 }
 
 TEST(FixateController, FeedForwardFollowsAMovingTarget) {

@@ -70,6 +70,28 @@ TEST(HeadModel, ZoomIsAMagnificationWithItsOwnLimitsAndSpeed) {
     EXPECT_DOUBLE_EQ(head.state(20.0).pose.zoom, 1.0);
 }
 
+TEST(HeadModel, APresetKeepsWhereTheHeadWasAndRecallsIt) {
+    HeadModel head(HeadModelConfig{});
+    EXPECT_THROW(head.recall_preset(3, 0.0), std::out_of_range);
+    AxisValues there = pan(30.0);
+    there.set(Axis::Tilt, -10.0);
+    there.set(Axis::Zoom, 4.0);
+    head.move_absolute(there, 0.0);
+    head.save_preset(3, 5.0);
+    head.home(5.0);
+    EXPECT_DOUBLE_EQ(head.state(10.0).pose.pan_deg, 0.0);
+    head.recall_preset(3, 10.0);
+    const HeadPose back = head.state(15.0).pose;
+    EXPECT_DOUBLE_EQ(back.pan_deg, 30.0);
+    EXPECT_DOUBLE_EQ(back.tilt_deg, -10.0);
+    EXPECT_DOUBLE_EQ(back.zoom, 4.0);
+    head.move_absolute(pan(-20.0), 15.0);
+    head.save_preset(3, 20.0);  // saving again replaces it
+    head.home(20.0);
+    head.recall_preset(3, 25.0);
+    EXPECT_DOUBLE_EQ(head.state(30.0).pose.pan_deg, -20.0);
+}
+
 TEST(HeadModel, ZoomLimitsMustHoldTheWidestView) {
     HeadModelConfig config;
     config.limits[Axis::Zoom] = AxisLimits{0.5, 4.0, 1.0, 1.0};

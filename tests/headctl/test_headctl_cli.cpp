@@ -90,6 +90,33 @@ TEST(HeadctlCli, ZoomIsAMagnification) {
     EXPECT_NE(limits.out.find("zoom     min=1.000 max=20.000"), std::string::npos) << limits.out;
 }
 
+TEST(HeadctlCli, PresetsAreSavedAndRecalledOnTheHead) {
+    RunningServer server;
+    const auto status_shows = [&](const std::string& text) {
+        std::string seen;
+        for (int i = 0; i < 150 && seen.find(text) == std::string::npos; ++i) {
+            std::this_thread::sleep_for(20ms);
+            seen = run_headctl({"--uri", server.uri(), "status"}).out;
+        }
+        return seen.find(text) != std::string::npos;
+    };
+    EXPECT_EQ(run_headctl({"--uri", server.uri(), "preset", "recall", "2"}).exit_code, 4);  // never saved
+    EXPECT_EQ(run_headctl({"--uri", server.uri(), "move", "pan=12", "zoom=3"}).exit_code, 0);
+    ASSERT_TRUE(status_shows("pan=12.000 "));
+    ASSERT_TRUE(status_shows(" zoom=3.000 "));
+    const Outcome save = run_headctl({"--uri", server.uri(), "preset", "save", "2"});
+    EXPECT_EQ(save.exit_code, 0);
+    EXPECT_EQ(save.out, "ok preset save 2\n");
+    EXPECT_EQ(run_headctl({"--uri", server.uri(), "home"}).exit_code, 0);
+    ASSERT_TRUE(status_shows("pan=0.000 "));
+    EXPECT_EQ(run_headctl({"--uri", server.uri(), "preset", "recall", "2"}).exit_code, 0);
+    EXPECT_TRUE(status_shows("pan=12.000 "));
+    EXPECT_TRUE(status_shows(" zoom=3.000 "));
+    EXPECT_EQ(run_headctl({"--uri", server.uri(), "preset", "save"}).exit_code, 2);
+    EXPECT_EQ(run_headctl({"--uri", server.uri(), "preset", "save", "128"}).exit_code, 2);
+    EXPECT_EQ(run_headctl({"--uri", server.uri(), "preset", "keep", "1"}).exit_code, 2);
+}
+
 TEST(HeadctlCli, ExitCodesTellUsageConnectionAndRefusal) {
     HeadServerConfig config;
     config.token = "k3y";

@@ -154,6 +154,23 @@ TEST(Protocol, AHeadWithoutZoomReportsFourAxesAndReadsAsTheWidestView) {
                  ProtocolError);
 }
 
+TEST(Protocol, PresetsAreSavedAndRecalledByNumber) {
+    const Request save = parse_request("#4 preset save 12");
+    EXPECT_EQ(save.command, Command::PresetSave);
+    EXPECT_EQ(save.preset, 12);
+    EXPECT_EQ(format_request(save), "#4 PRESET SAVE 12");
+    const Request recall = parse_request("PRESET RECALL 255");
+    EXPECT_EQ(recall.command, Command::PresetRecall);
+    EXPECT_EQ(format_request(recall), "PRESET RECALL 255");
+    for (const char* bad : {"PRESET SAVE", "PRESET SAVE 256", "PRESET SAVE -1", "PRESET FORGET 1", "PRESET SAVE 1 2",
+                            "PRESET RECALL x"})
+        EXPECT_THROW(parse_request(bad), ProtocolError) << bad;
+    Greeting g;
+    g.caps.presets = true;
+    EXPECT_EQ(format_greeting(g), "HELLO GCHP/1 axes=pan,tilt,verge_l,verge_r,zoom caps=abs,rel,vel,preset");
+    EXPECT_TRUE(parse_greeting(format_greeting(g)).caps.presets);
+}
+
 TEST(Protocol, ZoomIsAnAxisOfMoves) {
     const Request r = parse_request("#3 MOVE ABS zoom=2 pan=1");
     EXPECT_DOUBLE_EQ(r.values.get(Axis::Zoom), 2.0);

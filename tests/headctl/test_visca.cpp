@@ -44,6 +44,14 @@ TEST(ViscaBytes, CommandsHaveTheExactLayout) {
     EXPECT_THROW(visca::pan_tilt_absolute(1, 1, 1, 0x8000, 0), visca::ViscaError);
 }
 
+TEST(ViscaBytes, MemoryCommandsHaveTheExactLayout) {
+    EXPECT_EQ(visca::memory(1, visca::MemoryAction::Set, 5), (Bytes{0x81, 0x01, 0x04, 0x3F, 0x01, 0x05, 0xFF}));
+    EXPECT_EQ(visca::memory(3, visca::MemoryAction::Recall, 0x7F), (Bytes{0x83, 0x01, 0x04, 0x3F, 0x02, 0x7F, 0xFF}));
+    EXPECT_EQ(visca::memory(1, visca::MemoryAction::Reset, 0), (Bytes{0x81, 0x01, 0x04, 0x3F, 0x00, 0x00, 0xFF}));
+    EXPECT_THROW(visca::memory(1, visca::MemoryAction::Set, 128), visca::ViscaError);
+    EXPECT_THROW(visca::memory(1, visca::MemoryAction::Set, -1), visca::ViscaError);
+}
+
 TEST(ViscaBytes, ZoomCommandsAndInquiryHaveTheExactLayout) {
     EXPECT_EQ(visca::zoom_direct(1, 0x4000), (Bytes{0x81, 0x01, 0x04, 0x47, 0x04, 0x00, 0x00, 0x00, 0xFF}));
     EXPECT_EQ(visca::zoom_direct(2, 0x1234), (Bytes{0x82, 0x01, 0x04, 0x47, 0x01, 0x02, 0x03, 0x04, 0xFF}));
@@ -390,6 +398,22 @@ TEST(ViscaBackend, ZoomsToAMagnificationAndReadsItBack) {
     fixed.open(deadline());
     zoom.values.set(Axis::Zoom, 2.0);
     EXPECT_THROW(fixed.send(zoom, deadline()), HeadRejected);
+}
+
+TEST(ViscaBackend, SavesAndRecallsPresetsInTheCamerasMemory) {
+    ViscaResponder camera(true);
+    ViscaBackend head("127.0.0.1", camera.port(), ViscaBackend::Transport::Tcp, ViscaSettings{});
+    const auto deadline = [] { return net::Clock::now() + 2s; };
+    head.open(deadline());
+    head.send(preset_command(CommandKind::SavePreset, 4), deadline());
+    head.send(preset_command(CommandKind::RecallPreset, 4), deadline());
+    const auto got = camera.received();
+    ASSERT_EQ(got.size(), 2u);
+    EXPECT_EQ(got[0], visca::memory(1, visca::MemoryAction::Set, 4));
+    EXPECT_EQ(got[1], visca::memory(1, visca::MemoryAction::Recall, 4));
+    camera.refuse_next();
+    EXPECT_THROW(head.send(preset_command(CommandKind::RecallPreset, 9), deadline()), HeadRejected);
+    EXPECT_THROW(head.send(preset_command(CommandKind::RecallPreset, 128), deadline()), HeadRejected);
 }
 
 TEST(ViscaBackend, DrivesACameraOverTcp) {
