@@ -150,7 +150,8 @@ void install_tracker_properties(GObjectClass* gobject_class)
         gobject_class, PROP_HEAD,
         g_param_spec_string("head", "Head URI",
                             "The motorised head carrying the cameras: tcp://host:port[?token=...] (the GCHP "
-                            "protocol, e.g. headsim), visca-udp://host[:port] or visca-tcp://host[:port]; unset: "
+                            "protocol, e.g. headsim), visca-udp://host[:port], visca-tcp://host[:port], "
+                            "visca-serial:///dev/ttyUSB0?baud=9600 or pelco-d:///dev/ttyUSB0?address=1&baud=2400; unset: "
                             "static cameras. Its pose at each frame's capture enters the tracker as camera motion; "
                             "`steer` says how it is moved. Connection changes are posted as head-connection "
                             "messages and a warning. A token reads back as token=***: prefer head-token-file",

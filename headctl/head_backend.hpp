@@ -55,6 +55,10 @@ public:
     virtual std::string name() const = 0;
 };
 
+// For heads that report positions only (VISCA, Pelco-D): marks the axes whose position
+// changed since `last` as moving, then remembers this state's pose in `last`.
+void flag_motion_since(HeadState& state, std::optional<HeadPose>& last);
+
 // The backend for a URI's scheme (tcp: GCHP; visca-udp, visca-tcp: VISCA). The token
 // argument overrides a token in the URI. Throws std::invalid_argument for bad parameters.
 std::unique_ptr<HeadBackend> make_backend(const HeadUri& uri, const std::string& token = {});

@@ -36,7 +36,8 @@ Commands:
   stop                           stop every axis
   watch [INTERVAL_MS [COUNT]]    print the status repeatedly (default 200 ms, until Ctrl-C)
 URI: tcp://HOST:PORT (GCHP, default tcp://127.0.0.1:5050), visca-udp://HOST[:52381],
-     visca-tcp://HOST[:5678]. Axes: pan, tilt, verge_l, verge_r, zoom.
+     visca-tcp://HOST[:5678], visca-serial:///dev/ttyUSB0?baud=9600.
+     Axes: pan, tilt, verge_l, verge_r, zoom.
 Token (GCHP): --token-file FILE (its first line), else --token, else the URI's ?token=,
      else GESTURECAM_HEAD_TOKEN. A token on the command line is blanked there once read.
 Exit status: 0 done, 2 usage error, 3 head unreachable, 4 head refused the command.

@@ -1,5 +1,7 @@
 #include "headctl/visca_backend.hpp"
 
+#include "headctl/serial_port.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -25,6 +27,8 @@ ViscaSettings ViscaSettings::from_uri(const HeadUri& uri) {
     if (tele != std::floor(tele)) throw std::invalid_argument("head URI: parameter zoom_tele_units must be an integer");
     s.zoom_tele_units = static_cast<int>(tele);
     s.zoom_max_speed = uri.number_param("zoom_max_speed", s.zoom_max_speed, 0.01, 1000.0);
+    s.baud = static_cast<int>(uri.number_param("baud", s.baud, 1, 1e7));
+    if (!is_supported_baud(s.baud)) throw std::invalid_argument("head URI: baud must be 2400, 4800, 9600, 19200, 38400, 57600 or 115200");
     s.reply_timeout = std::chrono::milliseconds(
         static_cast<long>(uri.number_param("timeout_ms", static_cast<double>(s.reply_timeout.count()), 1, 60'000)));
     return s;
@@ -34,12 +38,17 @@ ViscaBackend::ViscaBackend(std::string host, std::uint16_t port, Transport trans
     : host_(std::move(host)), port_(port), transport_(transport), settings_(settings) {}
 
 std::string ViscaBackend::name() const {
+    if (transport_ == Transport::Serial) return "visca-serial://" + host_;
     return std::string(transport_ == Transport::Udp ? "visca-udp://" : "visca-tcp://") + host_ + ":" +
            std::to_string(port_);
 }
 
 void ViscaBackend::open(Deadline deadline) {
     close();
+    if (transport_ == Transport::Serial) {
+        fd_ = open_serial_port(host_, settings_.baud);
+        return;
+    }
     fd_ = net::connect_to(host_, port_, transport_ == Transport::Udp ? net::Transport::Udp : net::Transport::Tcp,
                           deadline);
     if (transport_ == Transport::Tcp) return;
@@ -73,7 +82,7 @@ void ViscaBackend::close() {
 std::optional<visca::Bytes> ViscaBackend::receive_message(Deadline deadline, std::uint32_t expected_sequence) {
     std::array<std::uint8_t, 512> buffer{};
     for (;;) {
-        if (transport_ == Transport::Tcp) {
+        if (transport_ != Transport::Udp) {  // a byte stream
             const auto end = std::find(stream_.begin(), stream_.end(), 0xFF);
             if (end != stream_.end()) {
                 visca::Bytes message(stream_.begin(), end + 1);
@@ -85,7 +94,7 @@ std::optional<visca::Bytes> ViscaBackend::receive_message(Deadline deadline, std
         const auto n = net::receive_some(fd_.get(), buffer, deadline);
         if (!n) return std::nullopt;
         const std::span<const std::uint8_t> got(buffer.data(), *n);
-        if (transport_ == Transport::Tcp) {
+        if (transport_ != Transport::Udp) {
             stream_.insert(stream_.end(), got.begin(), got.end());
             continue;
         }
@@ -149,12 +158,7 @@ HeadState ViscaBackend::query_state(Deadline deadline) {
     if (has_zoom())
         s.pose.zoom = zoom_magnification(exchange(visca::zoom_position_inquiry(settings_.address), visca::ReplyKind::ZoomPosition, deadline).zoom_units);
     // VISCA reports no motion flags: an axis moves if it changed since the last inquiry.
-    if (last_pose_) {
-        s.moving[0] = s.pose.pan_deg != last_pose_->pan_deg;
-        s.moving[1] = s.pose.tilt_deg != last_pose_->tilt_deg;
-        s.moving[4] = s.pose.zoom != last_pose_->zoom;
-    }
-    last_pose_ = s.pose;
+    flag_motion_since(s, last_pose_);
     return s;
 }
 

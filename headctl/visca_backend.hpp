@@ -24,13 +24,15 @@ struct ViscaSettings {
     int zoom_tele_units = 0x4000;
     double zoom_max_speed = 8.0;
     std::chrono::milliseconds reply_timeout{500};
+    int baud = 9600;  // Serial
 
     static ViscaSettings from_uri(const HeadUri& uri);  // throws std::invalid_argument
 };
 
 class ViscaBackend final : public HeadBackend {
 public:
-    enum class Transport { Udp, Tcp };
+    // Serial: `host` is the device path; raw VISCA as over TCP.
+    enum class Transport { Udp, Tcp, Serial };
     ViscaBackend(std::string host, std::uint16_t port, Transport transport, ViscaSettings settings);
 
     void open(Deadline deadline) override;
