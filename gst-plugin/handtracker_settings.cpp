@@ -23,6 +23,8 @@ enum {
     PROP_STEER,
     PROP_TARGET_DISTANCE,
     PROP_HOME_PRESET,
+    PROP_WIDEN_AFTER,
+    PROP_HOME_AFTER,
     PROP_DETECTOR,
     PROP_MODEL_DIR,
 };
@@ -178,6 +180,18 @@ void install_tracker_properties(GObjectClass* gobject_class)
                          -1, gc::headctl::kMaxPreset, -1,
                          GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
     g_object_class_install_property(
+        gobject_class, PROP_WIDEN_AFTER,
+        g_param_spec_double("widen-after", "Widen after",
+                            "steer=fixate: once the hand has been lost this long (s) the head zooms out towards its "
+                            "widest view until it is found again or goes home; 0: never",
+                            0.0, 3600.0, 0.0, GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
+    g_object_class_install_property(
+        gobject_class, PROP_HOME_AFTER,
+        g_param_spec_double("home-after", "Home after",
+                            "steer=fixate: once the hand has been lost this long (s) the head goes home (or to "
+                            "home-preset); until then it holds still where the hand was last seen",
+                            0.0, 3600.0, 2.0, GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
+    g_object_class_install_property(
         gobject_class, PROP_DETECTOR,
         g_param_spec_enum("detector", "Detector", "How the hand is found and checked", GST_TYPE_HAND_TRACKER_DETECTOR,
                           int(gc::HandDetector::Learned),
@@ -258,6 +272,12 @@ bool set_tracker_setting(TrackerSettings& s, guint prop_id, const GValue* value,
     case PROP_HOME_PRESET:
         s.home_preset = g_value_get_int(value);
         break;
+    case PROP_WIDEN_AFTER:
+        s.widen_after_s = g_value_get_double(value);
+        break;
+    case PROP_HOME_AFTER:
+        s.home_after_s = g_value_get_double(value);
+        break;
     case PROP_DETECTOR:
         s.detector = gc::HandDetector(g_value_get_enum(value));
         rebuild = true;
@@ -318,6 +338,12 @@ bool get_tracker_setting(const TrackerSettings& s, guint prop_id, GValue* value)
         break;
     case PROP_HOME_PRESET:
         g_value_set_int(value, s.home_preset);
+        break;
+    case PROP_WIDEN_AFTER:
+        g_value_set_double(value, s.widen_after_s);
+        break;
+    case PROP_HOME_AFTER:
+        g_value_set_double(value, s.home_after_s);
         break;
     case PROP_DETECTOR:
         g_value_set_enum(value, int(s.detector));

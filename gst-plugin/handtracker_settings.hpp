@@ -39,6 +39,8 @@ struct TrackerSettings {
     gc::SteerMode steer = kDefaultSteer;
     double target_distance_mm = kDefaultTargetDistanceMm;
     int home_preset = -1;  // the head's preset that steering returns to; -1: its home position
+    double widen_after_s = 0.0;  // lost this long, the head zooms out; 0: never
+    double home_after_s = 2.0;   // lost this long, the head goes home (or to home_preset)
     gc::HandDetector detector = gc::HandDetector::Learned;
     std::string model_dir;  // empty: the learned models are found without configuration
 };

@@ -20,6 +20,10 @@ struct FixateConfig {
     double head_latency_s = 0.05;       // from a command to the head's response
     double hold_s = 2.0;                // after the hand is lost, hold still this long, then home
     std::optional<int> home_preset;     // home is this preset of the head (else its HOME)
+    // Lost for this long (0: never), and not yet home, the lens zooms out towards its widest
+    // at widen_rate (magnification per second), so a hand just outside a narrow view shows.
+    double widen_after_s = 0.0;
+    double widen_rate = 2.0;
     HeadLimits limits;                  // the head's soft limits (pan and tilt are used)
 
     void validate() const;  // throws std::invalid_argument naming the field
@@ -59,6 +63,7 @@ private:
     std::array<bool, 2> settled_{};      // inside the dead band
     double lost_s_ = 0.0;
     bool homed_ = false;
+    bool widening_ = false;  // the last command drove the zoom out
 };
 
 }  // namespace gc::headctl

@@ -172,13 +172,15 @@ struct HeadLink::Impl {
     // Submits; a head without vergence axes gets the command without them from then on.
     void submit(HeadCommand command)
     {
+        if (!client->has_axis(Axis::Zoom))
+            command.values.clear(Axis::Zoom);
         if (!head_has_vergence) {
             command.values.clear(Axis::VergeLeft);
             command.values.clear(Axis::VergeRight);
-            if (command.values.empty() && command.kind != CommandKind::Home && command.kind != CommandKind::Stop &&
-                !headctl::is_preset(command.kind))
-                return;
         }
+        if (command.values.empty() && command.kind != CommandKind::Home && command.kind != CommandKind::Stop &&
+            !headctl::is_preset(command.kind))
+            return;
         try {
             client->submit(command);
         } catch (const std::invalid_argument&) {

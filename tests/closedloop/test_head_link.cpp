@@ -126,6 +126,35 @@ TEST(HeadLink, FixateReturnsToTheHomePresetOnceTheHandIsLost)
     EXPECT_TRUE(eventually(at_watch, 3000ms)) << latest_pose(link).pan_deg;
 }
 
+TEST(HeadLink, FixateWidensTheViewWhileTheHandIsLostAndResumesWhenItIsBack)
+{
+    RunningHead head(loopback_head());
+    HeadLinkConfig config = link_config(head.uri(), SteerMode::Fixate);
+    config.fixate.widen_after_s = 0.3;
+    config.fixate.widen_rate = 4.0;
+    config.fixate.hold_s = 30.0;
+    HeadLink link(config, calibration());
+    ASSERT_TRUE(eventually([&] { return link.client().limits().has_value(); }, 2000ms));
+    headctl::HeadClientConfig driver_config;
+    driver_config.uri = head.uri();
+    headctl::HeadClient driver(driver_config);
+    headctl::HeadCommand zoom_in{headctl::CommandKind::Absolute, {}};
+    zoom_in.values.set(headctl::Axis::Zoom, 6.0);
+    driver.submit(zoom_in);
+    ASSERT_TRUE(eventually([&] { return latest_pose(link).zoom == 6.0; }, 3000ms));
+
+    const FrameResult centred = left_hand_at(calibration().M1(0, 2), calibration().M1(1, 2));
+    run_frames(link, 300ms, [&](const HeadAtCapture&) { return centred; });
+    EXPECT_DOUBLE_EQ(latest_pose(link).zoom, 6.0);  // tracking leaves the lens alone
+    run_frames(link, 1200ms, [&](const HeadAtCapture&) { return FrameResult{}; });
+    const double widened = latest_pose(link).zoom;
+    EXPECT_LT(widened, 4.0);  // about 0.9 s at 4 per second
+    run_frames(link, 600ms, [&](const HeadAtCapture&) { return centred; });
+    const double resumed = latest_pose(link).zoom;
+    EXPECT_GT(resumed, widened - 1.0);  // stopped at once, not run on to the widest
+    EXPECT_GT(resumed, 1.5);
+}
+
 // Views that reach the link later than max_view_age after capture do not steer: the same
 // off-centre hand that turns the head when fresh leaves it at rest when 400 ms old.
 TEST(HeadLink, ViewsTooOldToSteerFromLeaveTheHeadAtRest)

@@ -40,6 +40,7 @@ struct Loop {
             if (cmd) {
                 commands.push_back(*cmd);
                 if (cmd->kind == CommandKind::Velocity) head->move_velocity(cmd->values, t);
+                if (cmd->kind == CommandKind::Absolute) head->move_absolute(cmd->values, t);
                 if (cmd->kind == CommandKind::Home) head->home(t);
                 if (cmd->kind == CommandKind::RecallPreset) head->recall_preset(cmd->preset, t);
             }
@@ -150,6 +151,30 @@ TEST(FixateController, ReturnsToTheHomePresetWhenOneIsSet) {
     EXPECT_EQ(loop.commands.back(), preset_command(CommandKind::RecallPreset, 7));
     EXPECT_NEAR(later.back().pan_deg, -25.0, 1e-6);
     EXPECT_NEAR(later.back().tilt_deg, 5.0, 1e-6);
+}
+
+TEST(FixateController, ZoomsOutWhileTheHandIsLostAndStopsWhenItIsFoundAgain) {
+    FixateConfig config;
+    config.widen_after_s = 0.5;
+    config.widen_rate = 3.0;
+    config.hold_s = 10.0;
+    Loop loop(config);
+    AxisValues zoomed;
+    zoomed.set(Axis::Zoom, 6.0);
+    loop.head->move_absolute(zoomed, 0.0);
+    loop.t = 3.0;
+    loop.run(30, 0.0, 0.0);
+    EXPECT_DOUBLE_EQ(loop.head->state(loop.t).pose.zoom, 6.0);  // tracking: the lens is left alone
+    const auto lost = loop.run(15, 0.0, 0.0, false);              // 0.5 s: holding
+    EXPECT_DOUBLE_EQ(lost.back().zoom, 6.0);
+    const auto widening = loop.run(30, 0.0, 0.0, false);          // 1 s more: about 3 wider
+    EXPECT_LT(widening.back().zoom, 4.0);
+    EXPECT_GT(widening.back().zoom, 2.0);
+    loop.run(1, 0.0, 0.0);  // found again
+    const double found = loop.head->state(loop.t).pose.zoom;
+    loop.run(30, 0.0, 0.0);
+    EXPECT_NEAR(loop.head->state(loop.t).pose.zoom, found, 0.3);  // stopped (after its braking)
+    EXPECT_GT(loop.head->state(loop.t).pose.zoom, 1.5);
 }
 
 TEST(FixateController, FeedForwardFollowsAMovingTarget) {
