@@ -39,7 +39,7 @@ bool ensure_head_link(GstHandTracker* self, const Settings& settings, cv::Size s
     if (e.head && (e.calibration || size == e.head_view_size))
         return true;
     e.head.reset();
-    gc::HeadLinkConfig config;
+    gc::headctl::HeadLinkConfig config;
     config.uri = settings.head;
     config.token = e.head_token;
     config.steer = settings.steer;
@@ -55,8 +55,8 @@ bool ensure_head_link(GstHandTracker* self, const Settings& settings, cv::Size s
     if (!GST_CLOCK_TIME_IS_VALID(gst_aggregator_get_latency(GST_AGGREGATOR(self))))
         config.max_view_age = std::chrono::hours(24 * 365);
     try {
-        e.head = std::make_unique<gc::HeadLink>(std::move(config),
-                                                e.calibration ? *e.calibration : gc::default_calibration(size));
+        e.head = std::make_unique<gc::headctl::HeadLink>(std::move(config),
+                                                         e.calibration ? *e.calibration : gc::default_calibration(size));
     } catch (const std::exception& err) {
         GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
                           ("Cannot use the head at \"%s\".", gc::headctl::redact_uri(settings.head).c_str()),
@@ -99,7 +99,7 @@ bool prepare_head(GstHandTracker* self, const Settings& settings)
 
 GstFlowReturn head_at_capture(GstHandTracker* self, const Settings& settings, cv::Size size,
                               GstVideoAggregatorPad* pose_pad, const GstVideoFrame* pose_frame, GstBuffer* outbuf,
-                              HeadAtCapture& at)
+                              headctl::HeadAtCapture& at)
 {
     TrackerState& e = *self->state;
     if (settings.head.empty())
@@ -121,7 +121,7 @@ void steer_head(GstHandTracker* self, const Settings& settings, const gc::FrameR
 {
     TrackerState& e = *self->state;
     e.head->end_frame(result);  // never waits: the command goes to the link's thread
-    const bool stale = settings.steer != gc::SteerMode::Off && e.head->last_view_stale();
+    const bool stale = settings.steer != gc::headctl::SteerMode::Off && e.head->last_view_stale();
     if (stale && !e.warned_stale_views)
         GST_ELEMENT_WARNING(self, STREAM, FAILED,
                             ("Views reach the tracker %.0f ms after capture: the head is not steered from "

@@ -17,7 +17,7 @@ bool prepare_head(GstHandTracker* self, const TrackerSettings& settings);
 // motion it caused, into `at`; nothing without a head. Builds the link when needed.
 GstFlowReturn head_at_capture(GstHandTracker* self, const TrackerSettings& settings, cv::Size size,
                               GstVideoAggregatorPad* pose_pad, const GstVideoFrame* pose_frame, GstBuffer* outbuf,
-                              HeadAtCapture& at);
+                              headctl::HeadAtCapture& at);
 
 // Hands a tracked frame's result to the head link, warning once per episode when the views
 // come too late to steer from (the head then holds).

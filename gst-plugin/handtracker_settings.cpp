@@ -68,9 +68,9 @@ static GType gst_hand_tracker_steer_get_type()
 {
     static GType type = 0;
     static const GEnumValue values[] = {
-        {int(gc::SteerMode::Off), "Only read the head's pose (for the camera-motion offsets)", "off"},
-        {int(gc::SteerMode::Fixate), "Keep the hand in the middle of the left view and verge on its depth", "fixate"},
-        {int(gc::SteerMode::Point), "Look where the hand points, target-distance along its ray", "point"},
+        {int(gc::headctl::SteerMode::Off), "Only read the head's pose (for the camera-motion offsets)", "off"},
+        {int(gc::headctl::SteerMode::Fixate), "Keep the hand in the middle of the left view and verge on its depth", "fixate"},
+        {int(gc::headctl::SteerMode::Point), "Look where the hand points, target-distance along its ray", "point"},
         {0, nullptr, nullptr},
     };
     if (g_once_init_enter(&type))
@@ -95,22 +95,23 @@ static GType gst_hand_tracker_detector_get_type()
     return type;
 }
 
-}  // namespace
+// Changeable while playing.
+constexpr auto kMutablePlaying = GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_PLAYING);
 
-void install_tracker_properties(GObjectClass* gobject_class)
+// The particle filters, the calibration, the output view and the loss rule.
+void install_tracking_properties(GObjectClass* gobject_class)
 {
-    const auto flags = GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_PLAYING);
     g_object_class_install_property(
         gobject_class, PROP_PARTICLES,
         g_param_spec_int("particles", "Particles",
                          "Sample-set size N of each eye's particle filter; a change restarts tracking", 1,
-                         kMaxParticles, kDefaultParticles, flags));
+                         kMaxParticles, kDefaultParticles, kMutablePlaying));
     g_object_class_install_property(
         gobject_class, PROP_SEED,
         g_param_spec_uint64("seed", "Seed",
                             "Seed of the particle filters: the same seed and frames give the same output; "
                             "a change restarts tracking",
-                            0, G_MAXUINT64, kDefaultSeed, flags));
+                            0, G_MAXUINT64, kDefaultSeed, kMutablePlaying));
     g_object_class_install_property(
         gobject_class, PROP_CALIBRATION,
         g_param_spec_string("calibration", "Calibration file",
@@ -119,35 +120,44 @@ void install_tracker_properties(GObjectClass* gobject_class)
                             nullptr, GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
     g_object_class_install_property(gobject_class, PROP_OUTPUT,
                                     g_param_spec_enum("output", "Output", "The view on the src pad",
-                                                      GST_TYPE_HAND_TRACKER_OUTPUT, kDefaultOutput, flags));
+                                                      GST_TYPE_HAND_TRACKER_OUTPUT, kDefaultOutput, kMutablePlaying));
     g_object_class_install_property(
         gobject_class, PROP_DRAW,
         g_param_spec_boolean("draw", "Draw",
                              "Draw the tracked contour, the particles' marginal distributions along the borders, "
                              "the pointing direction and the state on the output",
-                             FALSE, flags));
+                             FALSE, kMutablePlaying));
     g_object_class_install_property(
         gobject_class, PROP_LOST_THRESHOLD,
         g_param_spec_double("lost-threshold", "Lost threshold",
                             "A view is lost when every particle's likelihood stays below this fraction of the "
                             "likelihood at acquisition for lost-frames frames",
-                            0.0, 1.0, kDefaultLostThreshold, flags));
+                            0.0, 1.0, kDefaultLostThreshold, kMutablePlaying));
     g_object_class_install_property(
         gobject_class, PROP_LOST_FRAMES,
         g_param_spec_int("lost-frames", "Lost frames",
                          "Consecutive frames below lost-threshold before a view is lost", 1, 1000,
-                         kDefaultLostFrames, flags));
+                         kDefaultLostFrames, kMutablePlaying));
+}
+
+// Where the results go besides the buffer: bus messages and JSON lines.
+void install_report_properties(GObjectClass* gobject_class)
+{
     g_object_class_install_property(
         gobject_class, PROP_MESSAGE_UPDATES,
         g_param_spec_enum("message-updates", "Message updates", "When to post hand-pointing element messages",
-                          GST_TYPE_HAND_TRACKER_MESSAGE_UPDATES, kDefaultMessageUpdates, flags));
+                          GST_TYPE_HAND_TRACKER_MESSAGE_UPDATES, kDefaultMessageUpdates, kMutablePlaying));
     g_object_class_install_property(
         gobject_class, PROP_JSON_LOCATION,
         g_param_spec_string("json-location", "JSON lines file",
                             "Write one JSON line per tracked frame to this file (the gesturecam-track schema); "
                             "unset: none",
                             nullptr, GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
+}
 
+// The head and how it is steered.
+void install_head_properties(GObjectClass* gobject_class)
+{
     g_object_class_install_property(
         gobject_class, PROP_HEAD,
         g_param_spec_string("head", "Head URI",
@@ -164,14 +174,20 @@ void install_tracker_properties(GObjectClass* gobject_class)
                             "A file whose first line is the head's token (GCHP), read at start; it replaces a "
                             "token in the head URI. Unset: the URI's token, if any",
                             nullptr, GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
-    g_object_class_install_property(gobject_class, PROP_STEER,
-                                    g_param_spec_enum("steer", "Steer", "How the head is moved (needs head)",
-                                                      GST_TYPE_HAND_TRACKER_STEER, int(kDefaultSteer), flags));
+    g_object_class_install_property(
+        gobject_class, PROP_STEER,
+        g_param_spec_enum("steer", "Steer", "How the head is moved (needs head)", GST_TYPE_HAND_TRACKER_STEER,
+                          int(kDefaultSteer), kMutablePlaying));
     g_object_class_install_property(
         gobject_class, PROP_TARGET_DISTANCE,
         g_param_spec_double("target-distance", "Target distance",
                             "steer=point: how far along the pointing ray, from the fingertip, the head looks (mm)",
-                            1.0, 1.0e6, kDefaultTargetDistanceMm, flags));
+                            1.0, 1.0e6, kDefaultTargetDistanceMm, kMutablePlaying));
+}
+
+// How the hand is found.
+void install_detector_properties(GObjectClass* gobject_class)
+{
     g_object_class_install_property(
         gobject_class, PROP_HOME_PRESET,
         g_param_spec_int("home-preset", "Home preset",
@@ -202,6 +218,16 @@ void install_tracker_properties(GObjectClass* gobject_class)
                             "Folder of the learned models (palm_detection.onnx, hand_landmark.onnx); unset: "
                             "GESTURECAM_MODEL_DIR, else the installed models, else the source tree's core/models",
                             nullptr, GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
+}
+
+}  // namespace
+
+void install_tracker_properties(GObjectClass* gobject_class)
+{
+    install_tracking_properties(gobject_class);
+    install_report_properties(gobject_class);
+    install_head_properties(gobject_class);
+    install_detector_properties(gobject_class);
 }
 
 void mark_tracker_enums_as_plugin_api()
@@ -264,7 +290,7 @@ bool set_tracker_setting(TrackerSettings& s, guint prop_id, const GValue* value,
         break;
     }
     case PROP_STEER:
-        s.steer = gc::SteerMode(g_value_get_enum(value));
+        s.steer = gc::headctl::SteerMode(g_value_get_enum(value));
         break;
     case PROP_TARGET_DISTANCE:
         s.target_distance_mm = g_value_get_double(value);

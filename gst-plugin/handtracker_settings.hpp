@@ -4,7 +4,7 @@
 
 #include "gsthandtracker.hpp"
 
-#include "headctl/head_link.hpp"
+#include "headctl/steering/head_link.hpp"
 #include "tracker/hand_tracker.hpp"
 
 #include <glib-object.h>
@@ -20,7 +20,7 @@ constexpr double kDefaultLostThreshold = 0.6;
 constexpr int kDefaultLostFrames = 3;
 constexpr GstHandTrackerOutput kDefaultOutput = GST_HAND_TRACKER_OUTPUT_LEFT;
 constexpr GstHandTrackerMessageUpdates kDefaultMessageUpdates = GST_HAND_TRACKER_MESSAGES_EVERY_FRAME;
-constexpr gc::SteerMode kDefaultSteer = gc::SteerMode::Fixate;
+constexpr gc::headctl::SteerMode kDefaultSteer = gc::headctl::SteerMode::Fixate;
 constexpr double kDefaultTargetDistanceMm = 2000.0;
 
 // Property values, read and written under the object lock.
@@ -36,7 +36,7 @@ struct TrackerSettings {
     std::string json_location;
     std::string head;  // the head's URI; empty: no head
     std::string head_token_file;  // empty: the URI's token, if any
-    gc::SteerMode steer = kDefaultSteer;
+    gc::headctl::SteerMode steer = kDefaultSteer;
     double target_distance_mm = kDefaultTargetDistanceMm;
     int home_preset = -1;  // the head's preset that steering returns to; -1: its home position
     double widen_after_s = 0.0;  // lost this long, the head zooms out; 0: never

@@ -10,7 +10,7 @@
 #include "video_bgr.hpp"
 
 #include "common/line_output.hpp"
-#include "headctl/head_link.hpp"
+#include "headctl/steering/head_link.hpp"
 #include "stereo/calibration.hpp"
 #include "tracker/pointing_tracker.hpp"
 
@@ -54,7 +54,7 @@ struct TrackerState {
     std::optional<LineOutput> json;  // json-location: one whole line per write, each checked
     std::string json_path;
     std::string json_line;
-    std::unique_ptr<HeadLink> head;
+    std::unique_ptr<headctl::HeadLink> head;
     std::string head_token;           // read from head-token-file at start
     cv::Size head_view_size;          // the view size of the head link's calibration
     bool warned_stale_views = false;  // the current run of too-old views was reported

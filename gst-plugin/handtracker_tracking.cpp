@@ -88,7 +88,7 @@ GstFlowReturn track_views(GstHandTracker* self, const Settings& settings, const 
     e.stream.stereo = stereo;
     // The head's pose when these views were taken and the image motion it caused; without
     // a head: no pose, no motion.
-    gc::HeadAtCapture at;
+    gc::headctl::HeadAtCapture at;
     if (const GstFlowReturn ret = head_at_capture(self, settings, size, pose_pad, pose_frame, outbuf, at);
         ret != GST_FLOW_OK)
         return ret;

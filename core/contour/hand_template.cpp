@@ -144,22 +144,11 @@ HandLandmarks find_hand_landmarks(const cv::Mat& mask, const cv::Mat1b& motion) 
     return lm;
 }
 
-HandTemplate HandTemplate::from_mask(const cv::Mat& mask, const cv::Mat1b& membership,
-                                     const TemplateOptions& options, const cv::Mat& bgr,
-                                     const cv::Mat1b& motion) {
-    if (options.measurement_normals < 8 || options.outline_points < 16 ||
-        options.palm_points < 8 || !(options.finger_density >= 1.0) ||
-        !(options.finger_weight > 0.0) || !(options.snap_range >= 0.0))
-        throw std::invalid_argument("hand template: invalid options");
-    if (!membership.empty() && membership.size() != mask.size())
-        throw std::invalid_argument("hand template: membership map size differs from mask size");
-    const HandLandmarks lm = find_hand_landmarks(mask, motion);
-    const double reach = norm(lm.fingertip - lm.palm);
-    if (reach < 1.5 * lm.palm_radius || reach < 6.0)
-        throw std::invalid_argument("hand template: no finger protrudes from the palm");
+namespace {
 
-    // Points along the smoothed outline by arc length, the step shrinking on the finger:
-    // there the curve must be faithful, and more normals there weight the orientation.
+// Points along the smoothed outline by arc length, the step shrinking on the finger:
+// there the curve must be faithful, and more normals there weight the orientation.
+std::vector<cv::Point2d> outline_points(const HandLandmarks& lm, double reach, const TemplateOptions& options) {
     const std::vector<cv::Point2d> ring = smooth_ring(lm.outline, 1.2);
     const int n = static_cast<int>(ring.size());
     double perimeter = 0.0;
@@ -187,22 +176,65 @@ HandTemplate HandTemplate::from_mask(const cv::Mat& mask, const cv::Mat1b& membe
         through.pop_back();
     if (through.size() < 8)
         throw std::invalid_argument("hand template: outline too short to model");
+    return through;
+}
 
-    // Sub-pixel snapping to the skin boundary of the image, so the template sits where the
-    // measurement will look for edges (the raster outline is half a pixel inside).
-    if (!membership.empty() && options.snap_range > 0.0) {
-        const ClosedBSpline rough = ClosedBSpline::interpolate(through);
-        for (std::size_t i = 0; i < through.size(); ++i) {
-            const cv::Point2d nrm = rough.outward_normal(double(i));
-            double off = 0.0;
-            if (find_skin_edge_precise(membership, through[i], nrm, options.snap_range, 0.25, off))
-                through[i] += colour_edge_offset(bgr, through[i], nrm, off) * nrm;
-        }
-        for (std::size_t i = 0; i + 1 < through.size();) {  // snapping may merge neighbours
-            if (norm(through[i + 1] - through[i]) < 0.3) through.erase(through.begin() + i + 1);
-            else ++i;
-        }
+// Sub-pixel snapping to the skin boundary of the image, so the template sits where the
+// measurement will look for edges (the raster outline is half a pixel inside).
+void snap_to_skin_edge(std::vector<cv::Point2d>& through, const cv::Mat1b& membership, const cv::Mat& bgr,
+                       double snap_range) {
+    const ClosedBSpline rough = ClosedBSpline::interpolate(through);
+    for (std::size_t i = 0; i < through.size(); ++i) {
+        const cv::Point2d nrm = rough.outward_normal(double(i));
+        double off = 0.0;
+        if (find_skin_edge_precise(membership, through[i], nrm, snap_range, 0.25, off))
+            through[i] += colour_edge_offset(bgr, through[i], nrm, off) * nrm;
     }
+    for (std::size_t i = 0; i + 1 < through.size();) {  // snapping may merge neighbours
+        if (norm(through[i + 1] - through[i]) < 0.3) through.erase(through.begin() + i + 1);
+        else ++i;
+    }
+}
+
+// `count` points of the template's spline evenly in its parameter, with their outward
+// normals and weights (the finger's weighted by `finger_weight`, all summing to 1).
+void sample_spline(const HandTemplate& t, int count, double finger_weight, std::vector<cv::Point2f>& pts,
+                   std::vector<cv::Point2f>& nrms, std::vector<float>& wts) {
+    const int knots = t.spline.size();
+    pts.resize(count);
+    nrms.resize(count);
+    wts.resize(count);
+    double total = 0.0;
+    for (int k = 0; k < count; ++k) {
+        const double u = double(k) * knots / count;
+        const cv::Point2d p = t.spline.point(u);
+        pts[k] = cv::Point2f(p);
+        nrms[k] = cv::Point2f(t.spline.outward_normal(u));
+        wts[k] = static_cast<float>(t.on_finger(pts[k]) ? finger_weight : 1.0);
+        total += wts[k];
+    }
+    for (float& w : wts) w = static_cast<float>(w / total);
+}
+
+}  // namespace
+
+HandTemplate HandTemplate::from_mask(const cv::Mat& mask, const cv::Mat1b& membership,
+                                     const TemplateOptions& options, const cv::Mat& bgr,
+                                     const cv::Mat1b& motion) {
+    if (options.measurement_normals < 8 || options.outline_points < 16 ||
+        options.palm_points < 8 || !(options.finger_density >= 1.0) ||
+        !(options.finger_weight > 0.0) || !(options.snap_range >= 0.0))
+        throw std::invalid_argument("hand template: invalid options");
+    if (!membership.empty() && membership.size() != mask.size())
+        throw std::invalid_argument("hand template: membership map size differs from mask size");
+    const HandLandmarks lm = find_hand_landmarks(mask, motion);
+    const double reach = norm(lm.fingertip - lm.palm);
+    if (reach < 1.5 * lm.palm_radius || reach < 6.0)
+        throw std::invalid_argument("hand template: no finger protrudes from the palm");
+
+    std::vector<cv::Point2d> through = outline_points(lm, reach, options);
+    if (!membership.empty() && options.snap_range > 0.0)
+        snap_to_skin_edge(through, membership, bgr, options.snap_range);
 
     HandTemplate t;
     t.origin_px = lm.palm;
@@ -210,26 +242,8 @@ HandTemplate HandTemplate::from_mask(const cv::Mat& mask, const cv::Mat1b& membe
     for (auto& p : through) p -= lm.palm;
     t.spline = ClosedBSpline::interpolate(through);
     t.fingertip = cv::Point2f(lm.fingertip - lm.palm);
-
-    const int knots = t.spline.size();
-    auto sample = [&](int count, std::vector<cv::Point2f>& pts, std::vector<cv::Point2f>& nrms,
-                      std::vector<float>& wts) {
-        pts.resize(count);
-        nrms.resize(count);
-        wts.resize(count);
-        double total = 0.0;
-        for (int k = 0; k < count; ++k) {
-            const double u = double(k) * knots / count;
-            const cv::Point2d p = t.spline.point(u);
-            pts[k] = cv::Point2f(p);
-            nrms[k] = cv::Point2f(t.spline.outward_normal(u));
-            wts[k] = static_cast<float>(t.on_finger(pts[k]) ? options.finger_weight : 1.0);
-            total += wts[k];
-        }
-        for (float& w : wts) w = static_cast<float>(w / total);
-    };
-    sample(options.measurement_normals, t.points, t.normals, t.weights);
-    sample(options.outline_points, t.outline, t.outline_normals, t.outline_weights);
+    sample_spline(t, options.measurement_normals, options.finger_weight, t.points, t.normals, t.weights);
+    sample_spline(t, options.outline_points, options.finger_weight, t.outline, t.outline_normals, t.outline_weights);
     return t;
 }
 

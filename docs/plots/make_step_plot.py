@@ -3,7 +3,7 @@
 
     python3 docs/plots/make_step_plot.py --build build
 
-runs BUILD/tests/closedloop/step_response (simulated time, deterministic), keeps its CSV
+runs BUILD/core/tools/studies/step_response (simulated time, deterministic), keeps its CSV
 in docs/plots/step_response.csv and writes docs/plots/step_response.png. With --csv FILE
 it plots an existing CSV instead of running the program. Needs matplotlib (Debian:
 apt-get install python3-matplotlib); only the documentation needs it.
@@ -50,14 +50,14 @@ def figures(t, x, target):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     src = ap.add_mutually_exclusive_group(required=True)
-    src.add_argument("--build", help="meson build directory holding tests/closedloop/step_response")
+    src.add_argument("--build", help="meson build directory holding core/tools/studies/step_response")
     src.add_argument("--csv", help="plot this CSV instead of running the program")
     ap.add_argument("--out", default=str(HERE / "step_response.png"))
     args = ap.parse_args()
 
     if args.build:
         csv_path = HERE / "step_response.csv"
-        exe = pathlib.Path(args.build) / "tests" / "closedloop" / "step_response"
+        exe = pathlib.Path(args.build) / "core" / "tools" / "studies" / "step_response"
         if not exe.is_absolute():
             exe = ROOT / exe
         subprocess.run([str(exe), "--csv", str(csv_path)], check=True)

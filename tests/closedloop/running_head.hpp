@@ -1,7 +1,7 @@
 // The simulated head served on 127.0.0.1 from its own thread, for the closed-loop tests.
 #pragma once
 
-#include "headctl/head_server.hpp"
+#include "headctl/sim/head_server.hpp"
 
 #include <chrono>
 #include <functional>

@@ -3,7 +3,7 @@
 // over loopback TCP in real time. A moving hand must stay in the middle of the left view, a
 // still one must not make the head twitch, and in point mode the eyes must end up looking
 // where the hand points.
-#include "headctl/head_link.hpp"
+#include "headctl/steering/head_link.hpp"
 #include "running_head.hpp"
 
 #include "sim/motion_script.hpp"
@@ -28,6 +28,10 @@ using namespace std::chrono_literals;
 using closedloop_test::eventually;
 using closedloop_test::loopback_head;
 using closedloop_test::RunningHead;
+using headctl::HeadAtCapture;
+using headctl::HeadLink;
+using headctl::HeadLinkConfig;
+using headctl::SteerMode;
 
 constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 

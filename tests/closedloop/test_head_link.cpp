@@ -1,6 +1,6 @@
 // The head link against the simulated head served in-process on loopback: commands reach the
 // head in each steering mode, the link survives the head going away, and no call waits on it.
-#include "headctl/head_link.hpp"
+#include "headctl/steering/head_link.hpp"
 #include "running_head.hpp"
 
 #include "stereo/calibration.hpp"
@@ -25,6 +25,11 @@ using closedloop_test::eventually;
 using closedloop_test::loopback_head;
 using closedloop_test::RunningHead;
 using headctl::ConnectionState;
+using headctl::HeadAtCapture;
+using headctl::HeadLink;
+using headctl::HeadLinkConfig;
+using headctl::SteerMode;
+using headctl::steer_mode_from_string;
 
 const StereoCalibration& calibration()
 {

@@ -1,6 +1,6 @@
 // The fixate steering law against the simulated head (fake clock, frame-rate control loop).
-#include "headctl/fixate_controller.hpp"
-#include "headctl/head_model.hpp"
+#include "headctl/steering/fixate_controller.hpp"
+#include "headctl/sim/head_model.hpp"
 
 #include <gtest/gtest.h>
 

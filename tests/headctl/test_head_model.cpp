@@ -1,5 +1,5 @@
 // The simulated head's mechanics, driven by a fake clock.
-#include "headctl/head_model.hpp"
+#include "headctl/sim/head_model.hpp"
 
 #include <gtest/gtest.h>
 

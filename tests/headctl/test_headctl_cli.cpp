@@ -19,7 +19,7 @@ struct Outcome {
 // Runs the headctl executable with args (and `env` added to the environment); bounded to 10 s.
 Outcome run_headctl(std::vector<std::string> args, const std::vector<std::string>& env = {}) {
     const char* root = std::getenv("GESTURECAM_BUILD_ROOT");
-    const std::string path = std::string(root ? root : ".") + "/headctl/headctl";
+    const std::string path = std::string(root ? root : ".") + "/core/tools/headctl";
     Outcome o;
     Spawned child;
     try {

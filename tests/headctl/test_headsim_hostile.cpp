@@ -4,7 +4,7 @@
 // address, as a remote attacker would.
 #include "test_support.hpp"
 
-#include "headctl/auth_throttle.hpp"
+#include "headctl/sim/auth_throttle.hpp"
 
 #include <cstdio>
 #include <memory>

@@ -3,7 +3,7 @@
 // the start of a built program with its output on pipes.
 #pragma once
 
-#include "headctl/head_server.hpp"
+#include "headctl/sim/head_server.hpp"
 #include "headctl/net.hpp"
 
 #include <gtest/gtest.h>

@@ -8,8 +8,8 @@
 // Prints overshoot, rise and settling times per step and axis, and exits 1 when a step
 // overshoots by more than 2 deg, does not settle or keeps moving at the end. With --csv it
 // also writes the trajectories for docs/plots/make_step_plot.py.
-#include "headctl/fixate_controller.hpp"
-#include "headctl/head_model.hpp"
+#include "headctl/steering/fixate_controller.hpp"
+#include "headctl/sim/head_model.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -29,7 +29,7 @@ constexpr int kSubsteps = 10;       // trajectory samples per frame (3.3 ms)
 constexpr int kCommandSubstep = 3;  // the command leaves 10 ms after the capture
 constexpr double kHeadLatency = 0.02;
 constexpr double kDuration = 3.0;
-// HeadLink's smoothing of the hand's angular velocity per frame (headctl/head_link.cpp).
+// HeadLink's smoothing of the hand's angular velocity per frame (headctl/steering/head_link.cpp).
 constexpr double kRateSmoothing = 0.3;
 
 struct Sample {

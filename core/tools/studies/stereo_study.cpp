@@ -60,13 +60,63 @@ void summary(const std::vector<Sample>& s, int invalid, int total)
                 percentile(depth, 0.5), percentile(depth, 0.9), slope(s));
 }
 
+using SamplesBy = std::map<double, std::vector<Sample>>;
+
+void print_by_depth(const SamplesBy& by_depth)
+{
+    std::printf("\nDepth (palm placed at the given distance; fingertip depth, mean +/- sd over poses and hands)\n\n"
+                "| palm depth | true fingertip depth | estimated | error mean | error sd |\n|---|---|---|---|---|\n");
+    for (const auto& [z, s] : by_depth) {
+        std::vector<double> t, e, d;
+        for (const auto& x : s) t.push_back(x.true_depth), e.push_back(x.est_depth), d.push_back(x.est_depth - x.true_depth);
+        std::printf("| %.0f mm | %.1f mm | %.1f mm | %+.1f mm | %.1f mm |\n", z, mean(t), mean(e), mean(d), stddev(d));
+    }
+}
+
+void print_by_yaw(const SamplesBy& by_yaw)
+{
+    std::printf("\nHorizontal angle (azimuth of the pointing direction) by yaw of the hand plane, finger "
+                "horizontal (roll 0 and 180)\n\n| yaw | roll | true azimuth | estimated (mean) | sd | max error |\n"
+                "|---|---|---|---|---|---|\n");
+    for (const auto& [yaw, s] : by_yaw)
+        for (double roll : {0.0, 180.0}) {
+            std::vector<double> e, err;
+            double truth = 0.0;
+            for (const auto& x : s) {
+                // Horizontal pointing (roll 0 or 180): zero elevation; the sign of the
+                // azimuth tells the two apart.
+                if (std::abs(x.true_el) > 1e-6) continue;
+                const bool rightwards = x.true_az > 0.0;
+                if (rightwards != (roll == 0.0)) continue;
+                truth = x.true_az;
+                e.push_back(x.est_az);
+                err.push_back(std::abs(x.est_az - x.true_az));
+            }
+            if (e.empty()) continue;
+            std::printf("| %+.1f | %.0f | %.1f deg | %.1f deg | %.2f deg | %.2f deg |\n", yaw, roll, truth, mean(e),
+                        stddev(e), percentile(err, 1.0));
+        }
+}
+
+void print_by_roll(const SamplesBy& by_roll)
+{
+    std::printf("\nVertical angle (elevation) by roll of the finger in the hand plane\n\n"
+                "| roll | true elevation (range over yaws) | error mean | error sd | max error |\n|---|---|---|---|---|\n");
+    for (const auto& [roll, s] : by_roll) {
+        std::vector<double> err, t;
+        for (const auto& x : s) err.push_back(x.est_el - x.true_el), t.push_back(x.true_el);
+        std::printf("| %+.0f | %.1f .. %.1f deg | %+.2f deg | %.2f deg | %.2f deg |\n", roll, percentile(t, 0.0),
+                    percentile(t, 1.0), mean(err), stddev(err), std::max(std::abs(percentile(err, 0.0)), percentile(err, 1.0)));
+    }
+}
+
 void placed_hands(double motor_error_deg)
 {
     const std::vector<double> depths{860, 1060, 1250}, yaws{-45, -22.5, 0, 22.5, 45};
     const std::vector<double> rolls{-60, -30, 0, 30, 60, 120, 150, 180};
     const gc::HeadPose nominal = motor_error_deg > 0 ? gc::HeadPose{4.0, -3.0, 3.0, -3.0} : gc::HeadPose{};
     std::vector<Sample> samples;
-    std::map<double, std::vector<Sample>> by_depth, by_yaw, by_roll;
+    SamplesBy by_depth, by_yaw, by_roll;
     int invalid = 0, total = 0, k = 0;
     std::vector<double> ms;
     for (std::uint64_t seed : {1u, 2u, 3u}) {
@@ -115,42 +165,9 @@ void placed_hands(double motor_error_deg)
     }
     summary(samples, invalid, total);
 
-    std::printf("\nDepth (palm placed at the given distance; fingertip depth, mean +/- sd over poses and hands)\n\n"
-                "| palm depth | true fingertip depth | estimated | error mean | error sd |\n|---|---|---|---|---|\n");
-    for (const auto& [z, s] : by_depth) {
-        std::vector<double> t, e, d;
-        for (const auto& x : s) t.push_back(x.true_depth), e.push_back(x.est_depth), d.push_back(x.est_depth - x.true_depth);
-        std::printf("| %.0f mm | %.1f mm | %.1f mm | %+.1f mm | %.1f mm |\n", z, mean(t), mean(e), mean(d), stddev(d));
-    }
-    std::printf("\nHorizontal angle (azimuth of the pointing direction) by yaw of the hand plane, finger "
-                "horizontal (roll 0 and 180)\n\n| yaw | roll | true azimuth | estimated (mean) | sd | max error |\n"
-                "|---|---|---|---|---|---|\n");
-    for (const auto& [yaw, s] : by_yaw)
-        for (double roll : {0.0, 180.0}) {
-            std::vector<double> e, err;
-            double truth = 0.0;
-            for (const auto& x : s) {
-                // Horizontal pointing (roll 0 or 180): zero elevation; the sign of the
-                // azimuth tells the two apart.
-                if (std::abs(x.true_el) > 1e-6) continue;
-                const bool rightwards = x.true_az > 0.0;
-                if (rightwards != (roll == 0.0)) continue;
-                truth = x.true_az;
-                e.push_back(x.est_az);
-                err.push_back(std::abs(x.est_az - x.true_az));
-            }
-            if (e.empty()) continue;
-            std::printf("| %+.1f | %.0f | %.1f deg | %.1f deg | %.2f deg | %.2f deg |\n", yaw, roll, truth, mean(e),
-                        stddev(e), percentile(err, 1.0));
-        }
-    std::printf("\nVertical angle (elevation) by roll of the finger in the hand plane\n\n"
-                "| roll | true elevation (range over yaws) | error mean | error sd | max error |\n|---|---|---|---|---|\n");
-    for (const auto& [roll, s] : by_roll) {
-        std::vector<double> err, t;
-        for (const auto& x : s) err.push_back(x.est_el - x.true_el), t.push_back(x.true_el);
-        std::printf("| %+.0f | %.1f .. %.1f deg | %+.2f deg | %.2f deg | %.2f deg |\n", roll, percentile(t, 0.0),
-                    percentile(t, 1.0), mean(err), stddev(err), std::max(std::abs(percentile(err, 0.0)), percentile(err, 1.0)));
-    }
+    print_by_depth(by_depth);
+    print_by_yaw(by_yaw);
+    print_by_roll(by_roll);
     std::printf("\nRender + estimate per pose: median %.2f ms\n", percentile(ms, 0.5));
 }
 

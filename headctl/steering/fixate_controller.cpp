@@ -1,4 +1,4 @@
-#include "headctl/fixate_controller.hpp"
+#include "headctl/steering/fixate_controller.hpp"
 
 #include "headctl/braking.hpp"
 

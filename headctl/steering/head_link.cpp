@@ -1,4 +1,4 @@
-#include "headctl/head_link.hpp"
+#include "headctl/steering/head_link.hpp"
 
 #include "stereo/camera_motion.hpp"
 #include "stereo/extrinsics.hpp"
@@ -10,13 +10,9 @@
 #include <stdexcept>
 #include <utility>
 
-namespace gc {
+namespace gc::headctl {
 
 namespace {
-
-using headctl::Axis;
-using headctl::CommandKind;
-using headctl::HeadCommand;
 
 constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 // Smoothing of the hand's angular velocity (feed-forward); per frame, 1 = no smoothing.
@@ -372,4 +368,4 @@ const headctl::HeadClient& HeadLink::client() const { return *impl_->client; }
 headctl::Timestamp HeadLink::now() const { return impl_->client->now(); }
 const HeadLinkConfig& HeadLink::config() const { return impl_->config; }
 
-}  // namespace gc
+}  // namespace gc::headctl

@@ -6,8 +6,8 @@
 // the token can neither take the served clients' places nor guess it quickly.
 #pragma once
 
-#include "headctl/auth_throttle.hpp"
-#include "headctl/head_model.hpp"
+#include "headctl/sim/auth_throttle.hpp"
+#include "headctl/sim/head_model.hpp"
 #include "headctl/net.hpp"
 #include "headctl/protocol.hpp"
 

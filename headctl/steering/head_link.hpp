@@ -4,7 +4,7 @@
 // network traffic happens on the head client's own thread, so no call here waits on it.
 #pragma once
 
-#include "headctl/fixate_controller.hpp"
+#include "headctl/steering/fixate_controller.hpp"
 #include "headctl/head_client.hpp"
 #include "stereo/calibration.hpp"
 #include "tracker/pointing_tracker.hpp"
@@ -16,7 +16,7 @@
 #include <string>
 #include <string_view>
 
-namespace gc {
+namespace gc::headctl {
 
 // off: only read the pose; fixate: keep the hand in the middle of the left view and verge on
 // its depth; point: look at where the hand points, target_distance_mm along its ray.
@@ -92,4 +92,4 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace gc
+}  // namespace gc::headctl

@@ -1,5 +1,5 @@
 // headsim: the simulated head server (GCHP/1 over TCP).
-#include "headctl/head_server.hpp"
+#include "headctl/sim/head_server.hpp"
 #include "headctl/token.hpp"
 
 #include <getopt.h>
@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <iostream>
+#include <optional>
 
 namespace {
 
@@ -77,10 +78,9 @@ void parse_limits(std::string_view text, HeadLimits& limits) {
     limits[*axis] = AxisLimits{v[0], v[1], v[2], v[3]};
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-    HeadServerConfig config;
+// Reads the command line into `config`; an exit status when the program ends here (--help,
+// an unknown option). Throws std::invalid_argument on a bad value.
+std::optional<int> parse_options(int argc, char** argv, HeadServerConfig& config) {
     const option options[] = {
         {"listen", required_argument, nullptr, 'l'},     {"token", required_argument, nullptr, 't'},
         {"token-file", required_argument, nullptr, 'f'}, {"allow-remote", no_argument, nullptr, 'r'},
@@ -90,69 +90,81 @@ int main(int argc, char** argv) {
         {"verbose", no_argument, nullptr, 'V'},           {"help", no_argument, nullptr, 'h'},
         {nullptr, 0, nullptr, 0},
     };
-    try {
-        int opt;
-        while ((opt = getopt_long(argc, argv, "h", options, nullptr)) != -1) {
-            switch (opt) {
-                case 'l': parse_listen(optarg, config); break;
-                case 't':
-                    if (!config.token.empty()) throw std::invalid_argument("give one of --token and --token-file");
-                    config.token = optarg;
-                    hide_argument(optarg);
-                    if (config.token.empty()) throw std::invalid_argument("--token: must not be empty");
-                    break;
-                case 'f':
-                    if (!config.token.empty()) throw std::invalid_argument("give one of --token and --token-file");
-                    config.token = read_token_file(optarg);
-                    break;
-                case 'r': config.allow_remote_without_token = true; break;
-                case 'c': {
-                    const double n = number("--max-clients", optarg);
-                    if (n < 1 || n > 10000 || n != std::floor(n)) throw std::invalid_argument("--max-clients: must be 1..10000");
-                    config.max_clients = static_cast<std::size_t>(n);
-                    break;
-                }
-                case 'L': config.model.latency_s = number("--latency-ms", optarg) / 1000.0; break;
-                case 'e': config.model.angle_error_deg = number("--angle-error", optarg); break;
-                case 's': {
-                    const double n = number("--seed", optarg);
-                    if (n < 0 || n != std::floor(n)) throw std::invalid_argument("--seed: must be a non-negative integer");
-                    config.model.seed = static_cast<std::uint64_t>(n);
-                    break;
-                }
-                case 'm': parse_limits(optarg, config.model.limits); break;
-                case 'v': config.model.velocity_timeout_s = number("--velocity-timeout", optarg); break;
-                case 'V': config.verbose = true; break;
-                case 'h': std::cout << kUsage; return 0;
-                default: std::cerr << kUsage; return 2;
+    int opt;
+    while ((opt = getopt_long(argc, argv, "h", options, nullptr)) != -1) {
+        switch (opt) {
+            case 'l': parse_listen(optarg, config); break;
+            case 't':
+                if (!config.token.empty()) throw std::invalid_argument("give one of --token and --token-file");
+                config.token = optarg;
+                hide_argument(optarg);
+                if (config.token.empty()) throw std::invalid_argument("--token: must not be empty");
+                break;
+            case 'f':
+                if (!config.token.empty()) throw std::invalid_argument("give one of --token and --token-file");
+                config.token = read_token_file(optarg);
+                break;
+            case 'r': config.allow_remote_without_token = true; break;
+            case 'c': {
+                const double n = number("--max-clients", optarg);
+                if (n < 1 || n > 10000 || n != std::floor(n)) throw std::invalid_argument("--max-clients: must be 1..10000");
+                config.max_clients = static_cast<std::size_t>(n);
+                break;
             }
+            case 'L': config.model.latency_s = number("--latency-ms", optarg) / 1000.0; break;
+            case 'e': config.model.angle_error_deg = number("--angle-error", optarg); break;
+            case 's': {
+                const double n = number("--seed", optarg);
+                if (n < 0 || n != std::floor(n)) throw std::invalid_argument("--seed: must be a non-negative integer");
+                config.model.seed = static_cast<std::uint64_t>(n);
+                break;
+            }
+            case 'm': parse_limits(optarg, config.model.limits); break;
+            case 'v': config.model.velocity_timeout_s = number("--velocity-timeout", optarg); break;
+            case 'V': config.verbose = true; break;
+            case 'h': std::cout << kUsage; return 0;
+            default: std::cerr << kUsage; return 2;
         }
-        if (optind < argc) throw std::invalid_argument(std::string("unexpected argument '") + argv[optind] + "'");
-        if (config.token.empty()) config.token = token_from_environment();
-        config.model.validate();
+    }
+    if (optind < argc) throw std::invalid_argument(std::string("unexpected argument '") + argv[optind] + "'");
+    if (config.token.empty()) config.token = token_from_environment();
+    config.model.validate();
+    return std::nullopt;
+}
+
+// Serves until SIGTERM or SIGINT.
+void serve(const HeadServerConfig& config) {
+    HeadServer server(config);
+    if (config.token.empty() && !is_loopback_address(config.host))
+        std::cerr << "headsim: warning: listening on " << config.host
+                  << " without a token: anyone who can reach this port can move the head\n";
+    g_server = &server;
+    struct sigaction sa{};
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGTERM, &sa, nullptr);
+    sigaction(SIGINT, &sa, nullptr);
+    signal(SIGPIPE, SIG_IGN);
+    const bool v6 = server.host().find(':') != std::string::npos;
+    std::cout << "listening " << (v6 ? "[" + server.host() + "]" : server.host()) << ":" << server.port()
+              << std::endl;
+    server.run();
+    g_server = nullptr;
+    std::cerr << "headsim: stopped\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    HeadServerConfig config;
+    try {
+        if (const std::optional<int> status = parse_options(argc, argv, config)) return *status;
     } catch (const std::exception& e) {
         std::cerr << "headsim: " << e.what() << "\n";
         return 2;
     }
-
     try {
-        HeadServer server(config);
-        if (config.token.empty() && !is_loopback_address(config.host))
-            std::cerr << "headsim: warning: listening on " << config.host
-                      << " without a token: anyone who can reach this port can move the head\n";
-        g_server = &server;
-        struct sigaction sa{};
-        sa.sa_handler = on_signal;
-        sigemptyset(&sa.sa_mask);
-        sigaction(SIGTERM, &sa, nullptr);
-        sigaction(SIGINT, &sa, nullptr);
-        signal(SIGPIPE, SIG_IGN);
-        const bool v6 = server.host().find(':') != std::string::npos;
-        std::cout << "listening " << (v6 ? "[" + server.host() + "]" : server.host()) << ":" << server.port()
-                  << std::endl;
-        server.run();
-        g_server = nullptr;
-        std::cerr << "headsim: stopped\n";
+        serve(config);
     } catch (const std::invalid_argument& e) {
         std::cerr << "headsim: " << e.what() << "\n";
         return 2;

@@ -1,4 +1,4 @@
-#include "headctl/head_server.hpp"
+#include "headctl/sim/head_server.hpp"
 
 #include "headctl/token.hpp"
 

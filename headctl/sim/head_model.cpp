@@ -1,4 +1,4 @@
-#include "headctl/head_model.hpp"
+#include "headctl/sim/head_model.hpp"
 
 #include "headctl/braking.hpp"
 

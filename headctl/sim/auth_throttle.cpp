@@ -1,4 +1,4 @@
-#include "headctl/auth_throttle.hpp"
+#include "headctl/sim/auth_throttle.hpp"
 
 #include <arpa/inet.h>
 #include <netinet/in.h>

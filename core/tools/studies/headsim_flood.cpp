@@ -4,7 +4,7 @@
 // sends requests, and reconnects whenever it is dropped or refused. Prints the round trip's
 // percentiles without and with the crowd, and what the crowd met.
 //
-//   build/tests/headctl/headsim_flood [--connections N] [--seconds S] [--headsim PATH]
+//   build/core/tools/studies/headsim_flood [--connections N] [--seconds S] [--headsim PATH]
 #include "headctl/net.hpp"
 
 #include <arpa/inet.h>
@@ -49,12 +49,12 @@ struct Options {
 Options parse_options(int argc, char** argv) {
     Options o;
     const char* root = std::getenv("GESTURECAM_BUILD_ROOT");
-    o.headsim = root ? std::string(root) + "/headctl/headsim" : "";
+    o.headsim = root ? std::string(root) + "/core/tools/headsim" : "";
     if (o.headsim.empty()) {  // beside the build tree this program sits in
         char self[4096] = {};
         const ssize_t n = ::readlink("/proc/self/exe", self, sizeof self - 1);
         const std::string dir = n > 0 ? std::string(self, static_cast<std::size_t>(n)) : std::string("./x");
-        o.headsim = dir.substr(0, dir.rfind('/')) + "/../../headctl/headsim";
+        o.headsim = dir.substr(0, dir.rfind('/')) + "/../headsim";
     }
     for (int i = 1; i + 1 < argc; i += 2) {
         const std::string key = argv[i];
