@@ -238,6 +238,47 @@ void mark_tracker_enums_as_plugin_api()
     gst_type_mark_as_plugin_api(GST_TYPE_HAND_TRACKER_DETECTOR, GstPluginAPIFlags(0));
 }
 
+namespace {
+
+// The properties of the head and its steering; false for another id.
+bool set_head_setting(TrackerSettings& s, guint prop_id, const GValue* value)
+{
+    switch (prop_id) {
+    case PROP_HEAD: {
+        // What reading the property gave (the token hidden) leaves the URI as it is.
+        const gchar* uri = g_value_get_string(value);
+        if (std::string(uri ? uri : "") != gc::headctl::redact_uri(s.head))
+            s.head = uri ? uri : "";
+        break;
+    }
+    case PROP_HEAD_TOKEN_FILE: {
+        const gchar* path = g_value_get_string(value);
+        s.head_token_file = path ? path : "";
+        break;
+    }
+    case PROP_STEER:
+        s.steer = gc::headctl::SteerMode(g_value_get_enum(value));
+        break;
+    case PROP_TARGET_DISTANCE:
+        s.target_distance_mm = g_value_get_double(value);
+        break;
+    case PROP_HOME_PRESET:
+        s.home_preset = g_value_get_int(value);
+        break;
+    case PROP_WIDEN_AFTER:
+        s.widen_after_s = g_value_get_double(value);
+        break;
+    case PROP_HOME_AFTER:
+        s.home_after_s = g_value_get_double(value);
+        break;
+    default:
+        return false;
+    }
+    return true;
+}
+
+}  // namespace
+
 bool set_tracker_setting(TrackerSettings& s, guint prop_id, const GValue* value, bool& rebuild)
 {
     switch (prop_id) {
@@ -277,33 +318,6 @@ bool set_tracker_setting(TrackerSettings& s, guint prop_id, const GValue* value,
         s.json_location = path ? path : "";
         break;
     }
-    case PROP_HEAD: {
-        // What reading the property gave (the token hidden) leaves the URI as it is.
-        const gchar* uri = g_value_get_string(value);
-        if (std::string(uri ? uri : "") != gc::headctl::redact_uri(s.head))
-            s.head = uri ? uri : "";
-        break;
-    }
-    case PROP_HEAD_TOKEN_FILE: {
-        const gchar* path = g_value_get_string(value);
-        s.head_token_file = path ? path : "";
-        break;
-    }
-    case PROP_STEER:
-        s.steer = gc::headctl::SteerMode(g_value_get_enum(value));
-        break;
-    case PROP_TARGET_DISTANCE:
-        s.target_distance_mm = g_value_get_double(value);
-        break;
-    case PROP_HOME_PRESET:
-        s.home_preset = g_value_get_int(value);
-        break;
-    case PROP_WIDEN_AFTER:
-        s.widen_after_s = g_value_get_double(value);
-        break;
-    case PROP_HOME_AFTER:
-        s.home_after_s = g_value_get_double(value);
-        break;
     case PROP_DETECTOR:
         s.detector = gc::HandDetector(g_value_get_enum(value));
         rebuild = true;
@@ -315,7 +329,7 @@ bool set_tracker_setting(TrackerSettings& s, guint prop_id, const GValue* value,
         break;
     }
     default:
-        return false;
+        return set_head_setting(s, prop_id, value);
     }
     return true;
 }

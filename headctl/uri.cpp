@@ -82,6 +82,32 @@ double HeadUri::number_param(std::string_view key, double fallback, double min, 
     return v;
 }
 
+namespace {
+
+// The query's key=value pairs into uri.params, each key checked against the scheme's.
+void parse_query(HeadUri& uri, std::string_view query, std::string_view scheme) {
+    const bool visca = uri.scheme != HeadScheme::Gchp;
+    while (!query.empty()) {
+        const auto amp = query.find('&');
+        const std::string_view pair = query.substr(0, amp);
+        query = amp == std::string_view::npos ? std::string_view{} : query.substr(amp + 1);
+        const auto eq = pair.find('=');
+        if (eq == std::string_view::npos || eq == 0 || eq + 1 == pair.size())
+            fail("query part " + shown(pair) + " is not key=value");
+        const std::string_view key = pair.substr(0, eq);
+        const std::string_view value = pair.substr(eq + 1);
+        if (!std::all_of(value.begin(), value.end(), is_param_char))
+            fail("value of " + shown(key) + " contains a blank or reserved character");
+        const auto among = [&](const auto& keys) { return std::find(keys.begin(), keys.end(), key) != keys.end(); };
+        const bool known = uri.scheme == HeadScheme::PelcoD ? among(kPelcoKeys) : visca ? among(kViscaKeys) : among(kGchpKeys);
+        if (!known) fail("parameter " + shown(key) + " is not known for " + std::string(scheme) + "://");
+        if (uri.param(key)) fail("parameter " + shown(key) + " given twice");
+        uri.params.emplace_back(std::string(key), std::string(value));
+    }
+}
+
+}  // namespace
+
 HeadUri parse_head_uri(std::string_view text) {
     if (text.size() > kMaxUriLength) fail("longer than " + std::to_string(kMaxUriLength) + " characters");
     const auto sep = text.find("://");
@@ -145,24 +171,7 @@ HeadUri parse_head_uri(std::string_view text) {
         uri.port = static_cast<std::uint16_t>(value);
     }
 
-    const bool visca = uri.scheme != HeadScheme::Gchp;
-    while (!query.empty()) {
-        const auto amp = query.find('&');
-        const std::string_view pair = query.substr(0, amp);
-        query = amp == std::string_view::npos ? std::string_view{} : query.substr(amp + 1);
-        const auto eq = pair.find('=');
-        if (eq == std::string_view::npos || eq == 0 || eq + 1 == pair.size())
-            fail("query part " + shown(pair) + " is not key=value");
-        const std::string_view key = pair.substr(0, eq);
-        const std::string_view value = pair.substr(eq + 1);
-        if (!std::all_of(value.begin(), value.end(), is_param_char))
-            fail("value of " + shown(key) + " contains a blank or reserved character");
-        const auto among = [&](const auto& keys) { return std::find(keys.begin(), keys.end(), key) != keys.end(); };
-        const bool known = uri.scheme == HeadScheme::PelcoD ? among(kPelcoKeys) : visca ? among(kViscaKeys) : among(kGchpKeys);
-        if (!known) fail("parameter " + shown(key) + " is not known for " + std::string(info->name) + "://");
-        if (uri.param(key)) fail("parameter " + shown(key) + " given twice");
-        uri.params.emplace_back(std::string(key), std::string(value));
-    }
+    parse_query(uri, query, info->name);
     return uri;
 }
 
