@@ -82,7 +82,7 @@ void post_truth(GstHandSceneSrc* self, guint64 frame, GstClockTime pts, const Sc
     const gc::HeadPose& pose = self->state->stream.pose;
     gst_structure_set(s, "head-pan-deg", G_TYPE_DOUBLE, pose.pan_deg, "head-tilt-deg", G_TYPE_DOUBLE, pose.tilt_deg,
                       "head-verge-left-deg", G_TYPE_DOUBLE, pose.verge_left_deg, "head-verge-right-deg", G_TYPE_DOUBLE,
-                      pose.verge_right_deg, nullptr);
+                      pose.verge_right_deg, "head-zoom", G_TYPE_DOUBLE, pose.zoom, nullptr);
     gst_element_post_message(GST_ELEMENT(self), gst_message_new_element(GST_OBJECT(self), s));
 }
 

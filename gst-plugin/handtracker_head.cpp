@@ -44,6 +44,10 @@ bool ensure_head_link(GstHandTracker* self, const Settings& settings, cv::Size s
     config.token = e.head_token;
     config.steer = settings.steer;
     config.target_distance_mm = settings.target_distance_mm;
+    if (settings.home_preset >= 0)
+        config.fixate.home_preset = settings.home_preset;
+    config.fixate.widen_after_s = settings.widen_after_s;
+    config.fixate.hold_s = settings.home_after_s;
     config.clock = gc::gst::element_clock(GST_ELEMENT(self));
     config.on_state_change = gc::gst::connection_reporter(GST_ELEMENT(self), settings.head);
     config.on_command = gc::gst::command_logger(GST_ELEMENT(self));

@@ -1,6 +1,8 @@
 #include "handtracker_settings.hpp"
 
 #include "head_uri_property.hpp"
+#include "headctl/head_backend.hpp"
+#include "headctl/token.hpp"
 
 namespace gc::gst {
 
@@ -21,6 +23,9 @@ enum {
     PROP_HEAD_TOKEN_FILE,
     PROP_STEER,
     PROP_TARGET_DISTANCE,
+    PROP_HOME_PRESET,
+    PROP_WIDEN_AFTER,
+    PROP_HOME_AFTER,
     PROP_DETECTOR,
     PROP_MODEL_DIR,
     PROP_INPUT_MODE_OVERRIDE,
@@ -163,7 +168,8 @@ void install_head_properties(GObjectClass* gobject_class)
         gobject_class, PROP_HEAD,
         g_param_spec_string("head", "Head URI",
                             "The motorised head carrying the cameras: tcp://host:port[?token=...] (the GCHP "
-                            "protocol, e.g. headsim), visca-udp://host[:port] or visca-tcp://host[:port]; unset: "
+                            "protocol, e.g. headsim), visca-udp://host[:port], visca-tcp://host[:port], "
+                            "visca-serial:///dev/ttyUSB0?baud=9600 or pelco-d:///dev/ttyUSB0?address=1&baud=2400; unset: "
                             "static cameras. Its pose at each frame's capture enters the tracker as camera motion; "
                             "`steer` says how it is moved. Connection changes are posted as head-connection "
                             "messages and a warning. A token reads back as token=***: prefer head-token-file",
@@ -188,6 +194,25 @@ void install_head_properties(GObjectClass* gobject_class)
 // How the hand is found.
 void install_detector_properties(GObjectClass* gobject_class)
 {
+    g_object_class_install_property(
+        gobject_class, PROP_HOME_PRESET,
+        g_param_spec_int("home-preset", "Home preset",
+                         "steer=fixate: the head's preset (saved on the head, e.g. headctl preset save N) that it "
+                         "returns to once the hand has been lost for a while; -1: the head's home position",
+                         -1, gc::headctl::kMaxPreset, -1,
+                         GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
+    g_object_class_install_property(
+        gobject_class, PROP_WIDEN_AFTER,
+        g_param_spec_double("widen-after", "Widen after",
+                            "steer=fixate: once the hand has been lost this long (s) the head zooms out towards its "
+                            "widest view until it is found again or goes home; 0: never",
+                            0.0, 3600.0, 0.0, GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
+    g_object_class_install_property(
+        gobject_class, PROP_HOME_AFTER,
+        g_param_spec_double("home-after", "Home after",
+                            "steer=fixate: once the hand has been lost this long (s) the head goes home (or to "
+                            "home-preset); until then it holds still where the hand was last seen",
+                            0.0, 3600.0, 2.0, GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
     g_object_class_install_property(
         gobject_class, PROP_DETECTOR,
         g_param_spec_enum("detector", "Detector", "How the hand is found and checked", GST_TYPE_HAND_TRACKER_DETECTOR,
@@ -254,6 +279,43 @@ void mark_tracker_enums_as_plugin_api()
     gst_type_mark_as_plugin_api(GST_TYPE_HAND_TRACKER_DETECTOR, GstPluginAPIFlags(0));
 }
 
+namespace {
+
+// The properties of the head and its steering; false for another id.
+bool set_head_setting(TrackerSettings& s, guint prop_id, const GValue* value)
+{
+    switch (prop_id) {
+    case PROP_HEAD:
+        set_head_uri(s.head, value);
+        break;
+    case PROP_HEAD_TOKEN_FILE: {
+        const gchar* path = g_value_get_string(value);
+        s.head_token_file = path ? path : "";
+        break;
+    }
+    case PROP_STEER:
+        s.steer = gc::headctl::SteerMode(g_value_get_enum(value));
+        break;
+    case PROP_TARGET_DISTANCE:
+        s.target_distance_mm = g_value_get_double(value);
+        break;
+    case PROP_HOME_PRESET:
+        s.home_preset = g_value_get_int(value);
+        break;
+    case PROP_WIDEN_AFTER:
+        s.widen_after_s = g_value_get_double(value);
+        break;
+    case PROP_HOME_AFTER:
+        s.home_after_s = g_value_get_double(value);
+        break;
+    default:
+        return false;
+    }
+    return true;
+}
+
+}  // namespace
+
 bool set_tracker_setting(TrackerSettings& s, guint prop_id, const GValue* value, bool& rebuild)
 {
     switch (prop_id) {
@@ -293,20 +355,6 @@ bool set_tracker_setting(TrackerSettings& s, guint prop_id, const GValue* value,
         s.json_location = path ? path : "";
         break;
     }
-    case PROP_HEAD:
-        set_head_uri(s.head, value);
-        break;
-    case PROP_HEAD_TOKEN_FILE: {
-        const gchar* path = g_value_get_string(value);
-        s.head_token_file = path ? path : "";
-        break;
-    }
-    case PROP_STEER:
-        s.steer = gc::headctl::SteerMode(g_value_get_enum(value));
-        break;
-    case PROP_TARGET_DISTANCE:
-        s.target_distance_mm = g_value_get_double(value);
-        break;
     case PROP_DETECTOR:
         s.detector = gc::HandDetector(g_value_get_enum(value));
         rebuild = true;
@@ -330,7 +378,7 @@ bool set_tracker_setting(TrackerSettings& s, guint prop_id, const GValue* value,
         s.input_flags_override = GstVideoMultiviewFlags(g_value_get_flags(value));
         break;
     default:
-        return false;
+        return set_head_setting(s, prop_id, value);
     }
     return true;
 }
@@ -376,6 +424,15 @@ bool get_tracker_setting(const TrackerSettings& s, guint prop_id, GValue* value)
         break;
     case PROP_TARGET_DISTANCE:
         g_value_set_double(value, s.target_distance_mm);
+        break;
+    case PROP_HOME_PRESET:
+        g_value_set_int(value, s.home_preset);
+        break;
+    case PROP_WIDEN_AFTER:
+        g_value_set_double(value, s.widen_after_s);
+        break;
+    case PROP_HOME_AFTER:
+        g_value_set_double(value, s.home_after_s);
         break;
     case PROP_DETECTOR:
         g_value_set_enum(value, int(s.detector));

@@ -43,6 +43,9 @@ struct TrackerSettings {
     double target_distance_mm = kDefaultTargetDistanceMm;
     double dwell_s = kDefaultDwellS;                  // a pointing held this long picks the attended target
     double target_region_mm = kDefaultTargetRegionMm;  // the width the attended view frames there
+    int home_preset = -1;  // the head's preset that steering returns to; -1: its home position
+    double widen_after_s = 0.0;  // lost this long, the head zooms out; 0: never
+    double home_after_s = 2.0;   // lost this long, the head goes home (or to home_preset)
     gc::HandDetector detector = gc::HandDetector::Learned;
     std::string model_dir;  // empty: the learned models are found without configuration
     // How `sink` frames hold both views when their caps do not say (or say wrongly).

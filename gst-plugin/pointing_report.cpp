@@ -175,7 +175,7 @@ GstStructure* pointing_structure(const FrameResult& result, const ReportContext&
                       gst_structure_new("head-pose", "pan-deg", G_TYPE_DOUBLE, h.pan_deg, "tilt-deg",
                                         G_TYPE_DOUBLE, h.tilt_deg, "verge-left-deg", G_TYPE_DOUBLE,
                                         h.verge_left_deg, "verge-right-deg", G_TYPE_DOUBLE,
-                                        h.verge_right_deg, nullptr));
+                                        h.verge_right_deg, "zoom", G_TYPE_DOUBLE, h.zoom, nullptr));
     }
     return s;
 }

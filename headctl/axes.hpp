@@ -1,4 +1,5 @@
-// The four axes of a head, their wire names, and per-axis value sets.
+// The five axes of a head (the neck's pan and tilt, each eye's vergence, the lenses' zoom),
+// their wire names, and per-axis value sets.
 #pragma once
 
 #include "common/types.hpp"
@@ -10,11 +11,16 @@
 
 namespace gc::headctl {
 
-enum class Axis { Pan = 0, Tilt = 1, VergeLeft = 2, VergeRight = 3 };
+// Angles in degrees, except Zoom: a magnification, 1 being the widest field of view (its
+// velocities and accelerations are magnification per second, per second squared).
+enum class Axis { Pan = 0, Tilt = 1, VergeLeft = 2, VergeRight = 3, Zoom = 4 };
 
-inline constexpr std::size_t kAxisCount = 4;
+inline constexpr std::size_t kAxisCount = 5;
 inline constexpr std::array<Axis, kAxisCount> kAllAxes{Axis::Pan, Axis::Tilt, Axis::VergeLeft,
-                                                       Axis::VergeRight};
+                                                       Axis::VergeRight, Axis::Zoom};
+
+// Where HOME puts an axis: 0 degrees, or the widest zoom (1).
+double home_value(Axis axis);
 
 // Names used on the wire and on the command line.
 std::string_view axis_name(Axis axis);
@@ -48,8 +54,11 @@ struct AxisLimits {
     bool operator==(const AxisLimits&) const = default;
 };
 
+// A head without a zoom lens holds its zoom at 1.
+inline constexpr AxisLimits kFixedZoomLimits{1.0, 1.0, 1.0, 1.0};
+
 struct HeadLimits {
-    std::array<AxisLimits, kAxisCount> axes{};
+    std::array<AxisLimits, kAxisCount> axes{AxisLimits{}, AxisLimits{}, AxisLimits{}, AxisLimits{}, kFixedZoomLimits};
     AxisLimits& operator[](Axis a) { return axes[static_cast<std::size_t>(a)]; }
     const AxisLimits& operator[](Axis a) const { return axes[static_cast<std::size_t>(a)]; }
     bool operator==(const HeadLimits&) const = default;

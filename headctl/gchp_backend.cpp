@@ -88,7 +88,10 @@ void GchpBackend::send(const HeadCommand& command, Deadline deadline) {
         case CommandKind::Velocity: r.command = Command::MoveVelocity; break;
         case CommandKind::Stop: r.command = Command::Stop; r.values = {}; break;
         case CommandKind::Home: r.command = Command::Home; r.values = {}; break;
+        case CommandKind::SavePreset: r.command = Command::PresetSave; r.values = {}; break;
+        case CommandKind::RecallPreset: r.command = Command::PresetRecall; r.values = {}; break;
     }
+    r.preset = command.preset;
     const Reply reply = transact(r, deadline);
     if (!reply.ok)
         throw HeadRejected(describe(command) + " refused (" + std::to_string(static_cast<int>(reply.error)) + " " +

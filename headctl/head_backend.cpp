@@ -1,6 +1,7 @@
 #include "headctl/head_backend.hpp"
 
 #include "headctl/gchp_backend.hpp"
+#include "headctl/pelco_backend.hpp"
 #include "headctl/visca_backend.hpp"
 
 #include <cstdio>
@@ -15,6 +16,8 @@ std::string describe(const HeadCommand& c) {
         case CommandKind::Velocity: out = "move vel"; break;
         case CommandKind::Stop: return "stop";
         case CommandKind::Home: return "home";
+        case CommandKind::SavePreset: return "preset save " + std::to_string(c.preset);
+        case CommandKind::RecallPreset: return "preset recall " + std::to_string(c.preset);
     }
     for (Axis a : kAllAxes) {
         if (!c.values.has(a)) continue;
@@ -25,12 +28,22 @@ std::string describe(const HeadCommand& c) {
     return out;
 }
 
+void flag_motion_since(HeadState& s, std::optional<HeadPose>& last) {
+    if (last)
+        for (Axis a : kAllAxes) s.moving[static_cast<std::size_t>(a)] = axis_value(s.pose, a) != axis_value(*last, a);
+    last = s.pose;
+}
+
 std::unique_ptr<HeadBackend> make_backend(const HeadUri& uri, const std::string& token) {
     switch (uri.scheme) {
         case HeadScheme::Gchp:
             return std::make_unique<GchpBackend>(uri.host, uri.port, token.empty() ? uri.param("token").value_or("") : token);
         case HeadScheme::ViscaUdp:
             return std::make_unique<ViscaBackend>(uri.host, uri.port, ViscaBackend::Transport::Udp,
+                                                  ViscaSettings::from_uri(uri));
+        case HeadScheme::PelcoD: return std::make_unique<PelcoBackend>(uri.path, PelcoSettings::from_uri(uri));
+        case HeadScheme::ViscaSerial:
+            return std::make_unique<ViscaBackend>(uri.path, 0, ViscaBackend::Transport::Serial,
                                                   ViscaSettings::from_uri(uri));
         case HeadScheme::ViscaTcp:
             return std::make_unique<ViscaBackend>(uri.host, uri.port, ViscaBackend::Transport::Tcp,

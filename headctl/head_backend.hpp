@@ -13,13 +13,21 @@
 
 namespace gc::headctl {
 
-enum class CommandKind { Absolute, Relative, Velocity, Stop, Home };
+// SavePreset stores where the head is under a number; RecallPreset moves it back there.
+enum class CommandKind { Absolute, Relative, Velocity, Stop, Home, SavePreset, RecallPreset };
+
+// Preset numbers every backend takes (VISCA's CAM_Memory holds 0..127).
+inline constexpr int kMaxPreset = 127;
 
 struct HeadCommand {
     CommandKind kind = CommandKind::Stop;
     AxisValues values;  // degrees, or degrees per second for Velocity
+    int preset = 0;     // SavePreset, RecallPreset: 0..kMaxPreset
     bool operator==(const HeadCommand&) const = default;
 };
+
+inline HeadCommand preset_command(CommandKind kind, int number) { return HeadCommand{kind, {}, number}; }
+inline bool is_preset(CommandKind kind) { return kind == CommandKind::SavePreset || kind == CommandKind::RecallPreset; }
 
 std::string describe(const HeadCommand& command);
 
@@ -46,6 +54,10 @@ public:
     virtual std::array<bool, kAxisCount> axes() const = 0;
     virtual std::string name() const = 0;
 };
+
+// For heads that report positions only (VISCA, Pelco-D): marks the axes whose position
+// changed since `last` as moving, then remembers this state's pose in `last`.
+void flag_motion_since(HeadState& state, std::optional<HeadPose>& last);
 
 // The backend for a URI's scheme (tcp: GCHP; visca-udp, visca-tcp: VISCA). The token
 // argument overrides a token in the URI. Throws std::invalid_argument for bad parameters.

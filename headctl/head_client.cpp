@@ -34,9 +34,10 @@ HeadClient::HeadClient(HeadClientConfig config)
     if (config_.history_capacity < 2) throw std::invalid_argument("head client: history capacity must be >= 2");
     if (!config_.backend_factory) {
         const HeadUri uri = parse_head_uri(config_.uri);
-        make_backend(uri, config_.token);  // reports bad parameters now, not on the thread
+        const auto backend = make_backend(uri, config_.token);  // reports bad parameters now, not on the thread
         config_.backend_factory = [uri, token = config_.token] { return make_backend(uri, token); };
-        if (uri.scheme != HeadScheme::Gchp) axes_ = {true, true, false, false};
+        // A GCHP head names its axes in its greeting; other backends know theirs up front.
+        if (uri.scheme != HeadScheme::Gchp) axes_ = backend->axes();
     }
     if (!config_.clock) config_.clock = [] { return SteadyClock::now().time_since_epoch(); };
     thread_ = std::thread([this] { run(); });
@@ -63,6 +64,9 @@ void HeadClient::submit(const HeadCommand& command) {
     const bool is_move = command.kind == CommandKind::Absolute || command.kind == CommandKind::Relative ||
                          command.kind == CommandKind::Velocity;
     if (is_move && command.values.empty()) throw std::invalid_argument("head command: a move names no axis");
+    if (is_preset(command.kind) && (command.preset < 0 || command.preset > kMaxPreset))
+        throw std::invalid_argument("head command: preset " + std::to_string(command.preset) + " is not in 0.." +
+                                    std::to_string(kMaxPreset));
     {
         std::lock_guard lock(mutex_);
         ++stats_.commands_submitted;

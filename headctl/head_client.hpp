@@ -71,6 +71,8 @@ public:
     HeadClientStats stats() const;
     std::optional<HeadLimits> limits() const;
     std::optional<StateSample> latest() const;
+    // Whether commands may name the axis (a backend without it refuses them in submit).
+    bool has_axis(Axis a) const { return axes_[static_cast<std::size_t>(a)]; }
     // The head's pose at a capture time on the configured clock (see PoseHistory::pose_at).
     std::optional<HeadPose> pose_at(Timestamp capture_time) const;
     Timestamp now() const;
@@ -82,7 +84,7 @@ private:
     void wait_for(std::chrono::steady_clock::duration d);
 
     HeadClientConfig config_;
-    std::array<bool, kAxisCount> axes_{true, true, true, true};
+    std::array<bool, kAxisCount> axes_{true, true, true, true, true};
 
     mutable std::mutex mutex_;
     std::condition_variable wake_;

@@ -117,7 +117,8 @@ Fd connect_to(const std::string& host, std::uint16_t port, Transport transport, 
 void send_all(int fd, std::span<const char> data, Clock::time_point deadline) {
     std::size_t sent = 0;
     while (sent < data.size()) {
-        const ssize_t n = ::send(fd, data.data() + sent, data.size() - sent, MSG_NOSIGNAL);
+        ssize_t n = ::send(fd, data.data() + sent, data.size() - sent, MSG_NOSIGNAL);
+        if (n < 0 && errno == ENOTSOCK) n = ::write(fd, data.data() + sent, data.size() - sent);  // a serial line
         if (n > 0) {
             sent += static_cast<std::size_t>(n);
             continue;

@@ -121,7 +121,7 @@ std::pair<std::string_view, std::string_view> split_key_value(std::string_view w
 
 Axis parse_axis(std::string_view name) {
     auto axis = axis_from_name(name);
-    if (!axis) fail(ErrorCode::BadArgument, "unknown axis " + quoted(name) + " (pan, tilt, verge_l, verge_r)");
+    if (!axis) fail(ErrorCode::BadArgument, "unknown axis " + quoted(name) + " (pan, tilt, verge_l, verge_r, zoom)");
     return *axis;
 }
 
@@ -137,6 +137,9 @@ std::string format_number(double v) {
     if (s == "-0") s = "0";
     return s;
 }
+
+// The axes every STATE and LIMITS carries; zoom may be missing (a head without one).
+constexpr std::size_t kAngleAxes = 4;
 
 void append_id(std::string& out, const std::optional<std::uint32_t>& id) {
     if (!id) return;
@@ -196,12 +199,13 @@ Greeting parse_greeting(std::string_view line) {
             for (auto item : items) g.axes[static_cast<std::size_t>(parse_axis(item))] = true;
         } else if (key == "caps") {
             have_caps = true;
-            g.caps = Capabilities{false, false, false, false};
+            g.caps = Capabilities{false, false, false, false, false};
             for (auto item : items) {  // unknown capabilities are a later minor version's: ignored
                 if (item == "abs") g.caps.absolute = true;
                 else if (item == "rel") g.caps.relative = true;
                 else if (item == "vel") g.caps.velocity = true;
                 else if (item == "auth") g.caps.auth_required = true;
+                else if (item == "preset") g.caps.presets = true;
             }
         }
     }
@@ -227,6 +231,7 @@ std::string format_greeting(const Greeting& g) {
     add(g.caps.absolute, "abs");
     add(g.caps.relative, "rel");
     add(g.caps.velocity, "vel");
+    add(g.caps.presets, "preset");
     add(g.caps.auth_required, "auth");
     return out + " caps=" + caps;
 }
@@ -254,6 +259,17 @@ Request parse_request(std::string_view line) {
             if (r.values.has(axis)) fail(ErrorCode::BadArgument, "axis " + std::string(key) + " given twice");
             r.values.set(axis, parse_number(key, value));
         }
+        return r;
+    }
+    if (iequals(verb, "PRESET")) {
+        if (nargs != 2) fail(ErrorCode::Syntax, "PRESET takes SAVE or RECALL and a number");
+        const std::string_view action = words[i];
+        if (iequals(action, "SAVE")) r.command = Command::PresetSave;
+        else if (iequals(action, "RECALL")) r.command = Command::PresetRecall;
+        else fail(ErrorCode::Syntax, "PRESET action " + quoted(action) + " is not SAVE or RECALL");
+        r.preset = parse_integer<int>("preset", words[i + 1]);
+        if (r.preset < 0 || r.preset > kMaxWirePreset)
+            fail(ErrorCode::BadArgument, "preset " + quoted(words[i + 1]) + " is not in 0..255");
         return r;
     }
     for (const auto& v : kSimpleVerbs) {
@@ -296,6 +312,12 @@ std::string format_request(const Request& r) {
         case Command::MoveAbsolute: move("ABS"); break;
         case Command::MoveRelative: move("REL"); break;
         case Command::MoveVelocity: move("VEL"); break;
+        case Command::PresetSave:
+        case Command::PresetRecall:
+            if (r.preset < 0 || r.preset > kMaxWirePreset) throw std::invalid_argument("a preset is 0..255");
+            out += r.command == Command::PresetSave ? "PRESET SAVE " : "PRESET RECALL ";
+            out += std::to_string(r.preset);
+            break;
         case Command::Auth: {
             const bool printable = std::all_of(r.token.begin(), r.token.end(),
                                                [](char c) { return c > 0x20 && c < 0x7f; });
@@ -324,12 +346,14 @@ HeadState parse_state_fields(const std::vector<std::string_view>& words, std::si
             s.server_time_us = parse_integer<std::int64_t>("t", value);
             have_t = true;
         } else if (key == "moving") {
-            if (value.size() != 2 * kAxisCount - 1)
-                fail(ErrorCode::Syntax, "moving must list 4 flags as 0/1 separated by commas");
-            for (std::size_t k = 0; k < kAxisCount; ++k) {
+            // A head without zoom may list the four angle axes only.
+            const std::size_t flags = (value.size() + 1) / 2;
+            if ((flags != kAxisCount && flags != kAxisCount - 1) || value.size() != 2 * flags - 1)
+                fail(ErrorCode::Syntax, "moving must list 4 or 5 flags as 0/1 separated by commas");
+            for (std::size_t k = 0; k < flags; ++k) {
                 const char flag = value[2 * k];
-                if ((flag != '0' && flag != '1') || (k + 1 < kAxisCount && value[2 * k + 1] != ','))
-                    fail(ErrorCode::Syntax, "moving must list 4 flags as 0/1 separated by commas");
+                if ((flag != '0' && flag != '1') || (k + 1 < flags && value[2 * k + 1] != ','))
+                    fail(ErrorCode::Syntax, "moving must list 4 or 5 flags as 0/1 separated by commas");
                 s.moving[k] = flag == '1';
             }
             have_moving = true;
@@ -338,8 +362,10 @@ HeadState parse_state_fields(const std::vector<std::string_view>& words, std::si
             have[static_cast<std::size_t>(*axis)] = true;
         }  // other keys: later minor versions' additions, ignored
     }
-    if (!have_t || !have_moving || !std::all_of(have.begin(), have.end(), [](bool b) { return b; }))
+    const bool angles = std::all_of(have.begin(), have.begin() + kAngleAxes, [](bool b) { return b; });
+    if (!have_t || !have_moving || !angles)
         fail(ErrorCode::Syntax, "STATE needs t, pan, tilt, verge_l, verge_r and moving");
+    if (s.pose.zoom < 1.0) fail(ErrorCode::BadArgument, "zoom below 1 in STATE");
     return s;
 }
 
@@ -364,7 +390,7 @@ HeadLimits parse_limit_fields(const std::vector<std::string_view>& words, std::s
         limits[*axis] = AxisLimits{v[0], v[1], v[2], v[3]};
         have[static_cast<std::size_t>(*axis)] = true;
     }
-    if (!std::all_of(have.begin(), have.end(), [](bool b) { return b; }))
+    if (!std::all_of(have.begin(), have.begin() + kAngleAxes, [](bool b) { return b; }))
         fail(ErrorCode::Syntax, "LIMITS needs pan, tilt, verge_l and verge_r");
     try {
         validate(limits);

@@ -51,18 +51,22 @@ struct Capabilities {
     bool relative = true;
     bool velocity = true;
     bool auth_required = false;
+    bool presets = false;  // PRESET SAVE / RECALL
     bool operator==(const Capabilities&) const = default;
 };
 
-// The server's first line: "HELLO GCHP/1 axes=pan,tilt,verge_l,verge_r caps=abs,rel,vel[,auth]".
+// The server's first line: "HELLO GCHP/1 axes=pan,tilt,verge_l,verge_r,zoom caps=abs,rel,vel[,preset][,auth]".
 struct Greeting {
     int version = kProtocolVersion;
-    std::array<bool, kAxisCount> axes{true, true, true, true};
+    std::array<bool, kAxisCount> axes{true, true, true, true, true};
     Capabilities caps;
     bool operator==(const Greeting&) const = default;
 };
 
-enum class Command { Auth, Status, MoveAbsolute, MoveRelative, MoveVelocity, Stop, Home, Limits, Quit };
+enum class Command { Auth, Status, MoveAbsolute, MoveRelative, MoveVelocity, Stop, Home, Limits, Quit, PresetSave, PresetRecall };
+
+// Preset numbers on the wire.
+inline constexpr int kMaxWirePreset = 255;
 
 // A client line: "[#id ]VERB args".
 struct Request {
@@ -70,6 +74,7 @@ struct Request {
     Command command = Command::Status;
     AxisValues values;  // the moves: degrees, or degrees per second for MoveVelocity
     std::string token;  // Auth
+    int preset = 0;     // PresetSave, PresetRecall
     bool operator==(const Request&) const = default;
 };
 

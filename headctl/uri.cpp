@@ -16,15 +16,20 @@ struct SchemeInfo {
     std::string_view name;
     std::uint16_t port;
 };
-constexpr std::array<SchemeInfo, 3> kSchemes{{
+constexpr std::array<SchemeInfo, 5> kSchemes{{
     {HeadScheme::Gchp, "tcp", 5050},
     {HeadScheme::ViscaUdp, "visca-udp", 52381},
     {HeadScheme::ViscaTcp, "visca-tcp", 5678},
+    {HeadScheme::ViscaSerial, "visca-serial", 0},
+    {HeadScheme::PelcoD, "pelco-d", 0},
 }};
 
 constexpr std::array<std::string_view, 1> kGchpKeys{"token"};
-constexpr std::array<std::string_view, 6> kViscaKeys{"address",           "pan_units_per_deg",  "tilt_units_per_deg",
-                                                     "pan_max_speed_dps", "tilt_max_speed_dps", "timeout_ms"};
+constexpr std::array<std::string_view, 6> kPelcoKeys{"address",  "baud",     "pan_max_speed_dps", "tilt_max_speed_dps",
+                                                     "zoom_max", "timeout_ms"};
+constexpr std::array<std::string_view, 10> kViscaKeys{
+    "address",   "pan_units_per_deg", "tilt_units_per_deg", "pan_max_speed_dps", "tilt_max_speed_dps",
+    "zoom_max",  "zoom_tele_units",   "zoom_max_speed",     "timeout_ms", "baud"};
 
 [[noreturn]] void fail(const std::string& message) { throw std::invalid_argument("head URI: " + message); }
 
@@ -77,6 +82,32 @@ double HeadUri::number_param(std::string_view key, double fallback, double min, 
     return v;
 }
 
+namespace {
+
+// The query's key=value pairs into uri.params, each key checked against the scheme's.
+void parse_query(HeadUri& uri, std::string_view query, std::string_view scheme) {
+    const bool visca = uri.scheme != HeadScheme::Gchp;
+    while (!query.empty()) {
+        const auto amp = query.find('&');
+        const std::string_view pair = query.substr(0, amp);
+        query = amp == std::string_view::npos ? std::string_view{} : query.substr(amp + 1);
+        const auto eq = pair.find('=');
+        if (eq == std::string_view::npos || eq == 0 || eq + 1 == pair.size())
+            fail("query part " + shown(pair) + " is not key=value");
+        const std::string_view key = pair.substr(0, eq);
+        const std::string_view value = pair.substr(eq + 1);
+        if (!std::all_of(value.begin(), value.end(), is_param_char))
+            fail("value of " + shown(key) + " contains a blank or reserved character");
+        const auto among = [&](const auto& keys) { return std::find(keys.begin(), keys.end(), key) != keys.end(); };
+        const bool known = uri.scheme == HeadScheme::PelcoD ? among(kPelcoKeys) : visca ? among(kViscaKeys) : among(kGchpKeys);
+        if (!known) fail("parameter " + shown(key) + " is not known for " + std::string(scheme) + "://");
+        if (uri.param(key)) fail("parameter " + shown(key) + " given twice");
+        uri.params.emplace_back(std::string(key), std::string(value));
+    }
+}
+
+}  // namespace
+
 HeadUri parse_head_uri(std::string_view text) {
     if (text.size() > kMaxUriLength) fail("longer than " + std::to_string(kMaxUriLength) + " characters");
     const auto sep = text.find("://");
@@ -84,7 +115,7 @@ HeadUri parse_head_uri(std::string_view text) {
     const std::string_view scheme = text.substr(0, sep);
     HeadUri uri;
     const auto info = std::find_if(kSchemes.begin(), kSchemes.end(), [&](const auto& s) { return s.name == scheme; });
-    if (info == kSchemes.end()) fail("unknown scheme " + shown(scheme) + " (tcp, visca-udp, visca-tcp)");
+    if (info == kSchemes.end()) fail("unknown scheme " + shown(scheme) + " (tcp, visca-udp, visca-tcp, visca-serial, pelco-d)");
     uri.scheme = info->scheme;
     uri.port = info->port;
 
@@ -98,7 +129,13 @@ HeadUri parse_head_uri(std::string_view text) {
 
     std::string_view host;
     std::string_view port;
-    if (!rest.empty() && rest.front() == '[') {
+    if (is_serial(uri.scheme)) {
+        // visca-serial:///dev/ttyUSB0: an absolute device path of plain characters.
+        const bool plain = std::all_of(rest.begin(), rest.end(), [](char c) { return is_host_char(c) || c == '/'; });
+        if (rest.size() < 2 || rest.front() != '/' || !plain || rest.find("..") != std::string_view::npos)
+            fail("device " + shown(rest) + " is not an absolute path like /dev/ttyUSB0");
+        uri.path = std::string(rest);
+    } else if (!rest.empty() && rest.front() == '[') {
         const auto close = rest.find(']');
         if (close == std::string_view::npos) fail("IPv6 address lacks its closing ']'");
         host = rest.substr(1, close - 1);
@@ -134,24 +171,7 @@ HeadUri parse_head_uri(std::string_view text) {
         uri.port = static_cast<std::uint16_t>(value);
     }
 
-    const bool visca = uri.scheme != HeadScheme::Gchp;
-    while (!query.empty()) {
-        const auto amp = query.find('&');
-        const std::string_view pair = query.substr(0, amp);
-        query = amp == std::string_view::npos ? std::string_view{} : query.substr(amp + 1);
-        const auto eq = pair.find('=');
-        if (eq == std::string_view::npos || eq == 0 || eq + 1 == pair.size())
-            fail("query part " + shown(pair) + " is not key=value");
-        const std::string_view key = pair.substr(0, eq);
-        const std::string_view value = pair.substr(eq + 1);
-        if (!std::all_of(value.begin(), value.end(), is_param_char))
-            fail("value of " + shown(key) + " contains a blank or reserved character");
-        const bool known = visca ? std::find(kViscaKeys.begin(), kViscaKeys.end(), key) != kViscaKeys.end()
-                                 : std::find(kGchpKeys.begin(), kGchpKeys.end(), key) != kGchpKeys.end();
-        if (!known) fail("parameter " + shown(key) + " is not known for " + std::string(info->name) + "://");
-        if (uri.param(key)) fail("parameter " + shown(key) + " given twice");
-        uri.params.emplace_back(std::string(key), std::string(value));
-    }
+    parse_query(uri, query, info->name);
     return uri;
 }
 
@@ -189,8 +209,9 @@ std::string redact_uri(std::string_view text) {
 
 std::string to_string(const HeadUri& uri) {
     const bool v6 = uri.host.find(':') != std::string::npos;
-    std::string out = std::string(scheme_name(uri.scheme)) + "://" + (v6 ? "[" + uri.host + "]" : uri.host) + ":" +
-                      std::to_string(uri.port);
+    std::string out = std::string(scheme_name(uri.scheme)) + "://";
+    if (is_serial(uri.scheme)) out += uri.path;
+    else out += (v6 ? "[" + uri.host + "]" : uri.host) + ":" + std::to_string(uri.port);
     char sep = '?';
     for (const auto& [k, v] : uri.params) {
         out += sep + k + "=" + v;

@@ -10,7 +10,10 @@
 
 namespace gc::headctl {
 
-enum class HeadScheme { Gchp, ViscaUdp, ViscaTcp };
+enum class HeadScheme { Gchp, ViscaUdp, ViscaTcp, ViscaSerial, PelcoD };
+
+// Serial schemes name a device path instead of a host and port.
+inline bool is_serial(HeadScheme scheme) { return scheme == HeadScheme::ViscaSerial || scheme == HeadScheme::PelcoD; }
 
 inline constexpr std::size_t kMaxUriLength = 1024;
 
@@ -18,6 +21,7 @@ struct HeadUri {
     HeadScheme scheme = HeadScheme::Gchp;
     std::string host;     // a name or an address; IPv6 without its brackets
     std::uint16_t port = 0;
+    std::string path;     // serial schemes: the device, e.g. /dev/ttyUSB0
     std::vector<std::pair<std::string, std::string>> params;  // the query, in order
 
     std::optional<std::string> param(std::string_view key) const;
@@ -30,7 +34,8 @@ std::uint16_t default_port(HeadScheme scheme);
 
 // Throws std::invalid_argument naming the offending part. Query keys are checked
 // against those the scheme knows (tcp: token; visca-*: address, pan_units_per_deg,
-// tilt_units_per_deg, pan_max_speed_dps, tilt_max_speed_dps, timeout_ms).
+// tilt_units_per_deg, pan_max_speed_dps, tilt_max_speed_dps, zoom_*, timeout_ms; and baud for
+// visca-serial; pelco-d: address, baud, pan_max_speed_dps, tilt_max_speed_dps, zoom_max, timeout_ms).
 HeadUri parse_head_uri(std::string_view text);
 // The full URI, token included: for connecting, never for showing.
 std::string to_string(const HeadUri& uri);

@@ -27,14 +27,16 @@ void append_nibbles(Bytes& out, int units, const char* axis) {
     for (int shift = 12; shift >= 0; shift -= 4) out.push_back(static_cast<std::uint8_t>((u >> shift) & 0x0F));
 }
 
-int read_nibbles(std::span<const std::uint8_t> bytes) {
+std::uint16_t read_unsigned_nibbles(std::span<const std::uint8_t> bytes) {
     std::uint16_t u = 0;
     for (std::uint8_t b : bytes) {
         if (b > 0x0F) throw ViscaError("VISCA position byte has its high nibble set");
         u = static_cast<std::uint16_t>((u << 4) | b);
     }
-    return static_cast<std::int16_t>(u);
+    return u;
 }
+
+int read_nibbles(std::span<const std::uint8_t> bytes) { return static_cast<std::int16_t>(read_unsigned_nibbles(bytes)); }
 
 Bytes move(int address, std::uint8_t kind, int pan_speed, int tilt_speed, int pan_units, int tilt_units) {
     Bytes out{header(address), 0x01, 0x06, kind, speed(pan_speed, kMaxPanSpeed), speed(tilt_speed, kMaxTiltSpeed)};
@@ -78,6 +80,28 @@ Bytes pan_tilt_stop(int address) {
 
 Bytes pan_tilt_position_inquiry(int address) { return {header(address), 0x09, 0x06, 0x12, 0xFF}; }
 
+Bytes zoom_direct(int address, int zoom_units) {
+    if (zoom_units < 0 || zoom_units > 0xFFFF)
+        throw ViscaError("VISCA zoom position " + std::to_string(zoom_units) + " is not in 0..65535");
+    Bytes out{header(address), 0x01, 0x04, 0x47};
+    for (int shift = 12; shift >= 0; shift -= 4) out.push_back(static_cast<std::uint8_t>((zoom_units >> shift) & 0x0F));
+    out.push_back(0xFF);
+    return out;
+}
+
+Bytes zoom_drive(int address, int speed, Direction d) {
+    const auto p = static_cast<std::uint8_t>(std::clamp(speed, 0, kMaxZoomSpeed));
+    const std::uint8_t code = d == Direction::Stop ? 0x00 : (d == Direction::Positive ? 0x20 | p : 0x30 | p);
+    return {header(address), 0x01, 0x04, 0x07, code, 0xFF};
+}
+
+Bytes memory(int address, MemoryAction action, int number) {
+    if (number < 0 || number > 0x7F) throw ViscaError("VISCA memory " + std::to_string(number) + " is not in 0..127");
+    return {header(address), 0x01, 0x04, 0x3F, static_cast<std::uint8_t>(action), static_cast<std::uint8_t>(number), 0xFF};
+}
+
+Bytes zoom_position_inquiry(int address) { return {header(address), 0x09, 0x04, 0x47, 0xFF}; }
+
 Reply parse_reply(std::span<const std::uint8_t> m) {
     if (m.size() < 3) throw ViscaError("VISCA reply of " + std::to_string(m.size()) + " bytes is too short");
     if (m.size() > kMaxMessageSize) throw ViscaError("VISCA reply longer than 16 bytes");
@@ -104,6 +128,11 @@ Reply parse_reply(std::span<const std::uint8_t> m) {
                 r.kind = ReplyKind::Position;
                 r.pan_units = read_nibbles(m.subspan(2, 4));
                 r.tilt_units = read_nibbles(m.subspan(6, 4));
+                return r;
+            }
+            if (m.size() == 7 && r.socket == 0) {
+                r.kind = ReplyKind::ZoomPosition;
+                r.zoom_units = read_unsigned_nibbles(m.subspan(2, 4));
                 return r;
             }
             throw ViscaError("VISCA completion [" + hex(m) + "] has an unexpected length");

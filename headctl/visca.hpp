@@ -1,4 +1,4 @@
-// VISCA pan-tilt messages and VISCA-over-IP framing: pure encoding and decoding, no I/O.
+// VISCA pan-tilt and zoom messages and VISCA-over-IP framing: pure encoding and decoding, no I/O.
 #pragma once
 
 #include <cstdint>
@@ -14,6 +14,7 @@ using Bytes = std::vector<std::uint8_t>;
 // Fastest speed codes of the pan-tilt drive (Sony's VISCA command set).
 inline constexpr int kMaxPanSpeed = 0x18;
 inline constexpr int kMaxTiltSpeed = 0x14;
+inline constexpr int kMaxZoomSpeed = 7;
 
 // VISCA-over-IP payload types (the first two bytes of the 8-byte header).
 inline constexpr std::uint16_t kIpCommand = 0x0100;
@@ -41,7 +42,17 @@ Bytes pan_tilt_home(int address);
 Bytes pan_tilt_stop(int address);
 Bytes pan_tilt_position_inquiry(int address);
 
-enum class ReplyKind { Ack, Completion, Error, Position };
+// CAM_Zoom: direct to a lens position (0 = widest, unsigned 16-bit), variable-speed drive
+// (speed clamped to 0..7; Positive = tele, Negative = wide, Stop) and the position inquiry.
+Bytes zoom_direct(int address, int zoom_units);
+Bytes zoom_drive(int address, int speed, Direction direction);
+Bytes zoom_position_inquiry(int address);
+
+// CAM_Memory: store the head's position and zoom under a number (0..127), recall or clear it.
+enum class MemoryAction { Reset = 0, Set = 1, Recall = 2 };
+Bytes memory(int address, MemoryAction action, int number);
+
+enum class ReplyKind { Ack, Completion, Error, Position, ZoomPosition };
 
 struct Reply {
     ReplyKind kind = ReplyKind::Ack;
@@ -50,10 +61,12 @@ struct Reply {
     int error = 0;     // Error: 0x01 length, 0x02 syntax, 0x03 buffer full, 0x04 cancelled, 0x05 no socket, 0x41 not executable
     int pan_units = 0;   // Position
     int tilt_units = 0;  // Position
+    int zoom_units = 0;  // ZoomPosition
 };
 
 // Parses one reply message (ending in 0xFF). A 3-byte "y0 5z FF" is a Completion; the
-// 11-byte "y0 50 0p 0p 0p 0p 0t 0t 0t 0t FF" answers the position inquiry.
+// 11-byte "y0 50 0p 0p 0p 0p 0t 0t 0t 0t FF" answers the position inquiry, the 7-byte
+// "y0 50 0z 0z 0z 0z FF" the zoom position inquiry.
 Reply parse_reply(std::span<const std::uint8_t> message);
 std::string describe_error(int error);
 

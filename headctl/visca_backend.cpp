@@ -1,5 +1,7 @@
 #include "headctl/visca_backend.hpp"
 
+#include "headctl/serial_port.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -20,6 +22,13 @@ ViscaSettings ViscaSettings::from_uri(const HeadUri& uri) {
         throw std::invalid_argument("head URI: a units-per-degree scale must not be 0");
     s.pan_max_speed_dps = uri.number_param("pan_max_speed_dps", s.pan_max_speed_dps, 0.1, 1000.0);
     s.tilt_max_speed_dps = uri.number_param("tilt_max_speed_dps", s.tilt_max_speed_dps, 0.1, 1000.0);
+    s.zoom_max = uri.number_param("zoom_max", s.zoom_max, 1.0, 1000.0);
+    const double tele = uri.number_param("zoom_tele_units", s.zoom_tele_units, 1, 0xFFFF);
+    if (tele != std::floor(tele)) throw std::invalid_argument("head URI: parameter zoom_tele_units must be an integer");
+    s.zoom_tele_units = static_cast<int>(tele);
+    s.zoom_max_speed = uri.number_param("zoom_max_speed", s.zoom_max_speed, 0.01, 1000.0);
+    s.baud = static_cast<int>(uri.number_param("baud", s.baud, 1, 1e7));
+    if (!is_supported_baud(s.baud)) throw std::invalid_argument("head URI: baud must be 2400, 4800, 9600, 19200, 38400, 57600 or 115200");
     s.reply_timeout = std::chrono::milliseconds(
         static_cast<long>(uri.number_param("timeout_ms", static_cast<double>(s.reply_timeout.count()), 1, 60'000)));
     return s;
@@ -29,12 +38,17 @@ ViscaBackend::ViscaBackend(std::string host, std::uint16_t port, Transport trans
     : host_(std::move(host)), port_(port), transport_(transport), settings_(settings) {}
 
 std::string ViscaBackend::name() const {
+    if (transport_ == Transport::Serial) return "visca-serial://" + host_;
     return std::string(transport_ == Transport::Udp ? "visca-udp://" : "visca-tcp://") + host_ + ":" +
            std::to_string(port_);
 }
 
 void ViscaBackend::open(Deadline deadline) {
     close();
+    if (transport_ == Transport::Serial) {
+        fd_ = open_serial_port(host_, settings_.baud);
+        return;
+    }
     fd_ = net::connect_to(host_, port_, transport_ == Transport::Udp ? net::Transport::Udp : net::Transport::Tcp,
                           deadline);
     if (transport_ == Transport::Tcp) return;
@@ -68,7 +82,7 @@ void ViscaBackend::close() {
 std::optional<visca::Bytes> ViscaBackend::receive_message(Deadline deadline, std::uint32_t expected_sequence) {
     std::array<std::uint8_t, 512> buffer{};
     for (;;) {
-        if (transport_ == Transport::Tcp) {
+        if (transport_ != Transport::Udp) {  // a byte stream
             const auto end = std::find(stream_.begin(), stream_.end(), 0xFF);
             if (end != stream_.end()) {
                 visca::Bytes message(stream_.begin(), end + 1);
@@ -80,7 +94,7 @@ std::optional<visca::Bytes> ViscaBackend::receive_message(Deadline deadline, std
         const auto n = net::receive_some(fd_.get(), buffer, deadline);
         if (!n) return std::nullopt;
         const std::span<const std::uint8_t> got(buffer.data(), *n);
-        if (transport_ == Transport::Tcp) {
+        if (transport_ != Transport::Udp) {
             stream_.insert(stream_.end(), got.begin(), got.end());
             continue;
         }
@@ -96,8 +110,9 @@ std::optional<visca::Bytes> ViscaBackend::receive_message(Deadline deadline, std
     }
 }
 
-visca::Reply ViscaBackend::exchange(const visca::Bytes& message, bool inquiry, Deadline deadline) {
+visca::Reply ViscaBackend::exchange(const visca::Bytes& message, visca::ReplyKind answer, Deadline deadline) {
     if (!fd_) throw net::NetError("not connected");
+    const bool inquiry = answer != visca::ReplyKind::Ack;
     const std::uint32_t seq = sequence_++;
     if (transport_ == Transport::Udp) {
         const auto datagram = visca::wrap_ip(inquiry ? visca::kIpInquiry : visca::kIpCommand, seq, message);
@@ -116,7 +131,7 @@ visca::Reply ViscaBackend::exchange(const visca::Bytes& message, bool inquiry, D
             throw net::NetError(name() + ": " + e.what());
         }
         if (r.kind == visca::ReplyKind::Error) throw HeadRejected(name() + " refused: " + visca::describe_error(r.error));
-        if (inquiry && r.kind == visca::ReplyKind::Position) return r;
+        if (inquiry && r.kind == answer) return r;
         // A completion may belong to an earlier command; a command is accepted on its ACK.
         if (!inquiry && r.kind == visca::ReplyKind::Ack) return r;
         if (!inquiry && r.kind == visca::ReplyKind::Completion && transport_ == Transport::Udp) return r;
@@ -136,34 +151,89 @@ int ViscaBackend::speed_code(double dps, double max_dps, int max_code) const {
 }
 
 HeadState ViscaBackend::query_state(Deadline deadline) {
-    const auto r = exchange(visca::pan_tilt_position_inquiry(settings_.address), true, deadline);
+    const auto r = exchange(visca::pan_tilt_position_inquiry(settings_.address), visca::ReplyKind::Position, deadline);
     HeadState s;
     s.pose.pan_deg = r.pan_units / settings_.pan_units_per_deg;
     s.pose.tilt_deg = r.tilt_units / settings_.tilt_units_per_deg;
+    if (has_zoom())
+        s.pose.zoom = zoom_magnification(exchange(visca::zoom_position_inquiry(settings_.address), visca::ReplyKind::ZoomPosition, deadline).zoom_units);
     // VISCA reports no motion flags: an axis moves if it changed since the last inquiry.
-    if (last_pose_) {
-        s.moving[0] = s.pose.pan_deg != last_pose_->pan_deg;
-        s.moving[1] = s.pose.tilt_deg != last_pose_->tilt_deg;
-    }
-    last_pose_ = s.pose;
+    flag_motion_since(s, last_pose_);
     return s;
+}
+
+int ViscaBackend::zoom_units(double magnification) const {
+    if (!(magnification >= 1.0 && magnification <= settings_.zoom_max))
+        throw HeadRejected(name() + ": zoom " + std::to_string(magnification) + " is outside [1, " +
+                           std::to_string(settings_.zoom_max) + "]");
+    return static_cast<int>(std::lround((magnification - 1.0) / (settings_.zoom_max - 1.0) * settings_.zoom_tele_units));
+}
+
+double ViscaBackend::zoom_magnification(int units) const {
+    const double f = std::clamp(static_cast<double>(units) / settings_.zoom_tele_units, 0.0, 1.0);
+    return 1.0 + f * (settings_.zoom_max - 1.0);
 }
 
 void ViscaBackend::send(const HeadCommand& c, Deadline deadline) {
     if (c.values.has(Axis::VergeLeft) || c.values.has(Axis::VergeRight))
         throw HeadRejected(name() + " has no vergence axes");
+    if (c.values.has(Axis::Zoom) && !has_zoom())
+        throw HeadRejected(name() + " has no zoom axis (the URI's zoom_max is 1)");
+    if (is_preset(c.kind)) {
+        if (c.preset < 0 || c.preset > 0x7F) throw HeadRejected(name() + ": preset " + std::to_string(c.preset) + " is not in 0..127");
+        const auto action = c.kind == CommandKind::SavePreset ? visca::MemoryAction::Set : visca::MemoryAction::Recall;
+        exchange(visca::memory(settings_.address, action, c.preset), visca::ReplyKind::Ack, deadline);
+        return;
+    }
+    const bool pan_tilt = c.values.has(Axis::Pan) || c.values.has(Axis::Tilt);
+    const bool all = c.kind == CommandKind::Home || c.kind == CommandKind::Stop;
+    if (pan_tilt || all) send_pan_tilt(c, deadline);
+    if (has_zoom() && (c.values.has(Axis::Zoom) || all)) send_zoom(c, deadline);
+}
+
+// The lens is a separate VISCA device (CAM_Zoom): its own messages after the pan-tilt one.
+void ViscaBackend::send_zoom(const HeadCommand& c, Deadline deadline) {
+    const int a = settings_.address;
+    switch (c.kind) {
+        case CommandKind::Home: exchange(visca::zoom_direct(a, 0), visca::ReplyKind::Ack, deadline); return;
+        case CommandKind::Stop: exchange(visca::zoom_drive(a, 0, visca::Direction::Stop), visca::ReplyKind::Ack, deadline); return;
+        case CommandKind::Absolute: exchange(visca::zoom_direct(a, zoom_units(c.values.get(Axis::Zoom))), visca::ReplyKind::Ack, deadline); return;
+        case CommandKind::Relative: {
+            const double here = last_pose_ ? last_pose_->zoom : query_state(deadline).pose.zoom;
+            exchange(visca::zoom_direct(a, zoom_units(here + c.values.get(Axis::Zoom))), visca::ReplyKind::Ack, deadline);
+            return;
+        }
+        case CommandKind::Velocity: {
+            const double v = c.values.get(Axis::Zoom);
+            const auto direction = std::abs(v) < 1e-6 ? visca::Direction::Stop
+                                   : v > 0           ? visca::Direction::Positive
+                                                     : visca::Direction::Negative;
+            // Zoom speed codes start at 0 (the slowest), unlike pan and tilt.
+            const int code = std::clamp(static_cast<int>(std::lround(std::abs(v) / settings_.zoom_max_speed *
+                                                                     visca::kMaxZoomSpeed)), 0, visca::kMaxZoomSpeed);
+            exchange(visca::zoom_drive(a, code, direction), visca::ReplyKind::Ack, deadline);
+            return;
+        }
+        case CommandKind::SavePreset:
+        case CommandKind::RecallPreset: return;  // sent by send()
+    }
+}
+
+void ViscaBackend::send_pan_tilt(const HeadCommand& c, Deadline deadline) {
     // Position moves run at the fastest speed codes; the camera's own profile shapes them.
     const int pan_max = visca::kMaxPanSpeed;
     const int tilt_max = visca::kMaxTiltSpeed;
     const int a = settings_.address;
     switch (c.kind) {
+        case CommandKind::SavePreset:
+        case CommandKind::RecallPreset: return;  // sent by send()
         case CommandKind::Home:
             drive_dps_ = {};
-            exchange(visca::pan_tilt_home(a), false, deadline);
+            exchange(visca::pan_tilt_home(a), visca::ReplyKind::Ack, deadline);
             return;
         case CommandKind::Stop:
             drive_dps_ = {};
-            exchange(visca::pan_tilt_stop(a), false, deadline);
+            exchange(visca::pan_tilt_stop(a), visca::ReplyKind::Ack, deadline);
             return;
         case CommandKind::Absolute: {
             // One message moves both axes: an axis not named stays where it is.
@@ -173,7 +243,7 @@ void ViscaBackend::send(const HeadCommand& c, Deadline deadline) {
             drive_dps_ = {};
             exchange(visca::pan_tilt_absolute(a, pan_max, tilt_max, to_units(pan, settings_.pan_units_per_deg, "pan"),
                                               to_units(tilt, settings_.tilt_units_per_deg, "tilt")),
-                     false, deadline);
+                     visca::ReplyKind::Ack, deadline);
             return;
         }
         case CommandKind::Relative: {
@@ -182,7 +252,7 @@ void ViscaBackend::send(const HeadCommand& c, Deadline deadline) {
             drive_dps_ = {};
             exchange(visca::pan_tilt_relative(a, pan_max, tilt_max, to_units(pan, settings_.pan_units_per_deg, "pan"),
                                               to_units(tilt, settings_.tilt_units_per_deg, "tilt")),
-                     false, deadline);
+                     visca::ReplyKind::Ack, deadline);
             return;
         }
         case CommandKind::Velocity: {
@@ -199,7 +269,7 @@ void ViscaBackend::send(const HeadCommand& c, Deadline deadline) {
                          speed_code(drive_dps_[1], settings_.tilt_max_speed_dps, visca::kMaxTiltSpeed),
                          direction(drive_dps_[0], settings_.pan_units_per_deg),
                          direction(drive_dps_[1], settings_.tilt_units_per_deg)),
-                     false, deadline);
+                     visca::ReplyKind::Ack, deadline);
             return;
         }
     }

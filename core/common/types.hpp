@@ -75,6 +75,9 @@ struct HeadPose {
     double tilt_deg = 0.0;
     double verge_left_deg = 0.0;
     double verge_right_deg = 0.0;
+    // Optical magnification of both eyes' zoom lenses: 1 is the calibrated (widest) field of
+    // view, 2 halves it. The focal length in pixels scales by this factor.
+    double zoom = 1.0;
 };
 
 }  // namespace gc

@@ -52,7 +52,7 @@ cv::Vec3d EyeCamera::ray_in_head(double x, double y) const
 EyeCamera eye_camera(const cv::Matx33d& K, const HeadGeometry& geometry, const HeadPose& head,
                      Eye eye)
 {
-    return {K, camera_to_head(geometry, head, eye).inverse()};
+    return {zoomed_intrinsics(K, head.zoom), camera_to_head(geometry, head, eye).inverse()};
 }
 
 StereoCalibration rig_calibration(const SceneConfig& c)

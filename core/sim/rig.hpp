@@ -35,6 +35,7 @@ struct EyeCamera {
     cv::Vec3d ray_in_head(double x, double y) const;
 };
 
+// One eye at one head pose; K is the widest setting's, narrowed by the pose's zoom.
 EyeCamera eye_camera(const cv::Matx33d& K, const HeadGeometry& geometry, const HeadPose& head,
                      Eye eye);
 

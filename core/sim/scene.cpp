@@ -72,6 +72,7 @@ void validate(const HeadPose& h)
     for (double x : v)
         require(std::isfinite(x) && std::abs(x) <= 90.0,
                 "HeadPose: angles must be finite and within +/-90 degrees");
+    require(std::isfinite(h.zoom) && h.zoom >= 1.0 && h.zoom <= 100.0, "HeadPose: zoom must be within [1, 100]");
 }
 
 void validate(const HandPose& p)

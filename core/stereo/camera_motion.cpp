@@ -24,7 +24,7 @@ using CameraPoints = std::array<cv::Vec3d, kPoints>;
 bool finite(const HeadPose& p)
 {
     return std::isfinite(p.pan_deg) && std::isfinite(p.tilt_deg) && std::isfinite(p.verge_left_deg) &&
-           std::isfinite(p.verge_right_deg);
+           std::isfinite(p.verge_right_deg) && std::isfinite(p.zoom) && p.zoom > 0.0;
 }
 
 bool has_distortion(const cv::Mat& d) { return !d.empty() && cv::countNonZero(d) > 0; }
@@ -32,7 +32,7 @@ bool has_distortion(const cv::Mat& d) { return !d.empty() && cv::countNonZero(d)
 // One eye's pinhole camera with its distortion; the distortion-free path avoids OpenCV's
 // iterative undistortion, which is all the nominal rig needs.
 struct EyeOptics {
-    const cv::Matx33d& K;
+    cv::Matx33d K;
     const cv::Mat& D;
 
     // Camera-frame points at depth z (along the optical axis) seen at the given pixels.
@@ -76,14 +76,18 @@ ImageMotion camera_motion(const StereoCalibration& calibration, Eye eye, const H
                           const HeadPose& after, cv::Point2d image_point, double depth_mm)
 {
     if (!finite(before) || !finite(after))
-        throw std::invalid_argument("camera_motion: head pose angles must be finite");
+        throw std::invalid_argument("camera_motion: head pose angles must be finite, the zoom > 0");
     if (!std::isfinite(image_point.x) || !std::isfinite(image_point.y))
         throw std::invalid_argument("camera_motion: image point must be finite");
     if (!std::isfinite(depth_mm) || depth_mm <= 0.0)
         throw std::invalid_argument("camera_motion: depth must be finite and > 0, got " + std::to_string(depth_mm));
 
     const bool left = eye == Eye::Left;
-    const EyeOptics optics{left ? calibration.M1 : calibration.M2, left ? calibration.D1 : calibration.D2};
+    // A zoom between the poses changes the focal length the point is re-projected with.
+    const cv::Matx33d& K = left ? calibration.M1 : calibration.M2;
+    const cv::Mat& D = left ? calibration.D1 : calibration.D2;
+    const EyeOptics optics{zoomed_intrinsics(K, before.zoom), D};
+    const EyeOptics optics_after{zoomed_intrinsics(K, after.zoom), D};
 
     // camera at `before` -> head frame -> camera at `after`
     const RigidTransform moved = camera_to_head(calibration.head, after, eye).inverse() *
@@ -100,7 +104,7 @@ ImageMotion camera_motion(const StereoCalibration& calibration, Eye eye, const H
     }
     // Both ends re-projected, so the undistortion's residual cancels out of the difference.
     const Pixels a = optics.project(points);
-    const Pixels b = optics.project(moved_points);
+    const Pixels b = optics_after.project(moved_points);
 
     // The local image map around the point, J (columns: where the x and y offsets go), split
     // into the similarity the hand state can express: rotation from J's rotational part, an

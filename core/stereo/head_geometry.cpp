@@ -32,6 +32,15 @@ cv::Matx33d rotation_about_y(double deg)
     return {c, 0, s, 0, 1, 0, -s, 0, c};
 }
 
+cv::Matx33d zoomed_intrinsics(const cv::Matx33d& K, double zoom)
+{
+    cv::Matx33d out = K;
+    out(0, 0) *= zoom;
+    out(0, 1) *= zoom;
+    out(1, 1) *= zoom;
+    return out;
+}
+
 RigidTransform camera_to_head(const HeadGeometry& g, const HeadPose& pose, Eye eye)
 {
     const bool left = eye == Eye::Left;

@@ -35,6 +35,10 @@ struct HeadGeometry {
     double baseline_mm() const { return cv::norm(right_eye_mm - left_eye_mm); }
 };
 
+// The intrinsics of a camera calibrated at its widest setting when its lens magnifies by
+// `zoom`: the focal lengths scale, the principal point stays (a zoom lens keeps it close).
+cv::Matx33d zoomed_intrinsics(const cv::Matx33d& K, double zoom);
+
 // Maps camera-frame points of `eye` to head-frame points at `pose`.
 RigidTransform camera_to_head(const HeadGeometry& geometry, const HeadPose& pose, Eye eye);
 

@@ -60,8 +60,11 @@ cv::Point2d project(const Eigen::Matrix3d& M, const Eigen::Vector3d& X)
 
 // One camera's undistortion and its per-frame working set.
 struct EyeData {
-    cv::Matx33d M;
+    cv::Matx33d M;       // at the current zoom
+    cv::Matx33d widest;  // as calibrated
+    double zoom = 1.0;
     cv::Mat D;
+    cv::Size size;
     bool distorted = false;
     cv::Mat map_x, map_y;  // undistortion maps (full image), when distorted
     std::vector<cv::Point2f> raw, undistorted;  // contour + fingertip + palm
@@ -72,9 +75,21 @@ struct EyeData {
 
     void init(const cv::Matx33d& intrinsics, const cv::Mat& distortion, cv::Size size)
     {
-        M = intrinsics;
+        widest = M = intrinsics;
         D = distortion;
+        this->size = size;
         distorted = has_distortion(distortion);
+        if (distorted)
+            cv::initUndistortRectifyMap(M, D, cv::noArray(), M, size, CV_32FC1, map_x, map_y);
+    }
+
+    // The lens's magnification for the next frames: the focal length scales, and the
+    // distortion keeps its normalised coefficients (no per-zoom calibration exists).
+    void set_zoom(double z)
+    {
+        if (z == zoom) return;
+        zoom = z;
+        M = zoomed_intrinsics(widest, z);
         if (distorted)
             cv::initUndistortRectifyMap(M, D, cv::noArray(), M, size, CV_32FC1, map_x, map_y);
     }
@@ -202,6 +217,9 @@ struct PointingEstimator::Impl {
         check_frame(left_bgr, "left");
         check_frame(right_bgr, "right");
         if (!plausible(le) || !plausible(re)) return out;
+        if (!std::isfinite(head.zoom) || head.zoom <= 0.0) return out;
+        left.set_zoom(head.zoom);
+        right.set_zoom(head.zoom);
         // The hand's plane from many correspondences holds the depth better than two
         // triangulated points where the views are close (a stereo head); where they are far
         // apart the correlation finds too little, and the key points are triangulated.
@@ -230,7 +248,7 @@ struct PointingEstimator::Impl {
         if (!left.prepare(left_bgr, le) || !right.prepare(right_bgr, re)) return out;
 
         const RigidTransform l2r = left_to_right_at(calibration, head);
-        const Eigen::Matrix3d K1 = to_eigen(calibration.M1), K2 = to_eigen(calibration.M2);
+        const Eigen::Matrix3d K1 = to_eigen(left.M), K2 = to_eigen(right.M);
         const Eigen::Matrix3d K1inv = K1.inverse(), K2inv = K2.inverse();
         const Eigen::Matrix3d R = to_eigen(l2r.R);
         const Eigen::Vector3d t = to_eigen(l2r.t);
@@ -270,7 +288,7 @@ struct PointingEstimator::Impl {
         const auto mid = depths.begin() + static_cast<std::ptrdiff_t>(depths.size() / 2);
         std::nth_element(depths.begin(), mid, depths.end());
         const double z = *mid;
-        const double fb = calibration.M1(0, 0) * std::max(1.0, t.norm());
+        const double fb = left.M(0, 0) * std::max(1.0, t.norm());
         const double tolerance = std::max(kMinPlaneToleranceMm, kPlaneToleranceDisparityPx * z * z / fb);
         const std::optional<Plane> plane = plane_fit.fit(points, tolerance, inliers);
         if (!plane) return out;

@@ -34,8 +34,10 @@ Commands:
   home                           move every axis to 0
   stop                           stop every axis
   watch [INTERVAL_MS [COUNT]]    print the status repeatedly (default 200 ms, until Ctrl-C)
+  preset save|recall N           store where the head is as preset N (0..127), or go back there
 URI: tcp://HOST:PORT (GCHP, default tcp://127.0.0.1:5050), visca-udp://HOST[:52381],
-     visca-tcp://HOST[:5678]. Axes: pan, tilt, verge_l, verge_r.
+     visca-tcp://HOST[:5678], visca-serial:///dev/ttyUSB0?baud=9600,
+     pelco-d:///dev/ttyUSB0?address=1&baud=2400. Axes: pan, tilt, verge_l, verge_r, zoom.
 Token (GCHP): --token-file FILE (its first line), else --token, else the URI's ?token=,
      else GESTURECAM_HEAD_TOKEN. A token on the command line is blanked there once read.
 --json: one JSON object per line: status and watch {"t_us", "pan", "tilt", "verge_l", "verge_r",
@@ -59,14 +61,16 @@ void print_state(const HeadState& s, bool json) {
     if (json) {
         gc::tools::JsonObject o;
         o.add("t_us", static_cast<std::int64_t>(s.server_time_us));
-        const double angles[] = {s.pose.pan_deg, s.pose.tilt_deg, s.pose.verge_left_deg, s.pose.verge_right_deg};
+        const double angles[] = {s.pose.pan_deg, s.pose.tilt_deg, s.pose.verge_left_deg, s.pose.verge_right_deg,
+                                 s.pose.zoom};
         for (Axis a : kAllAxes) o.add(axis_name(a), angles[static_cast<int>(a)], 3);
         for (Axis a : kAllAxes) o.add(std::string(axis_name(a)) + "_moving", bool(s.moving[static_cast<int>(a)]));
         std::printf("%s\n", o.str().c_str());
     } else {
-        std::printf("t=%lld pan=%.3f tilt=%.3f verge_l=%.3f verge_r=%.3f moving=%d,%d,%d,%d\n",
+        std::printf("t=%lld pan=%.3f tilt=%.3f verge_l=%.3f verge_r=%.3f zoom=%.3f moving=%d,%d,%d,%d,%d\n",
                     static_cast<long long>(s.server_time_us), s.pose.pan_deg, s.pose.tilt_deg, s.pose.verge_left_deg,
-                    s.pose.verge_right_deg, s.moving[0], s.moving[1], s.moving[2], s.moving[3]);
+                    s.pose.verge_right_deg, s.pose.zoom, s.moving[0], s.moving[1], s.moving[2], s.moving[3],
+                    s.moving[4]);
     }
     std::fflush(stdout);
 }
@@ -108,6 +112,17 @@ HeadCommand parse_move(const std::vector<std::string>& args) {
     }
     if (c.values.empty()) throw UsageError("move: name at least one AXIS=VALUE");
     return c;
+}
+
+HeadCommand parse_preset(const std::vector<std::string>& args) {
+    if (args.size() != 2) throw UsageError("preset: expected save|recall N");
+    const std::string& action = args[0];
+    if (action != "save" && action != "recall")
+        throw UsageError("preset: expected save or recall, got '" + action + "'");
+    const double n = number("preset number", args[1]);
+    if (n < 0 || n > kMaxPreset || n != std::floor(n))
+        throw UsageError("preset: the number must be a whole number in 0..127");
+    return preset_command(action == "save" ? CommandKind::SavePreset : CommandKind::RecallPreset, static_cast<int>(n));
 }
 
 // The command line: options, then the command and its arguments.
@@ -155,7 +170,7 @@ void check_arguments(const CommandLine& c) {
     const std::string& command = c.command;
     if (command.starts_with("-")) throw UsageError("unknown option " + command);
     if (command != "move" && command != "home" && command != "stop" && command != "status" && command != "limits" &&
-        command != "watch")
+        command != "watch" && command != "preset")
         throw UsageError("unknown command '" + command + "'");
     if ((command == "status" || command == "limits" || command == "home" || command == "stop") && !c.args.empty())
         throw UsageError(command + " takes no arguments");
@@ -184,6 +199,7 @@ int run_command(HeadBackend& head, const CommandLine& c) {
     std::optional<HeadCommand> move;
     if (c.command == "move") move = parse_move(c.args);
     else if (c.command == "home") move = HeadCommand{CommandKind::Home, {}};
+    else if (c.command == "preset") move = parse_preset(c.args);
     else if (c.command == "stop") move = HeadCommand{CommandKind::Stop, {}};
     head.open(deadline());
     if (move) {

@@ -38,7 +38,8 @@ Simulated motorised head serving GCHP/1 (docs/head-protocol.md).
   --seed N               seed of the angle error (default 1)
   --limits AXIS=MIN:MAX:VMAX:AMAX
                          soft limits (deg), velocity (deg/s) and acceleration (deg/s^2)
-                         of one axis (pan, tilt, verge_l, verge_r); repeatable
+                         of one axis (pan, tilt, verge_l, verge_r; zoom in magnification,
+                         MIN 1, default 1:20:8:30); repeatable
   --velocity-timeout S   a velocity move not renewed within S seconds stops (default 1; 0 = never)
   --verbose              log connections on stderr
   --version              the version

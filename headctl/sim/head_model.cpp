@@ -27,6 +27,8 @@ HeadLimits default_simulated_limits() {
     l[Axis::Tilt] = AxisLimits{-45.0, 45.0, 90.0, 300.0};
     l[Axis::VergeLeft] = AxisLimits{-30.0, 30.0, 200.0, 1000.0};
     l[Axis::VergeRight] = AxisLimits{-30.0, 30.0, 200.0, 1000.0};
+    // A 20x zoom lens that runs from end to end in about 2.5 s.
+    l[Axis::Zoom] = AxisLimits{1.0, 20.0, 8.0, 30.0};
     return l;
 }
 
@@ -45,6 +47,10 @@ void HeadModelConfig::validate() const {
 HeadModel::HeadModel(const HeadModelConfig& config, double start_time_s)
     : config_(config), time_s_(start_time_s), rng_(config.seed) {
     config_.validate();
+    for (Axis a : kAllAxes) {
+        axes_[static_cast<std::size_t>(a)].position = home_value(a);
+        commanded_[static_cast<std::size_t>(a)] = home_value(a);
+    }
 }
 
 void HeadModel::check_targets(const AxisValues& targets) const {
@@ -86,9 +92,22 @@ void HeadModel::move_velocity(const AxisValues& velocities, double now_s) {
 void HeadModel::stop(double now_s) { enqueue(Kind::Stop, AxisValues{}, now_s); }
 
 void HeadModel::home(double now_s) {
-    AxisValues zero;
-    for (Axis a : kAllAxes) zero.set(a, 0.0);
-    enqueue(Kind::Absolute, zero, now_s);
+    AxisValues home;
+    for (Axis a : kAllAxes) home.set(a, home_value(a));
+    enqueue(Kind::Absolute, home, now_s);
+}
+
+void HeadModel::save_preset(int number, double now_s) {
+    const HeadState s = state(now_s);
+    AxisValues here;
+    for (Axis a : kAllAxes) here.set(a, axis_value(s.pose, a));
+    presets_[number] = here;
+}
+
+void HeadModel::recall_preset(int number, double now_s) {
+    const auto p = presets_.find(number);
+    if (p == presets_.end()) throw std::out_of_range("preset " + std::to_string(number) + " was never saved");
+    move_absolute(p->second, now_s);
 }
 
 void HeadModel::enqueue(Kind kind, const AxisValues& values, double now_s) {
@@ -117,8 +136,11 @@ void HeadModel::apply(const Pending& p) {
             case Kind::Absolute:
                 if (!p.values.has(a)) break;
                 m.mode = Mode::Position;
-                // Where the axis really comes to rest: the command plus a mechanical error.
-                m.target = std::clamp(p.values.get(a) + config_.angle_error_deg * error_(rng_), l.min_deg, l.max_deg);
+                // Where the axis really comes to rest: the command plus a mechanical angle error
+                // (a zoom lens's stop is not an angle).
+                m.target = p.values.get(a);
+                if (a != Axis::Zoom) m.target += config_.angle_error_deg * error_(rng_);
+                m.target = std::clamp(m.target, l.min_deg, l.max_deg);
                 break;
             case Kind::Velocity:
                 if (!p.values.has(a)) break;

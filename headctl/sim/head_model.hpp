@@ -1,4 +1,4 @@
-// The simulated head's mechanics: four axes with trapezoidal velocity profiles, soft limits,
+// The simulated head's mechanics: five axes with trapezoidal velocity profiles, soft limits,
 // command latency and a seeded mechanical angle error. Time is passed in by the caller
 // (seconds on any monotonic clock), so tests drive it with a fake clock.
 #pragma once
@@ -7,12 +7,13 @@
 
 #include <cstdint>
 #include <deque>
+#include <map>
 #include <random>
 
 namespace gc::headctl {
 
 // The simulated head's default axes: a neck that pans +-170 deg and tilts -45..45 deg, and
-// light, fast eyes that verge +-30 deg.
+// light, fast eyes that verge +-30 deg, and a 1x..20x zoom.
 HeadLimits default_simulated_limits();
 
 struct HeadModelConfig {
@@ -38,6 +39,10 @@ public:
     void move_velocity(const AxisValues& velocities_dps, double now_s);
     void stop(double now_s);
     void home(double now_s);
+    // A preset holds every axis's position at the moment it is saved (a moving head's, where
+    // it is then); recalling moves there. Recalling one never saved throws std::out_of_range.
+    void save_preset(int number, double now_s);
+    void recall_preset(int number, double now_s);
 
     // Integrates the motion up to now_s (earlier times are ignored) and reports it.
     HeadState state(double now_s);
@@ -72,6 +77,7 @@ private:
     // relative move is relative to.
     std::array<double, kAxisCount> commanded_{};
     std::deque<Pending> pending_;
+    std::map<int, AxisValues> presets_;
     double time_s_ = 0.0;
     std::mt19937_64 rng_;
     std::normal_distribution<double> error_{0.0, 1.0};

@@ -264,6 +264,7 @@ void HeadServer::admit(net::Fd& fd, const std::string& address, const std::strin
     c->auth_deadline = Clock::now() + config_.auth_timeout;
     Greeting g;
     g.caps.auth_required = needs_auth;
+    g.caps.presets = true;
     c->output = format_greeting(g) + "\n";
     flush(*c);
     log(peer, "connected");
@@ -370,6 +371,8 @@ void HeadServer::handle_line(Client& c, std::string_view line) {
             case Command::MoveVelocity: model_.move_velocity(req.values, now); break;
             case Command::Stop: model_.stop(now); break;
             case Command::Home: model_.home(now); break;
+            case Command::PresetSave: model_.save_preset(req.preset, now); break;
+            case Command::PresetRecall: model_.recall_preset(req.preset, now); break;
             case Command::Quit: c.closing = true; break;
         }
     } catch (const std::out_of_range& e) {

@@ -26,6 +26,10 @@ void FixateConfig::validate() const {
     check(max_acceleration_dps2, max_acceleration_dps2 > 0.0, "maximum acceleration (must be > 0)");
     check(limit_margin_deg, limit_margin_deg >= 0.0, "limit margin (must be >= 0)");
     check(hold_s, hold_s >= 0.0, "hold time (must be >= 0)");
+    check(widen_after_s, widen_after_s >= 0.0, "widen-after time (must be >= 0)");
+    check(widen_rate, widen_rate > 0.0, "widening rate (must be > 0)");
+    if (home_preset && (*home_preset < 0 || *home_preset > kMaxPreset))
+        throw std::invalid_argument("fixate: home preset must be in 0..127");
     check(head_latency_s, head_latency_s >= 0.0 && head_latency_s <= 1.0, "head latency (must be in [0, 1] s)");
     headctl::validate(limits);
 }
@@ -49,6 +53,7 @@ void FixateController::reset() {
     settled_ = {};
     lost_s_ = 0.0;
     homed_ = false;
+    widening_ = false;
 }
 
 double FixateController::axis_velocity(std::size_t i, double offset, double rate, double position,
@@ -98,6 +103,8 @@ std::optional<HeadCommand> FixateController::update(const FixateObservation& see
                                                     config_.limits[Axis::Pan], dt_s));
         command.values.set(Axis::Tilt, axis_velocity(1, seen.offset_tilt_deg, seen.rate_tilt_dps, head.tilt_deg,
                                                      config_.limits[Axis::Tilt], dt_s));
+        if (widening_) command.values.set(Axis::Zoom, 0.0);  // found again: the lens stops where it is
+        widening_ = false;
         return command;
     }
     // Lost: brake and hold where the hand was last seen (it often reappears there), then home.
@@ -105,14 +112,20 @@ std::optional<HeadCommand> FixateController::update(const FixateObservation& see
     lost_s_ += dt_s;
     if (lost_s_ >= config_.hold_s) {
         homed_ = true;
+        widening_ = false;  // the home move sets the zoom: nothing to stop later
         velocity_ = {};
         settled_ = {};
+        if (config_.home_preset) return preset_command(CommandKind::RecallPreset, *config_.home_preset);
         return HeadCommand{CommandKind::Home, {}};
     }
     const double step = config_.max_acceleration_dps2 * dt_s;
     for (std::size_t i = 0; i < 2; ++i) velocity_[i] = std::clamp(0.0, velocity_[i] - step, velocity_[i] + step);
     command.values.set(Axis::Pan, velocity_[0]);
     command.values.set(Axis::Tilt, velocity_[1]);
+    if (config_.widen_after_s > 0.0 && lost_s_ >= config_.widen_after_s) {
+        command.values.set(Axis::Zoom, -std::min(config_.widen_rate, config_.limits[Axis::Zoom].max_velocity_dps));
+        widening_ = true;
+    }
     return command;
 }
 

@@ -19,6 +19,11 @@ struct FixateConfig {
     double limit_margin_deg = 1.0;      // stop this far inside the soft limits
     double head_latency_s = 0.05;       // from a command to the head's response
     double hold_s = 2.0;                // after the hand is lost, hold still this long, then home
+    std::optional<int> home_preset;     // home is this preset of the head (else its HOME)
+    // Lost for this long (0: never), and not yet home, the lens zooms out towards its widest
+    // at widen_rate (magnification per second), so a hand just outside a narrow view shows.
+    double widen_after_s = 0.0;
+    double widen_rate = 2.0;
     HeadLimits limits;                  // the head's soft limits (pan and tilt are used)
 
     void validate() const;  // throws std::invalid_argument naming the field
@@ -43,7 +48,8 @@ public:
     explicit FixateController(const FixateConfig& config);
 
     // One control step dt_s after the previous one, at head pose `head`. Returns the command
-    // to send: a pan/tilt velocity, or Home once the hand has been lost for hold_s; nullopt
+    // to send: a pan/tilt velocity, or Home (the home preset's recall when one is set) once
+    // the hand has been lost for hold_s; nullopt
     // when there is nothing to send (at home, hand still lost).
     std::optional<HeadCommand> update(const FixateObservation& seen, const HeadPose& head, double dt_s);
     void reset();
@@ -57,6 +63,7 @@ private:
     std::array<bool, 2> settled_{};      // inside the dead band
     double lost_s_ = 0.0;
     bool homed_ = false;
+    bool widening_ = false;  // the last command drove the zoom out
 };
 
 }  // namespace gc::headctl

@@ -168,12 +168,15 @@ struct HeadLink::Impl {
     // Submits; a head without vergence axes gets the command without them from then on.
     void submit(HeadCommand command)
     {
+        if (!client->has_axis(Axis::Zoom))
+            command.values.clear(Axis::Zoom);
         if (!head_has_vergence) {
             command.values.clear(Axis::VergeLeft);
             command.values.clear(Axis::VergeRight);
-            if (command.values.empty() && command.kind != CommandKind::Home && command.kind != CommandKind::Stop)
-                return;
         }
+        if (command.values.empty() && command.kind != CommandKind::Home && command.kind != CommandKind::Stop &&
+            !headctl::is_preset(command.kind))
+            return;
         try {
             client->submit(command);
             if (config.on_command) config.on_command(command);
@@ -204,7 +207,8 @@ struct HeadLink::Impl {
     {
         headctl::FixateObservation seen;
         if (r.left.valid()) {
-            const cv::Matx33d& K = calibration.M1;
+            // The angle a pixel offset stands for narrows as the lens zooms in.
+            const cv::Matx33d K = zoomed_intrinsics(calibration.M1, capture.zoom);
             seen = headctl::offset_from_image(r.left.mean.x - K(0, 2), r.left.mean.y - K(1, 2), K(0, 0), K(1, 1));
             // The hand's own angular velocity: its line of sight in the head's base frame.
             const std::pair<double, double> direction{capture.pan_deg + capture.verge_left_deg + seen.offset_pan_deg,

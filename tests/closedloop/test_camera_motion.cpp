@@ -25,7 +25,10 @@ struct Step {
     HeadPose after;
 };
 
-HeadPose pose(double pan, double tilt, double vl = 0.0, double vr = 0.0) { return {pan, tilt, vl, vr}; }
+HeadPose pose(double pan, double tilt, double vl = 0.0, double vr = 0.0, double zoom = 1.0)
+{
+    return {pan, tilt, vl, vr, zoom};
+}
 
 sim::SceneConfig scene_config()
 {
@@ -53,7 +56,7 @@ double image_angle(const sim::EyeTruth& t)  // palm -> fingertip, image axes (y 
 
 double wrap(double a) { return std::remainder(a, 2.0 * kPi); }
 
-TEST(CameraMotion, PredictsTheSceneForStepsOfAFewDegrees)
+TEST(CameraMotion, PredictsTheSceneForStepsOfAFewDegreesAndOfTheZoom)
 {
     const sim::Scene scene(scene_config());
     const StereoCalibration cal = scene.calibration();
@@ -69,6 +72,8 @@ TEST(CameraMotion, PredictsTheSceneForStepsOfAFewDegrees)
         {"vergence converge", pose(0, 0), pose(0, 0, 3, -3)},
         {"vergence of one eye", pose(2, 1, 1, -1), pose(2, 1, 4, -1)},
         {"pan, tilt and vergence", pose(-2, 1, 1, -1), pose(1, -2, 3, -4)},
+        {"zoom 1 -> 2", pose(0, 0), pose(0, 0, 0, 0, 2)},
+        {"zoom 2 -> 1.5 while panning", pose(1, 0, 0, 0, 2), pose(2, 1, 0, 0, 1.5)},
     };
     double worst_px = 0.0, worst_rad = 0.0;
     for (const Step& s : steps) {
@@ -90,6 +95,8 @@ TEST(CameraMotion, PredictsTheSceneForStepsOfAFewDegrees)
             // little through perspective).
             const double length_ratio = cv::norm(b.fingertip_px - b.palm_px) / cv::norm(a.fingertip_px - a.palm_px);
             EXPECT_NEAR(m.scale_factor, length_ratio, 0.01);
+            // A zoom scales the image by the ratio of the magnifications (pan adds little).
+            EXPECT_NEAR(m.scale_factor, s.after.zoom / s.before.zoom, 0.03);
         }
     }
     std::printf("largest position error %.3f px, rotation error %.4f rad\n", worst_px, worst_rad);

@@ -95,6 +95,71 @@ TEST(HeadLink, FixateTurnsTheHeadTowardsAHandRightOfCentre)
     EXPECT_GT(link.client().stats().commands_sent, 5u);
 }
 
+TEST(HeadLink, FixateReturnsToTheHomePresetOnceTheHandIsLost)
+{
+    RunningHead head(loopback_head());
+    // Someone sets up the watch position with headctl beforehand: pan -15, zoom 3, preset 5.
+    headctl::HeadClientConfig driver_config;
+    driver_config.uri = head.uri();
+    headctl::HeadClient driver(driver_config);
+    headctl::HeadCommand watch{headctl::CommandKind::Absolute, {}};
+    watch.values.set(headctl::Axis::Pan, -15.0);
+    watch.values.set(headctl::Axis::Zoom, 3.0);
+    driver.submit(watch);
+    const auto at_watch = [&] {
+        const auto s = driver.latest();
+        return s && std::abs(s->state.pose.pan_deg + 15.0) < 1e-6 && s->state.pose.zoom == 3.0;
+    };
+    ASSERT_TRUE(eventually(at_watch, 3000ms));
+    driver.submit(headctl::preset_command(headctl::CommandKind::SavePreset, 5));
+    ASSERT_TRUE(eventually([&] { return driver.stats().commands_sent >= 2; }, 2000ms));
+    driver.submit(headctl::HeadCommand{headctl::CommandKind::Home, {}});
+    ASSERT_TRUE(eventually([&] {
+        const auto s = driver.latest();
+        return s && s->state.pose.pan_deg == 0.0 && s->state.pose.zoom == 1.0;
+    }, 3000ms));
+
+    HeadLinkConfig config = link_config(head.uri(), SteerMode::Fixate);
+    config.fixate.hold_s = 0.3;
+    config.fixate.home_preset = 5;
+    HeadLink link(config, calibration());
+    ASSERT_TRUE(eventually([&] { return link.client().latest().has_value(); }, 2000ms));
+    const double dx = calibration().M1(0, 0) * std::tan(10.0 * std::numbers::pi / 180.0);
+    run_frames(link, 400ms, [&](const HeadAtCapture&) { return left_hand_at(calibration().M1(0, 2) + dx, 240.0); });
+    EXPECT_GT(latest_pose(link).pan_deg, 0.5);  // it followed the hand
+    run_frames(link, 1500ms, [&](const HeadAtCapture&) { return FrameResult{}; });
+    EXPECT_TRUE(eventually(at_watch, 3000ms)) << latest_pose(link).pan_deg;
+}
+
+TEST(HeadLink, FixateWidensTheViewWhileTheHandIsLostAndResumesWhenItIsBack)
+{
+    RunningHead head(loopback_head());
+    HeadLinkConfig config = link_config(head.uri(), SteerMode::Fixate);
+    config.fixate.widen_after_s = 0.3;
+    config.fixate.widen_rate = 4.0;
+    config.fixate.hold_s = 30.0;
+    HeadLink link(config, calibration());
+    ASSERT_TRUE(eventually([&] { return link.client().limits().has_value(); }, 2000ms));
+    headctl::HeadClientConfig driver_config;
+    driver_config.uri = head.uri();
+    headctl::HeadClient driver(driver_config);
+    headctl::HeadCommand zoom_in{headctl::CommandKind::Absolute, {}};
+    zoom_in.values.set(headctl::Axis::Zoom, 6.0);
+    driver.submit(zoom_in);
+    ASSERT_TRUE(eventually([&] { return latest_pose(link).zoom == 6.0; }, 3000ms));
+
+    const FrameResult centred = left_hand_at(calibration().M1(0, 2), calibration().M1(1, 2));
+    run_frames(link, 300ms, [&](const HeadAtCapture&) { return centred; });
+    EXPECT_DOUBLE_EQ(latest_pose(link).zoom, 6.0);  // tracking leaves the lens alone
+    run_frames(link, 1200ms, [&](const HeadAtCapture&) { return FrameResult{}; });
+    const double widened = latest_pose(link).zoom;
+    EXPECT_LT(widened, 4.0);  // about 0.9 s at 4 per second
+    run_frames(link, 600ms, [&](const HeadAtCapture&) { return centred; });
+    const double resumed = latest_pose(link).zoom;
+    EXPECT_GT(resumed, widened - 1.0);  // stopped at once, not run on to the widest
+    EXPECT_GT(resumed, 1.5);
+}
+
 // Views that reach the link later than max_view_age after capture do not steer: the same
 // off-centre hand that turns the head when fresh leaves it at rest when 400 ms old.
 TEST(HeadLink, ViewsTooOldToSteerFromLeaveTheHeadAtRest)

@@ -1,5 +1,5 @@
 // Fuzzes the VISCA reply parser and the VISCA-over-IP unwrapping: any bytes either parse or
-// throw ViscaError; a parsed position re-encodes to the same nibbles.
+// throw ViscaError; a parsed pan-tilt or zoom position re-encodes to the same nibbles.
 #include "headctl/visca.hpp"
 
 #include <cstdint>
@@ -17,6 +17,11 @@ void parse(std::span<const std::uint8_t> bytes) {
             const auto again = visca::pan_tilt_absolute(1, 1, 1, r.pan_units, r.tilt_units);
             for (std::size_t i = 0; i < 8; ++i)
                 if (again[6 + i] != bytes[2 + i]) std::abort();
+        }
+        if (r.kind == visca::ReplyKind::ZoomPosition) {
+            const auto again = visca::zoom_direct(1, r.zoom_units);
+            for (std::size_t i = 0; i < 4; ++i)
+                if (again[4 + i] != bytes[2 + i]) std::abort();
         }
         visca::describe_error(r.error);
     } catch (const visca::ViscaError&) {

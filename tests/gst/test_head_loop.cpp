@@ -199,4 +199,43 @@ TEST(HeadLoop, AHeadTurnedPastTheSimulatedRoomDoesNotStopTheScene)
     EXPECT_NE(r.warnings[0].find("simulated room"), std::string::npos) << r.warnings[0];
 }
 
+TEST(HeadLoop, AZoomingHeadNarrowsTheRenderedView)
+{
+    // headsim at 2x: handscenesrc renders at twice the focal length, so the still hand's
+    // palm-to-fingertip span in the image is twice that of a fixed rig and the truth names
+    // the zoom.
+    gc::test::init_gstreamer();
+    const char* scene = "handscenesrc name=l scene=clean motion=static num-buffers=3 ";
+    const gc::test::RunResult wide = gc::test::run_pipeline(std::string(scene) + "! fakesink");
+    ASSERT_TRUE(wide.eos) << wide.error;
+
+    RunningHead head(loopback_head(0, 0.0));
+    gc::headctl::HeadClientConfig driver_config;
+    driver_config.uri = head.uri();
+    gc::headctl::HeadClient driver(driver_config);
+    gc::headctl::HeadCommand zoom{gc::headctl::CommandKind::Absolute, {}};
+    zoom.values.set(gc::headctl::Axis::Zoom, 2.0);
+    driver.submit(zoom);
+    const auto zoomed = [&] {
+        const auto s = driver.latest();
+        return s && s->state.pose.zoom == 2.0 && !s->state.moving_axis(gc::headctl::Axis::Zoom);
+    };
+    for (int i = 0; i < 500 && !zoomed(); ++i) std::this_thread::sleep_for(10ms);
+    ASSERT_TRUE(zoomed());
+    const gc::test::RunResult narrow =
+        gc::test::run_pipeline(std::string(scene) + "is-live=true head=" + head.uri() + " ! fakesink");
+    ASSERT_TRUE(narrow.eos) << narrow.error;
+
+    const auto span = [](const GstStructure* t) {
+        return std::hypot(gc::test::get_double(t, "fingertip-x") - gc::test::get_double(t, "palm-x"),
+                          gc::test::get_double(t, "fingertip-y") - gc::test::get_double(t, "palm-y"));
+    };
+    const auto a = wide.named("hand-truth", "l"), b = narrow.named("hand-truth", "l");
+    ASSERT_FALSE(a.empty());
+    ASSERT_FALSE(b.empty());
+    EXPECT_DOUBLE_EQ(gc::test::get_double(a.back(), "head-zoom"), 1.0);
+    EXPECT_DOUBLE_EQ(gc::test::get_double(b.back(), "head-zoom"), 2.0);
+    EXPECT_NEAR(span(b.back()) / span(a.back()), 2.0, 0.02);
+}
+
 }  // namespace

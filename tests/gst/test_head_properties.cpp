@@ -60,6 +60,16 @@ TEST(HeadProperties, Defaults)
     g_object_get(tracker.get(), "head", &head, "target-distance", &distance, nullptr);
     EXPECT_EQ(head, nullptr);
     EXPECT_DOUBLE_EQ(distance, 2000.0);
+    int preset = 0;
+    g_object_get(tracker.get(), "home-preset", &preset, nullptr);
+    EXPECT_EQ(preset, -1);  // the head's own home position
+    g_object_set(tracker.get(), "home-preset", 12, nullptr);
+    g_object_get(tracker.get(), "home-preset", &preset, nullptr);
+    EXPECT_EQ(preset, 12);
+    gdouble widen = -1.0, home_after = -1.0;
+    g_object_get(tracker.get(), "widen-after", &widen, "home-after", &home_after, nullptr);
+    EXPECT_DOUBLE_EQ(widen, 0.0);  // never
+    EXPECT_DOUBLE_EQ(home_after, 2.0);
     GParamSpec* spec = g_object_class_find_property(G_OBJECT_GET_CLASS(tracker.get()), "steer");
     ASSERT_TRUE(spec);
     GEnumClass* modes = G_ENUM_CLASS(g_type_class_ref(G_PARAM_SPEC_VALUE_TYPE(spec)));

@@ -40,7 +40,9 @@ struct Loop {
             if (cmd) {
                 commands.push_back(*cmd);
                 if (cmd->kind == CommandKind::Velocity) head->move_velocity(cmd->values, t);
+                if (cmd->kind == CommandKind::Absolute) head->move_absolute(cmd->values, t);
                 if (cmd->kind == CommandKind::Home) head->home(t);
+                if (cmd->kind == CommandKind::RecallPreset) head->recall_preset(cmd->preset, t);
             }
             poses.push_back(now);
             t += kFrame;
@@ -129,6 +131,50 @@ TEST(FixateController, HoldsThenHomesWhenTheHandIsLost) {
         EXPECT_EQ(loop.commands[i].values.get(Axis::Pan), 0.0);
     }
     EXPECT_NEAR(later.back().pan_deg, 0.0, 1e-6);
+}
+
+TEST(FixateController, ReturnsToTheHomePresetWhenOneIsSet) {
+    FixateConfig config;
+    config.hold_s = 0.5;
+    config.home_preset = 7;
+    Loop loop(config);
+    AxisValues watch;
+    watch.set(Axis::Pan, -25.0);
+    watch.set(Axis::Tilt, 5.0);
+    loop.head->move_absolute(watch, 0.0);
+    loop.head->save_preset(7, 2.0);
+    loop.t = 2.0;
+    loop.run(90, 10.0, 0.0);  // follows the hand away from the preset
+    loop.commands.clear();
+    const auto later = loop.run(90, 10.0, 0.0, false);
+    ASSERT_FALSE(loop.commands.empty());
+    EXPECT_EQ(loop.commands.back(), preset_command(CommandKind::RecallPreset, 7));
+    EXPECT_NEAR(later.back().pan_deg, -25.0, 1e-6);
+    EXPECT_NEAR(later.back().tilt_deg, 5.0, 1e-6);
+}
+
+TEST(FixateController, ZoomsOutWhileTheHandIsLostAndStopsWhenItIsFoundAgain) {
+    FixateConfig config;
+    config.widen_after_s = 0.5;
+    config.widen_rate = 3.0;
+    config.hold_s = 10.0;
+    Loop loop(config);
+    AxisValues zoomed;
+    zoomed.set(Axis::Zoom, 6.0);
+    loop.head->move_absolute(zoomed, 0.0);
+    loop.t = 3.0;
+    loop.run(30, 0.0, 0.0);
+    EXPECT_DOUBLE_EQ(loop.head->state(loop.t).pose.zoom, 6.0);  // tracking: the lens is left alone
+    const auto lost = loop.run(15, 0.0, 0.0, false);              // 0.5 s: holding
+    EXPECT_DOUBLE_EQ(lost.back().zoom, 6.0);
+    const auto widening = loop.run(30, 0.0, 0.0, false);          // 1 s more: about 3 wider
+    EXPECT_LT(widening.back().zoom, 4.0);
+    EXPECT_GT(widening.back().zoom, 2.0);
+    loop.run(1, 0.0, 0.0);  // found again
+    const double found = loop.head->state(loop.t).pose.zoom;
+    loop.run(30, 0.0, 0.0);
+    EXPECT_NEAR(loop.head->state(loop.t).pose.zoom, found, 0.3);  // stopped (after its braking)
+    EXPECT_GT(loop.head->state(loop.t).pose.zoom, 1.5);
 }
 
 TEST(FixateController, FeedForwardFollowsAMovingTarget) {

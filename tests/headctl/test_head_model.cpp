@@ -42,6 +42,64 @@ TEST(HeadModel, TrapezoidalMoveRespectsVelocityAndAccelerationLimits) {
     EXPECT_DOUBLE_EQ(head.state(3.0).pose.pan_deg, 90.0);
 }
 
+AxisValues zoom(double v) {
+    AxisValues a;
+    a.set(Axis::Zoom, v);
+    return a;
+}
+
+TEST(HeadModel, ZoomIsAMagnificationWithItsOwnLimitsAndSpeed) {
+    HeadModel head(HeadModelConfig{});  // zoom: 1..20, 8 per s, 30 per s^2
+    EXPECT_DOUBLE_EQ(head.state(0.0).pose.zoom, 1.0);
+    EXPECT_THROW(head.move_absolute(zoom(0.5), 0.0), std::out_of_range);
+    EXPECT_THROW(head.move_absolute(zoom(21.0), 0.0), std::out_of_range);
+    EXPECT_THROW(head.move_velocity(zoom(9.0), 0.0), std::out_of_range);
+    head.move_absolute(zoom(2.0), 0.0);
+    const HeadState early = head.state(0.1);  // at 30 per s^2: 0.15 after 0.1 s
+    EXPECT_NEAR(early.pose.zoom, 1.15, 0.01);
+    EXPECT_TRUE(early.moving_axis(Axis::Zoom));
+    EXPECT_FALSE(early.moving_axis(Axis::Pan));
+    const HeadState there = head.state(2.0);
+    EXPECT_DOUBLE_EQ(there.pose.zoom, 2.0);
+    EXPECT_FALSE(there.moving_axis(Axis::Zoom));
+    // From 1 to 20 the lens reaches its 8 per s.
+    head.move_absolute(zoom(20.0), 2.0);
+    const double cruising = head.state(2.0 + 8.0 / 30.0).pose.zoom;
+    EXPECT_NEAR(head.state(3.0 + 8.0 / 30.0).pose.zoom - cruising, 8.0, 0.05);
+    head.home(10.0);
+    EXPECT_DOUBLE_EQ(head.state(20.0).pose.zoom, 1.0);
+}
+
+TEST(HeadModel, APresetKeepsWhereTheHeadWasAndRecallsIt) {
+    HeadModel head(HeadModelConfig{});
+    EXPECT_THROW(head.recall_preset(3, 0.0), std::out_of_range);
+    AxisValues there = pan(30.0);
+    there.set(Axis::Tilt, -10.0);
+    there.set(Axis::Zoom, 4.0);
+    head.move_absolute(there, 0.0);
+    head.save_preset(3, 5.0);
+    head.home(5.0);
+    EXPECT_DOUBLE_EQ(head.state(10.0).pose.pan_deg, 0.0);
+    head.recall_preset(3, 10.0);
+    const HeadPose back = head.state(15.0).pose;
+    EXPECT_DOUBLE_EQ(back.pan_deg, 30.0);
+    EXPECT_DOUBLE_EQ(back.tilt_deg, -10.0);
+    EXPECT_DOUBLE_EQ(back.zoom, 4.0);
+    head.move_absolute(pan(-20.0), 15.0);
+    head.save_preset(3, 20.0);  // saving again replaces it
+    head.home(20.0);
+    head.recall_preset(3, 25.0);
+    EXPECT_DOUBLE_EQ(head.state(30.0).pose.pan_deg, -20.0);
+}
+
+TEST(HeadModel, ZoomLimitsMustHoldTheWidestView) {
+    HeadModelConfig config;
+    config.limits[Axis::Zoom] = AxisLimits{0.5, 4.0, 1.0, 1.0};
+    EXPECT_THROW(config.validate(), std::invalid_argument);
+    config.limits[Axis::Zoom] = AxisLimits{2.0, 4.0, 1.0, 1.0};
+    EXPECT_THROW(config.validate(), std::invalid_argument);
+}
+
 TEST(HeadModel, RejectsTargetsBeyondSoftLimitsAndTooFastVelocities) {
     HeadModel head(HeadModelConfig{});
     EXPECT_THROW(head.move_absolute(pan(170.5), 0.0), std::out_of_range);

@@ -82,6 +82,50 @@ TEST(HeadctlCli, StatusMoveAndLimits) {
     EXPECT_EQ(std::count(watch.out.begin(), watch.out.end(), '\n'), 3);
 }
 
+TEST(HeadctlCli, ZoomIsAMagnification) {
+    RunningServer server;
+    EXPECT_NE(run_headctl({"--uri", server.uri(), "status"}).out.find(" zoom=1.000 "), std::string::npos);
+    const Outcome move = run_headctl({"--uri", server.uri(), "move", "zoom=2"});
+    EXPECT_EQ(move.exit_code, 0);
+    EXPECT_EQ(move.out, "ok move abs zoom=2\n");
+    std::string seen;
+    for (int i = 0; i < 100 && seen.find(" zoom=2.000 ") == std::string::npos; ++i) {
+        std::this_thread::sleep_for(20ms);
+        seen = run_headctl({"--uri", server.uri(), "status"}).out;
+    }
+    EXPECT_NE(seen.find(" zoom=2.000 "), std::string::npos) << seen;
+    EXPECT_EQ(run_headctl({"--uri", server.uri(), "move", "zoom=0.5"}).exit_code, 4);  // below the widest view
+    const Outcome limits = run_headctl({"--uri", server.uri(), "limits"});
+    EXPECT_NE(limits.out.find("zoom     min=1.000 max=20.000"), std::string::npos) << limits.out;
+}
+
+TEST(HeadctlCli, PresetsAreSavedAndRecalledOnTheHead) {
+    RunningServer server;
+    const auto status_shows = [&](const std::string& text) {
+        std::string seen;
+        for (int i = 0; i < 150 && seen.find(text) == std::string::npos; ++i) {
+            std::this_thread::sleep_for(20ms);
+            seen = run_headctl({"--uri", server.uri(), "status"}).out;
+        }
+        return seen.find(text) != std::string::npos;
+    };
+    EXPECT_EQ(run_headctl({"--uri", server.uri(), "preset", "recall", "2"}).exit_code, 4);  // never saved
+    EXPECT_EQ(run_headctl({"--uri", server.uri(), "move", "pan=12", "zoom=3"}).exit_code, 0);
+    ASSERT_TRUE(status_shows("pan=12.000 "));
+    ASSERT_TRUE(status_shows(" zoom=3.000 "));
+    const Outcome save = run_headctl({"--uri", server.uri(), "preset", "save", "2"});
+    EXPECT_EQ(save.exit_code, 0);
+    EXPECT_EQ(save.out, "ok preset save 2\n");
+    EXPECT_EQ(run_headctl({"--uri", server.uri(), "home"}).exit_code, 0);
+    ASSERT_TRUE(status_shows("pan=0.000 "));
+    EXPECT_EQ(run_headctl({"--uri", server.uri(), "preset", "recall", "2"}).exit_code, 0);
+    EXPECT_TRUE(status_shows("pan=12.000 "));
+    EXPECT_TRUE(status_shows(" zoom=3.000 "));
+    EXPECT_EQ(run_headctl({"--uri", server.uri(), "preset", "save"}).exit_code, 2);
+    EXPECT_EQ(run_headctl({"--uri", server.uri(), "preset", "save", "128"}).exit_code, 2);
+    EXPECT_EQ(run_headctl({"--uri", server.uri(), "preset", "keep", "1"}).exit_code, 2);
+}
+
 TEST(HeadctlCli, ExitCodesTellUsageConnectionAndRefusal) {
     HeadServerConfig config;
     config.token = "k3y";

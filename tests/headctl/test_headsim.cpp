@@ -23,7 +23,7 @@ bool starts_with(const std::string& s, std::string_view prefix) { return s.rfind
 TEST(HeadSim, GreetsAndAnswersRequestsWithTheirIds) {
     RunningServer server;
     LineClient c(server.port());
-    EXPECT_EQ(c.line().value_or(""), "HELLO GCHP/1 axes=pan,tilt,verge_l,verge_r caps=abs,rel,vel");
+    EXPECT_EQ(c.line().value_or(""), "HELLO GCHP/1 axes=pan,tilt,verge_l,verge_r,zoom caps=abs,rel,vel,preset");
     EXPECT_EQ(c.request("#1 MOVE ABS pan=2"), "OK #1");
     const Reply r = parse_reply(c.request("#2 STATUS"));
     EXPECT_EQ(r.id, 2u);
@@ -43,7 +43,7 @@ TEST(HeadSim, RequiresTheTokenBeforeAnythingElse) {
     config.max_auth_failures = 2;
     RunningServer server(config);
     LineClient c(server.port());
-    EXPECT_EQ(c.line().value_or(""), "HELLO GCHP/1 axes=pan,tilt,verge_l,verge_r caps=abs,rel,vel,auth");
+    EXPECT_EQ(c.line().value_or(""), "HELLO GCHP/1 axes=pan,tilt,verge_l,verge_r,zoom caps=abs,rel,vel,preset,auth");
     EXPECT_TRUE(starts_with(c.request("#1 STATUS"), "ERR #1 401 "));
     EXPECT_TRUE(starts_with(c.request("#2 AUTH wrong"), "ERR #2 403 "));
     EXPECT_EQ(c.request("#3 AUTH letmein"), "OK #3");
@@ -269,7 +269,7 @@ struct TempFile {
 // The token holder is served, a wrong token is not.
 void expect_token(std::uint16_t port, const std::string& token) {
     LineClient c(port);
-    EXPECT_TRUE(starts_with(c.line().value_or(""), "HELLO GCHP/1 axes=pan,tilt,verge_l,verge_r caps=abs,rel,vel,auth"));
+    EXPECT_TRUE(starts_with(c.line().value_or(""), "HELLO GCHP/1 axes=pan,tilt,verge_l,verge_r,zoom caps=abs,rel,vel,preset,auth"));
     EXPECT_TRUE(starts_with(c.request("#1 STATUS"), "ERR #1 401 "));
     EXPECT_EQ(c.request("#2 AUTH " + token), "OK #2");
     LineClient other(port);

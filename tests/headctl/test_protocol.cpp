@@ -126,10 +126,10 @@ TEST(Protocol, StateReplyRoundTrips) {
     r.id = 9;
     r.body = ReplyBody::State;
     r.state.server_time_us = 123456789012;
-    r.state.pose = HeadPose{12.5, -3.25, 4.0, -4.0};
-    r.state.moving = {false, true, false, false};
+    r.state.pose = HeadPose{12.5, -3.25, 4.0, -4.0, 2.5};
+    r.state.moving = {false, true, false, false, true};
     const std::string line = format_reply(r);
-    EXPECT_EQ(line, "OK #9 STATE t=123456789012 pan=12.5 tilt=-3.25 verge_l=4 verge_r=-4 moving=0,1,0,0");
+    EXPECT_EQ(line, "OK #9 STATE t=123456789012 pan=12.5 tilt=-3.25 verge_l=4 verge_r=-4 zoom=2.5 moving=0,1,0,0,1");
     const Reply back = parse_reply(line);
     EXPECT_TRUE(back.ok);
     EXPECT_EQ(back.id, 9u);
@@ -137,7 +137,44 @@ TEST(Protocol, StateReplyRoundTrips) {
     EXPECT_EQ(back.state.server_time_us, 123456789012);
     EXPECT_DOUBLE_EQ(back.state.pose.tilt_deg, -3.25);
     EXPECT_DOUBLE_EQ(back.state.pose.verge_right_deg, -4.0);
+    EXPECT_DOUBLE_EQ(back.state.pose.zoom, 2.5);
     EXPECT_EQ(back.state.moving, r.state.moving);
+}
+
+TEST(Protocol, AHeadWithoutZoomReportsFourAxesAndReadsAsTheWidestView) {
+    const Reply r = parse_reply("OK STATE t=5 pan=1 tilt=2 verge_l=3 verge_r=4 moving=0,0,1,0");
+    EXPECT_DOUBLE_EQ(r.state.pose.zoom, 1.0);
+    EXPECT_TRUE(r.state.moving[2]);
+    EXPECT_FALSE(r.state.moving[4]);
+    const Reply l = parse_reply("OK LIMITS pan=-1:1:1:1 tilt=-1:1:1:1 verge_l=-1:1:1:1 verge_r=-1:1:1:1");
+    EXPECT_EQ(l.limits[Axis::Zoom], (AxisLimits{1.0, 1.0, 1.0, 1.0}));
+    EXPECT_THROW(parse_reply("OK STATE t=5 pan=1 tilt=2 verge_l=3 verge_r=4 zoom=0.5 moving=0,0,0,0,0"), ProtocolError);
+    EXPECT_THROW(parse_reply("OK STATE t=5 pan=1 tilt=2 verge_l=3 verge_r=4 moving=0,0,0,0,0,0"), ProtocolError);
+    EXPECT_THROW(parse_reply("OK LIMITS pan=-1:1:1:1 tilt=-1:1:1:1 verge_l=-1:1:1:1 verge_r=-1:1:1:1 zoom=0.5:4:1:1"),
+                 ProtocolError);
+}
+
+TEST(Protocol, PresetsAreSavedAndRecalledByNumber) {
+    const Request save = parse_request("#4 preset save 12");
+    EXPECT_EQ(save.command, Command::PresetSave);
+    EXPECT_EQ(save.preset, 12);
+    EXPECT_EQ(format_request(save), "#4 PRESET SAVE 12");
+    const Request recall = parse_request("PRESET RECALL 255");
+    EXPECT_EQ(recall.command, Command::PresetRecall);
+    EXPECT_EQ(format_request(recall), "PRESET RECALL 255");
+    for (const char* bad : {"PRESET SAVE", "PRESET SAVE 256", "PRESET SAVE -1", "PRESET FORGET 1", "PRESET SAVE 1 2",
+                            "PRESET RECALL x"})
+        EXPECT_THROW(parse_request(bad), ProtocolError) << bad;
+    Greeting g;
+    g.caps.presets = true;
+    EXPECT_EQ(format_greeting(g), "HELLO GCHP/1 axes=pan,tilt,verge_l,verge_r,zoom caps=abs,rel,vel,preset");
+    EXPECT_TRUE(parse_greeting(format_greeting(g)).caps.presets);
+}
+
+TEST(Protocol, ZoomIsAnAxisOfMoves) {
+    const Request r = parse_request("#3 MOVE ABS zoom=2 pan=1");
+    EXPECT_DOUBLE_EQ(r.values.get(Axis::Zoom), 2.0);
+    EXPECT_EQ(format_request(r), "#3 MOVE ABS pan=1 zoom=2");
 }
 
 TEST(Protocol, NumbersKeepFourDecimals) {
@@ -154,6 +191,7 @@ TEST(Protocol, LimitsReplyRoundTripsWithinTheLineBound) {
     Reply r;
     r.body = ReplyBody::Limits;
     for (Axis a : kAllAxes) r.limits[a] = AxisLimits{-99999.1234, 99999.1234, 99999.1234, 99999.1234};
+    r.limits[Axis::Zoom] = AxisLimits{1.0, 99999.1234, 99999.1234, 99999.1234};
     const std::string line = format_reply(r);
     EXPECT_LE(line.size(), kMaxLineLength);
     const Reply back = parse_reply(line);
@@ -216,9 +254,9 @@ TEST(Protocol, RepliesIgnoreUnknownFieldsOfLaterVersions) {
 
 TEST(Protocol, GreetingRoundTripsAndChecksItsShape) {
     Greeting g;
-    EXPECT_EQ(format_greeting(g), "HELLO GCHP/1 axes=pan,tilt,verge_l,verge_r caps=abs,rel,vel");
+    EXPECT_EQ(format_greeting(g), "HELLO GCHP/1 axes=pan,tilt,verge_l,verge_r,zoom caps=abs,rel,vel");
     g.caps.auth_required = true;
-    g.axes = {true, true, false, false};
+    g.axes = {true, true, false, false, true};
     EXPECT_EQ(parse_greeting(format_greeting(g)), g);
     EXPECT_EQ(parse_greeting("HELLO GCHP/2 axes=pan caps=abs,teleport").version, 2);
     EXPECT_THROW(parse_greeting("HELLO HTTP/1.1"), ProtocolError);

@@ -44,6 +44,29 @@ TEST(ViscaBytes, CommandsHaveTheExactLayout) {
     EXPECT_THROW(visca::pan_tilt_absolute(1, 1, 1, 0x8000, 0), visca::ViscaError);
 }
 
+TEST(ViscaBytes, MemoryCommandsHaveTheExactLayout) {
+    EXPECT_EQ(visca::memory(1, visca::MemoryAction::Set, 5), (Bytes{0x81, 0x01, 0x04, 0x3F, 0x01, 0x05, 0xFF}));
+    EXPECT_EQ(visca::memory(3, visca::MemoryAction::Recall, 0x7F), (Bytes{0x83, 0x01, 0x04, 0x3F, 0x02, 0x7F, 0xFF}));
+    EXPECT_EQ(visca::memory(1, visca::MemoryAction::Reset, 0), (Bytes{0x81, 0x01, 0x04, 0x3F, 0x00, 0x00, 0xFF}));
+    EXPECT_THROW(visca::memory(1, visca::MemoryAction::Set, 128), visca::ViscaError);
+    EXPECT_THROW(visca::memory(1, visca::MemoryAction::Set, -1), visca::ViscaError);
+}
+
+TEST(ViscaBytes, ZoomCommandsAndInquiryHaveTheExactLayout) {
+    EXPECT_EQ(visca::zoom_direct(1, 0x4000), (Bytes{0x81, 0x01, 0x04, 0x47, 0x04, 0x00, 0x00, 0x00, 0xFF}));
+    EXPECT_EQ(visca::zoom_direct(2, 0x1234), (Bytes{0x82, 0x01, 0x04, 0x47, 0x01, 0x02, 0x03, 0x04, 0xFF}));
+    EXPECT_EQ(visca::zoom_drive(1, 5, visca::Direction::Positive), (Bytes{0x81, 0x01, 0x04, 0x07, 0x25, 0xFF}));
+    EXPECT_EQ(visca::zoom_drive(1, 9, visca::Direction::Negative), (Bytes{0x81, 0x01, 0x04, 0x07, 0x37, 0xFF}));
+    EXPECT_EQ(visca::zoom_drive(1, 3, visca::Direction::Stop), (Bytes{0x81, 0x01, 0x04, 0x07, 0x00, 0xFF}));
+    EXPECT_EQ(visca::zoom_position_inquiry(1), (Bytes{0x81, 0x09, 0x04, 0x47, 0xFF}));
+    EXPECT_THROW(visca::zoom_direct(1, -1), visca::ViscaError);
+    EXPECT_THROW(visca::zoom_direct(1, 0x10000), visca::ViscaError);
+    const auto z = visca::parse_reply(Bytes{0x90, 0x50, 0x0A, 0x0B, 0x0C, 0x0D, 0xFF});
+    EXPECT_EQ(z.kind, visca::ReplyKind::ZoomPosition);
+    EXPECT_EQ(z.zoom_units, 0xABCD);
+    EXPECT_THROW(visca::parse_reply(Bytes{0x90, 0x50, 0x1A, 0x0B, 0x0C, 0x0D, 0xFF}), visca::ViscaError);
+}
+
 TEST(ViscaBytes, IpHeaderCarriesTypeLengthAndSequence) {
     const Bytes payload = visca::pan_tilt_home(1);
     EXPECT_EQ(visca::wrap_ip(visca::kIpCommand, 0x01020304, payload),
@@ -116,6 +139,10 @@ public:
     // From now on a message is answered only by a flood of datagrams that are not its reply
     // (UDP only).
     void flood_instead_of_answering() { flood_ = true; }
+    void set_zoom(int units) {
+        std::lock_guard lock(mutex_);
+        zoom_ = units;
+    }
     void set_position(int pan, int tilt) {
         std::lock_guard lock(mutex_);
         pan_ = pan;
@@ -135,7 +162,15 @@ private:
             r.push_back(0xFF);
             return {r};
         }
+        if (m == visca::zoom_position_inquiry(1)) {
+            Bytes r{0x90, 0x50};
+            for (int shift = 12; shift >= 0; shift -= 4) r.push_back(static_cast<std::uint8_t>((zoom_ >> shift) & 0x0F));
+            r.push_back(0xFF);
+            return {r};
+        }
         if (refuse_next_.exchange(false)) return {Bytes{0x90, 0x61, 0x41, 0xFF}};
+        if (m.size() == 9 && m[1] == 0x01 && m[2] == 0x04 && m[3] == 0x47)
+            zoom_ = (m[4] << 12) | (m[5] << 8) | (m[6] << 4) | m[7];
         auto nibbles = [&](std::size_t at) {
             return static_cast<std::int16_t>((m[at] << 12) | (m[at + 1] << 8) | (m[at + 2] << 4) | m[at + 3]);
         };
@@ -269,6 +304,7 @@ private:
     std::vector<std::uint32_t> sequences_;
     int pan_ = 0;
     int tilt_ = 0;
+    int zoom_ = 0;
     std::thread thread_;
 };
 
@@ -324,6 +360,60 @@ TEST(ViscaBackend, DrivesACameraOverUdpWithSequenceNumbers) {
     ASSERT_GE(seq.size(), 3u);
     // The reset first, then commands numbered from 0 upwards without gaps.
     for (std::size_t i = 1; i < seq.size(); ++i) EXPECT_EQ(seq[i], i - 1);
+}
+
+TEST(ViscaBackend, ZoomsToAMagnificationAndReadsItBack) {
+    ViscaResponder camera(false);
+    ViscaSettings settings;
+    settings.zoom_max = 21.0;  // position 0x4000 at 21x: 0x0333 per step of 1x (rounded)
+    ViscaBackend head("127.0.0.1", camera.port(), ViscaBackend::Transport::Udp, settings);
+    EXPECT_TRUE(head.axes()[static_cast<std::size_t>(Axis::Zoom)]);
+    const auto deadline = [] { return net::Clock::now() + 2s; };
+    head.open(deadline());
+    camera.set_zoom(0x2000);
+    EXPECT_DOUBLE_EQ(head.query_state(deadline()).pose.zoom, 11.0);
+    HeadCommand zoom{CommandKind::Absolute, {}};
+    zoom.values.set(Axis::Zoom, 2.0);
+    head.send(zoom, deadline());
+    EXPECT_NEAR(head.query_state(deadline()).pose.zoom, 2.0, 1e-3);
+    zoom.kind = CommandKind::Velocity;
+    zoom.values.set(Axis::Zoom, -4.0);  // half the default 8 per s: code 4 (of 0..7), wide
+    head.send(zoom, deadline());
+    head.send(HeadCommand{CommandKind::Home, {}}, deadline());
+    EXPECT_DOUBLE_EQ(head.query_state(deadline()).pose.zoom, 1.0);
+    zoom.kind = CommandKind::Absolute;
+    zoom.values.set(Axis::Zoom, 22.0);
+    EXPECT_THROW(head.send(zoom, deadline()), HeadRejected);
+
+    const auto got = camera.received();
+    // Only the lens is driven by a zoom move: no pan-tilt message between the inquiries.
+    ASSERT_GE(got.size(), 10u);
+    EXPECT_EQ(got[2], visca::zoom_direct(1, 0x0333));
+    EXPECT_EQ(got[5], visca::zoom_drive(1, 4, visca::Direction::Negative));
+    EXPECT_EQ(got[6], visca::pan_tilt_home(1));
+    EXPECT_EQ(got[7], visca::zoom_direct(1, 0));
+
+    ViscaBackend fixed("127.0.0.1", camera.port(), ViscaBackend::Transport::Udp, ViscaSettings{});
+    EXPECT_FALSE(fixed.axes()[static_cast<std::size_t>(Axis::Zoom)]);
+    fixed.open(deadline());
+    zoom.values.set(Axis::Zoom, 2.0);
+    EXPECT_THROW(fixed.send(zoom, deadline()), HeadRejected);
+}
+
+TEST(ViscaBackend, SavesAndRecallsPresetsInTheCamerasMemory) {
+    ViscaResponder camera(true);
+    ViscaBackend head("127.0.0.1", camera.port(), ViscaBackend::Transport::Tcp, ViscaSettings{});
+    const auto deadline = [] { return net::Clock::now() + 2s; };
+    head.open(deadline());
+    head.send(preset_command(CommandKind::SavePreset, 4), deadline());
+    head.send(preset_command(CommandKind::RecallPreset, 4), deadline());
+    const auto got = camera.received();
+    ASSERT_EQ(got.size(), 2u);
+    EXPECT_EQ(got[0], visca::memory(1, visca::MemoryAction::Set, 4));
+    EXPECT_EQ(got[1], visca::memory(1, visca::MemoryAction::Recall, 4));
+    camera.refuse_next();
+    EXPECT_THROW(head.send(preset_command(CommandKind::RecallPreset, 9), deadline()), HeadRejected);
+    EXPECT_THROW(head.send(preset_command(CommandKind::RecallPreset, 128), deadline()), HeadRejected);
 }
 
 TEST(ViscaBackend, DrivesACameraOverTcp) {

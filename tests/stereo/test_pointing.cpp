@@ -96,6 +96,22 @@ TEST(Pointing, AccurateWithExactCalibration)
     EXPECT_NEAR(k, 1.0, 0.015);
 }
 
+TEST(Pointing, AccurateThroughZoomedLenses)
+{
+    // Both eyes at twice the focal length: the pair's depth comes out right only if the
+    // estimator scales the calibrated intrinsics by the head's zoom.
+    const gc::sim::Scene scene(scene_config());
+    gc::HeadPose zoomed;
+    zoomed.zoom = 2.0;
+    const Study s = run_grid(scene, {1060, 1250}, {-30, 15}, {30, 150}, zoomed, 0.0);
+    ASSERT_GE(s.angle.size(), 6u) << s.invalid << " invalid";
+    const double median = percentile(s.angle, 0.5), depth_median = percentile(s.depth_abs, 0.5);
+    std::printf("at 2x zoom: angle error median %.2f deg, fingertip depth error median %.1f mm (n=%zu)\n", median,
+                depth_median, s.angle.size());
+    EXPECT_LT(median, 2.5);
+    EXPECT_LT(depth_median, 8.0);
+}
+
 TEST(Pointing, RobustToHalfADegreeOfMotorError)
 {
     const gc::sim::Scene scene(scene_config());
