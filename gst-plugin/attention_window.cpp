@@ -58,7 +58,7 @@ cv::Rect AttentionWindow::update(cv::Size frame, double aspect, const EyeEstimat
     if (!(aspect > 0.0) || frame.width <= 0 || frame.height <= 0)
         return {0, 0, std::max(frame.width, 0), std::max(frame.height, 0)};
     const bool follow = eye.valid();
-    const cv::Rect2d target = region ? region_view(frame, aspect, *region)
+    const cv::Rect2d target = region   ? region_view(frame, aspect, *region)
                               : follow ? hand_view(frame, aspect, eye)
                                        : full_view(frame, aspect);
     if (!valid_) {
@@ -78,8 +78,7 @@ cv::Rect AttentionWindow::update(cv::Size frame, double aspect, const EyeEstimat
     r.x = std::clamp(r.x, 0.0, frame.width - r.width);
     r.y = std::clamp(r.y, 0.0, frame.height - r.height);
     window_ = r;
-    cv::Rect out(int(std::lround(r.x)), int(std::lround(r.y)), int(std::lround(r.width)),
-                 int(std::lround(r.height)));
+    cv::Rect out(int(std::lround(r.x)), int(std::lround(r.y)), int(std::lround(r.width)), int(std::lround(r.height)));
     return out & cv::Rect(0, 0, frame.width, frame.height);
 }
 

@@ -30,7 +30,7 @@ struct _GstHandOverlay {
         cv::Mat canvas;
         gc::gst::BgrWriter writer;
         gc::gst::TrackingOverlay overlay;
-    }* scratch;
+    } * scratch;
 };
 
 G_DEFINE_TYPE(GstHandOverlay, gst_hand_overlay, GST_TYPE_VIDEO_FILTER)
@@ -45,8 +45,7 @@ static GType gst_hand_overlay_view_get_type()
         {GST_HAND_OVERLAY_VIEW_RIGHT, "The right view's estimate (handtracker output=right)", "right"},
         {0, nullptr, nullptr},
     };
-    if (g_once_init_enter(&type))
-        g_once_init_leave(&type, g_enum_register_static("GstHandOverlayView", values));
+    if (g_once_init_enter(&type)) g_once_init_leave(&type, g_enum_register_static("GstHandOverlayView", values));
     return type;
 }
 
@@ -59,8 +58,7 @@ static GstFlowReturn gst_hand_overlay_transform_frame_ip(GstVideoFilter* filter,
 {
     GstHandOverlay* self = GST_HAND_OVERLAY(filter);
     const GstHandPointingMeta* meta = gst_buffer_get_hand_pointing_meta(frame->buffer);
-    if (!meta)
-        return GST_FLOW_OK;
+    if (!meta) return GST_FLOW_OK;
     GST_OBJECT_LOCK(self);
     const bool right = self->view == GST_HAND_OVERLAY_VIEW_RIGHT;
     GST_OBJECT_UNLOCK(self);

@@ -87,8 +87,7 @@ static gboolean gst_hand_scene_src_decide_allocation(GstBaseSrc* src, GstQuery* 
     GstCaps* caps = nullptr;
     gst_query_parse_allocation(query, &caps, nullptr);
     GstVideoInfo info;
-    if (!caps || !gst_video_info_from_caps(&info, caps))
-        return FALSE;
+    if (!caps || !gst_video_info_from_caps(&info, caps)) return FALSE;
     GstBufferPool* pool = nullptr;
     guint size = guint(GST_VIDEO_INFO_SIZE(&info)), min = 0, max = 0;
     const bool update = gst_query_get_n_allocation_pools(query) > 0;
@@ -97,8 +96,7 @@ static gboolean gst_hand_scene_src_decide_allocation(GstBaseSrc* src, GstQuery* 
         gst_query_parse_nth_allocation_pool(query, 0, &pool, &offered, &min, &max);
         size = MAX(size, offered);
     }
-    if (!pool)
-        pool = gst_video_buffer_pool_new();
+    if (!pool) pool = gst_video_buffer_pool_new();
     GstStructure* config = gst_buffer_pool_get_config(pool);
     gst_buffer_pool_config_set_params(config, caps, size, min, max);
     if (gst_query_find_allocation_meta(query, GST_VIDEO_META_API_TYPE, nullptr))
@@ -132,8 +130,7 @@ static GstClockTime frame_time(const GstVideoInfo& info, guint64 frame)
 static GstClockTime capture_timestamp(GstHandSceneSrc* self, guint64 frame)
 {
     SceneState& st = *self->state;
-    if (!gst_base_src_is_live(GST_BASE_SRC(self)))
-        return frame_time(st.stream.info, frame);
+    if (!gst_base_src_is_live(GST_BASE_SRC(self))) return frame_time(st.stream.info, frame);
     if (!GST_CLOCK_TIME_IS_VALID(st.stream.live_origin)) {
         st.stream.live_origin = 0;
         if (GstClock* clock = gst_element_get_clock(GST_ELEMENT(self))) {
@@ -160,8 +157,7 @@ static void gst_hand_scene_src_get_times(GstBaseSrc*, GstBuffer*, GstClockTime* 
 static bool wait_for_running_time(GstHandSceneSrc* self, GstClockTime until)
 {
     GstClock* clock = gst_element_get_clock(GST_ELEMENT(self));
-    if (!clock)
-        return true;
+    if (!clock) return true;
     SceneState& st = *self->state;
     const GstClockTime at = gst_element_get_base_time(GST_ELEMENT(self)) + until;
     GST_OBJECT_LOCK(self);
@@ -187,8 +183,7 @@ static gboolean gst_hand_scene_src_unlock(GstBaseSrc* src)
     GstHandSceneSrc* self = GST_HAND_SCENE_SRC(src);
     GST_OBJECT_LOCK(self);
     self->state->unlocked = true;
-    if (self->state->capture_wait)
-        gst_clock_id_unschedule(self->state->capture_wait);
+    if (self->state->capture_wait) gst_clock_id_unschedule(self->state->capture_wait);
     GST_OBJECT_UNLOCK(self);
     return TRUE;
 }
@@ -225,8 +220,7 @@ static gboolean gst_hand_scene_src_query(GstBaseSrc* src, GstQuery* query)
     GstHandSceneSrc* self = GST_HAND_SCENE_SRC(src);
     if (GST_QUERY_TYPE(query) == GST_QUERY_LATENCY && gst_base_src_is_live(src)) {
         const GstVideoInfo& info = self->state->stream.info;
-        if (!info.finfo || GST_VIDEO_INFO_FPS_N(&info) <= 0)
-            return FALSE;
+        if (!info.finfo || GST_VIDEO_INFO_FPS_N(&info) <= 0) return FALSE;
         // A frame is complete one frame duration after its timestamp. Every frame is rendered
         // into a buffer of its own, so downstream may hold any number of them: no maximum.
         const GstClockTime latency = frame_time(info, 1);
@@ -257,8 +251,7 @@ static GstFlowReturn gst_hand_scene_src_fill(GstPushSrc* src, GstBuffer* buffer)
     GST_OBJECT_LOCK(self);
     const SceneSettings settings = *self->settings;
     GST_OBJECT_UNLOCK(self);
-    if (gst_base_src_is_live(GST_BASE_SRC(self)) && !wait_for_running_time(self, pts))
-        return GST_FLOW_FLUSHING;
+    if (gst_base_src_is_live(GST_BASE_SRC(self)) && !wait_for_running_time(self, pts)) return GST_FLOW_FLUSHING;
     if (const GstFlowReturn ret = render_frame(self, settings, frame, pose_at_capture(self, settings, pts), buffer);
         ret != GST_FLOW_OK)
         return ret;
@@ -268,12 +261,10 @@ static GstFlowReturn gst_hand_scene_src_fill(GstPushSrc* src, GstBuffer* buffer)
     GST_BUFFER_DURATION(buffer) = frame_time(st.stream.info, frame + 1) - frame_time(st.stream.info, frame);
     GST_BUFFER_OFFSET(buffer) = frame;
     GST_BUFFER_OFFSET_END(buffer) = frame + 1;
-    if (frame == 0)
-        GST_BUFFER_FLAG_SET(buffer, GST_BUFFER_FLAG_DISCONT);
+    if (frame == 0) GST_BUFFER_FLAG_SET(buffer, GST_BUFFER_FLAG_DISCONT);
     st.stream.next_frame = frame + 1;
 
-    if (settings.truth_messages)
-        post_truth(self, frame, pts, settings);
+    if (settings.truth_messages) post_truth(self, frame, pts, settings);
     return GST_FLOW_OK;
 }
 
@@ -286,13 +277,11 @@ static gboolean gst_hand_scene_src_start(GstBaseSrc* src)
     const std::string uri = self->settings->head;
     const std::string token_file = self->settings->head_token_file;
     GST_OBJECT_UNLOCK(self);
-    if (uri.empty())
-        return TRUE;
+    if (uri.empty()) return TRUE;
     // Only the pose is read: this client never sends a command.
     gc::headctl::HeadClientConfig config;
     config.uri = uri;
-    if (!gc::gst::read_head_token(GST_ELEMENT(self), token_file, config.token))
-        return FALSE;
+    if (!gc::gst::read_head_token(GST_ELEMENT(self), token_file, config.token)) return FALSE;
     config.backoff_max = std::chrono::milliseconds(500);
     config.clock = gc::gst::element_clock(GST_ELEMENT(self));
     config.on_state_change = gc::gst::connection_reporter(GST_ELEMENT(self), uri);
@@ -330,8 +319,7 @@ static void gst_hand_scene_src_set_property(GObject* object, guint prop_id, cons
     GST_OBJECT_LOCK(self);
     const bool known = set_scene_setting(*self->settings, prop_id, value);
     GST_OBJECT_UNLOCK(self);
-    if (!known)
-        G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
+    if (!known) G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
 }
 
 static void gst_hand_scene_src_get_property(GObject* object, guint prop_id, GValue* value, GParamSpec* pspec)
@@ -344,8 +332,7 @@ static void gst_hand_scene_src_get_property(GObject* object, guint prop_id, GVal
     GST_OBJECT_LOCK(self);
     const bool known = get_scene_setting(*self->settings, prop_id, value);
     GST_OBJECT_UNLOCK(self);
-    if (!known)
-        G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
+    if (!known) G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
 }
 
 static void gst_hand_scene_src_finalize(GObject* object)

@@ -38,8 +38,7 @@ static GstAggregatorPad* gst_hand_tracker_create_new_pad(GstAggregator* agg, Gst
 
 static gboolean gst_hand_tracker_sink_query(GstAggregator* agg, GstAggregatorPad* pad, GstQuery* query)
 {
-    if (answer_caps_query(GST_HAND_TRACKER(agg), pad, query))
-        return TRUE;
+    if (answer_caps_query(GST_HAND_TRACKER(agg), pad, query)) return TRUE;
     return GST_AGGREGATOR_CLASS(gst_hand_tracker_parent_class)->sink_query(agg, pad, query);
 }
 
@@ -65,11 +64,9 @@ static GstFlowReturn process_slot(GstHandTracker* self, GstBuffer* outbuf, bool&
     TrackerState& e = *self->state;
     const Settings settings = read_settings(self);
     if (self->rebuild->exchange(false) || !e.tracker) {
-        if (!build_tracker(self, settings))
-            return GST_FLOW_ERROR;
+        if (!build_tracker(self, settings)) return GST_FLOW_ERROR;
     }
-    if (self->flushed->exchange(false))
-        e.forget();
+    if (self->flushed->exchange(false)) e.forget();
 
     GstVideoAggregatorPad* packed_pad = sink_pad(self, "sink");
     GstVideoAggregatorPad* left_pad = sink_pad(self, "sink_left");
@@ -85,9 +82,9 @@ static GstFlowReturn process_slot(GstHandTracker* self, GstBuffer* outbuf, bool&
     gc::gst::SlotViews in;
     try {
         const gc::gst::PackedLayout layout =
-            packed_pad ? gc::gst::packed_layout(packed_pad->info, settings.input_mode_override,
-                                                settings.input_flags_override)
-                       : gc::gst::PackedLayout{};
+            packed_pad
+                ? gc::gst::packed_layout(packed_pad->info, settings.input_mode_override, settings.input_flags_override)
+                : gc::gst::PackedLayout{};
         gc::gst::read_views(e.readers, e.halves, packed_pad ? packed : nullptr, layout, left, right, in);
     } catch (const std::exception& err) {
         GST_ELEMENT_ERROR(self, STREAM, FORMAT, ("Cannot read an input frame."), ("%s", err.what()));
@@ -98,7 +95,9 @@ static GstFlowReturn process_slot(GstHandTracker* self, GstBuffer* outbuf, bool&
     // last time: a live aggregator repeats its pads' last frames when a source is late or
     // at EOS, and a frame tracked twice would count as a hand that stood still.
     const bool complete = stereo ? (in.have[0] && in.have[1]) : in.have[0];
-    auto pts_of = [](const GstVideoFrame* f) { return views_ready(f) ? GST_BUFFER_PTS(f->buffer) : GST_CLOCK_TIME_NONE; };
+    auto pts_of = [](const GstVideoFrame* f) {
+        return views_ready(f) ? GST_BUFFER_PTS(f->buffer) : GST_CLOCK_TIME_NONE;
+    };
     const std::array<GstClockTime, 2> inputs = {pts_of(packed_pad ? packed : left),
                                                 packed_pad ? GST_CLOCK_TIME_NONE : pts_of(right)};
     const bool repeated = complete && e.stream.tracked_inputs == inputs && GST_CLOCK_TIME_IS_VALID(inputs[0]);
@@ -108,18 +107,15 @@ static GstFlowReturn process_slot(GstHandTracker* self, GstBuffer* outbuf, bool&
         e.stream.tracked_inputs = inputs;
         const GstFlowReturn ret = track_views(self, settings, in, stereo, packed_pad ? packed_pad : left_pad,
                                               packed_pad ? packed : left, outbuf);
-        if (ret != GST_FLOW_OK)
-            return ret;
+        if (ret != GST_FLOW_OK) return ret;
         log_result(self, e, e.tracker->last());
         pick_target(self, settings, e.tracker->last());
-        if (e.head)
-            steer_head(self, settings, e.tracker->last());
+        if (e.head) steer_head(self, settings, e.tracker->last());
     }
     int shown = 0;
     gc::gst::ReportContext context;
     const GstFlowReturn ret = compose_output(self, settings, outbuf, in, stereo, complete, shown, context);
-    if (ret != GST_FLOW_OK)
-        return ret;
+    if (ret != GST_FLOW_OK) return ret;
     return publish(self, settings, outbuf, tracked, shown, context);
 }
 
@@ -163,11 +159,9 @@ static gboolean gst_hand_tracker_start(GstAggregator* agg)
     GstHandTracker* self = GST_HAND_TRACKER(agg);
     const Settings settings = read_settings(self);
     // Load the calibration now so a bad file fails the state change with its reason.
-    if (!build_tracker(self, settings))
-        return FALSE;
+    if (!build_tracker(self, settings)) return FALSE;
     self->rebuild->store(false);
-    if (!prepare_head(self, settings) || !open_json_output(self, settings))
-        return FALSE;
+    if (!prepare_head(self, settings) || !open_json_output(self, settings)) return FALSE;
     return GST_AGGREGATOR_CLASS(gst_hand_tracker_parent_class)->start(agg);
 }
 
@@ -189,8 +183,7 @@ static gboolean gst_hand_tracker_stop(GstAggregator* agg)
 // next frames do not follow the previous ones: tracking starts over.
 static gboolean gst_hand_tracker_sink_event(GstAggregator* agg, GstAggregatorPad* pad, GstEvent* event)
 {
-    if (GST_EVENT_TYPE(event) == GST_EVENT_FLUSH_STOP)
-        GST_HAND_TRACKER(agg)->flushed->store(true);
+    if (GST_EVENT_TYPE(event) == GST_EVENT_FLUSH_STOP) GST_HAND_TRACKER(agg)->flushed->store(true);
     return GST_AGGREGATOR_CLASS(gst_hand_tracker_parent_class)->sink_event(agg, pad, event);
 }
 
@@ -204,10 +197,8 @@ static void gst_hand_tracker_set_property(GObject* object, guint prop_id, const 
     GST_OBJECT_LOCK(self);
     const bool known = gc::gst::set_tracker_setting(*self->settings, prop_id, value, rebuild);
     GST_OBJECT_UNLOCK(self);
-    if (!known)
-        G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
-    if (rebuild)
-        self->rebuild->store(true);
+    if (!known) G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
+    if (rebuild) self->rebuild->store(true);
 }
 
 static void gst_hand_tracker_get_property(GObject* object, guint prop_id, GValue* value, GParamSpec* pspec)
@@ -220,8 +211,7 @@ static void gst_hand_tracker_get_property(GObject* object, guint prop_id, GValue
     GST_OBJECT_LOCK(self);
     const bool known = gc::gst::get_tracker_setting(*self->settings, prop_id, value);
     GST_OBJECT_UNLOCK(self);
-    if (!known)
-        G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
+    if (!known) G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
 }
 
 static void gst_hand_tracker_finalize(GObject* object)

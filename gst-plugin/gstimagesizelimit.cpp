@@ -37,8 +37,8 @@ static GstFlowReturn gst_image_size_limit_transform_ip(GstBaseTransform* base, G
     gst_buffer_unmap(buffer, &map);
     if (declared && (declared->width > gc::kMaxFrameSide || declared->height > gc::kMaxFrameSide)) {
         GST_ELEMENT_ERROR(base, STREAM, FORMAT,
-                          ("A picture of %d x %d pixels is over the frame limit of %d pixels a side.",
-                           declared->width, declared->height, gc::kMaxFrameSide),
+                          ("A picture of %d x %d pixels is over the frame limit of %d pixels a side.", declared->width,
+                           declared->height, gc::kMaxFrameSide),
                           ("buffer at %" GST_TIME_FORMAT ", offset %" G_GUINT64_FORMAT,
                            GST_TIME_ARGS(GST_BUFFER_PTS(buffer)), GST_BUFFER_OFFSET(buffer)));
         return GST_FLOW_ERROR;

@@ -73,9 +73,9 @@ void post_truth(GstHandSceneSrc* self, guint64 frame, GstClockTime pts, const Sc
         "hand-truth", "frame", G_TYPE_UINT64, frame, "timestamp", G_TYPE_UINT64, pts, "eye", G_TYPE_STRING,
         settings.eye == gc::Eye::Left ? "left" : "right", "visible", G_TYPE_BOOLEAN, gboolean(t.visible), "palm-x",
         G_TYPE_DOUBLE, t.palm_px.x, "palm-y", G_TYPE_DOUBLE, t.palm_px.y, "fingertip-x", G_TYPE_DOUBLE,
-        t.fingertip_px.x, "fingertip-y", G_TYPE_DOUBLE, t.fingertip_px.y, "pointing-deg", G_TYPE_DOUBLE,
-        t.pointing_deg, "bbox-x", G_TYPE_INT, t.bbox.x, "bbox-y", G_TYPE_INT, t.bbox.y, "bbox-width", G_TYPE_INT,
-        t.bbox.width, "bbox-height", G_TYPE_INT, t.bbox.height, nullptr);
+        t.fingertip_px.x, "fingertip-y", G_TYPE_DOUBLE, t.fingertip_px.y, "pointing-deg", G_TYPE_DOUBLE, t.pointing_deg,
+        "bbox-x", G_TYPE_INT, t.bbox.x, "bbox-y", G_TYPE_INT, t.bbox.y, "bbox-width", G_TYPE_INT, t.bbox.width,
+        "bbox-height", G_TYPE_INT, t.bbox.height, nullptr);
     gc::gst::set_vec3(s, "fingertip-head-mm", hand.fingertip_mm);
     gc::gst::set_vec3(s, "palm-head-mm", hand.palm_mm);
     gc::gst::set_vec3(s, "direction-head", hand.direction);

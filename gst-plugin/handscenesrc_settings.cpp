@@ -34,8 +34,7 @@ GType gst_hand_scene_eye_get_type()
         {int(gc::Eye::Right), "The right camera", "right"},
         {0, nullptr, nullptr},
     };
-    if (g_once_init_enter(&type))
-        g_once_init_leave(&type, g_enum_register_static("GstHandSceneEye", values));
+    if (g_once_init_enter(&type)) g_once_init_leave(&type, g_enum_register_static("GstHandSceneEye", values));
     return type;
 }
 
@@ -48,12 +47,13 @@ GType gst_hand_scene_preset_get_type()
         {int(gc::sim::Preset::Light), "Light clutter (3.7 % skin-like pixels)", "light"},
         {int(gc::sim::Preset::Heavy), "Heavy clutter (9.4 % skin-like pixels)", "heavy"},
         {int(gc::sim::Preset::FacePass), "Light clutter and a face that the hand's path crosses", "face-pass"},
-        {int(gc::sim::Preset::Varied), "A room of any kind, often skin-coloured, pictures of faces and hands, "
-                                       "up to two people; always of the wide variety", "varied"},
+        {int(gc::sim::Preset::Varied),
+         "A room of any kind, often skin-coloured, pictures of faces and hands, "
+         "up to two people; always of the wide variety",
+         "varied"},
         {0, nullptr, nullptr},
     };
-    if (g_once_init_enter(&type))
-        g_once_init_leave(&type, g_enum_register_static("GstHandScenePreset", values));
+    if (g_once_init_enter(&type)) g_once_init_leave(&type, g_enum_register_static("GstHandScenePreset", values));
     return type;
 }
 
@@ -65,11 +65,11 @@ GType gst_hand_scene_variety_get_type()
         {int(gc::sim::Variety::None), "The preset's one hand, light and camera", "none"},
         {int(gc::sim::Variety::Wide),
          "Hand shape and skin, sleeve, people, light and camera (noise, blur, exposure, white balance, "
-         "vignetting, compression) drawn from the seed", "wide"},
+         "vignetting, compression) drawn from the seed",
+         "wide"},
         {0, nullptr, nullptr},
     };
-    if (g_once_init_enter(&type))
-        g_once_init_leave(&type, g_enum_register_static("GstHandSceneVariety", values));
+    if (g_once_init_enter(&type)) g_once_init_leave(&type, g_enum_register_static("GstHandSceneVariety", values));
     return type;
 }
 
@@ -87,8 +87,7 @@ GType gst_hand_scene_motion_get_type()
         {int(gc::sim::Motion::LeaveReturn), "Leaves the view, stays out for a while, comes back", "leave-return"},
         {0, nullptr, nullptr},
     };
-    if (g_once_init_enter(&type))
-        g_once_init_leave(&type, g_enum_register_static("GstHandSceneMotion", values));
+    if (g_once_init_enter(&type)) g_once_init_leave(&type, g_enum_register_static("GstHandSceneMotion", values));
     return type;
 }
 
@@ -102,37 +101,36 @@ void install_scene_properties(GObjectClass* klass)
     g_object_class_install_property(klass, PROP_EYE,
                                     g_param_spec_enum("eye", "Eye", "Which camera of the stereo head to render",
                                                       GST_TYPE_HAND_SCENE_EYE, int(gc::Eye::Left), flags));
-    g_object_class_install_property(
-        klass, PROP_SCENE,
-        g_param_spec_enum("scene", "Scene", "Background clutter preset", GST_TYPE_HAND_SCENE_PRESET,
-                          int(gc::sim::Preset::Clean), flags));
-    g_object_class_install_property(
-        klass, PROP_MOTION,
-        g_param_spec_enum("motion", "Motion", "Scripted hand motion (every script starts with a short wave)",
-                          GST_TYPE_HAND_SCENE_MOTION, int(gc::sim::Motion::Mixed), flags));
+    g_object_class_install_property(klass, PROP_SCENE,
+                                    g_param_spec_enum("scene", "Scene", "Background clutter preset",
+                                                      GST_TYPE_HAND_SCENE_PRESET, int(gc::sim::Preset::Clean), flags));
+    g_object_class_install_property(klass, PROP_MOTION,
+                                    g_param_spec_enum("motion", "Motion",
+                                                      "Scripted hand motion (every script starts with a short wave)",
+                                                      GST_TYPE_HAND_SCENE_MOTION, int(gc::sim::Motion::Mixed), flags));
     g_object_class_install_property(
         klass, PROP_SEED,
         g_param_spec_uint64("seed", "Seed",
                             "Background layout, skin tone and noise: the same seed renders the same scene", 0,
                             G_MAXUINT64, kDefaultSceneSeed, flags));
-    g_object_class_install_property(
-        klass, PROP_NOISE,
-        g_param_spec_double("noise", "Noise", "Standard deviation of the sensor noise, grey levels", 0.0, 64.0,
-                            kDefaultSceneNoise, flags));
-    g_object_class_install_property(
-        klass, PROP_LIGHTING_CHANGE,
-        g_param_spec_boolean("lighting-change", "Lighting change",
-                             "A slow global change of brightness and colour temperature", FALSE, flags));
+    g_object_class_install_property(klass, PROP_NOISE,
+                                    g_param_spec_double("noise", "Noise",
+                                                        "Standard deviation of the sensor noise, grey levels", 0.0,
+                                                        64.0, kDefaultSceneNoise, flags));
+    g_object_class_install_property(klass, PROP_LIGHTING_CHANGE,
+                                    g_param_spec_boolean("lighting-change", "Lighting change",
+                                                         "A slow global change of brightness and colour temperature",
+                                                         FALSE, flags));
     g_object_class_install_property(
         klass, PROP_VARIETY,
         g_param_spec_enum("variety", "Variety",
                           "What else the seed varies: nothing (the preset as it always was) or the hand, "
                           "people, light and camera",
                           GST_TYPE_HAND_SCENE_VARIETY, int(gc::sim::Variety::None), flags));
-    g_object_class_install_property(
-        klass, PROP_IS_LIVE,
-        g_param_spec_boolean("is-live", "Is live", "Behave as a live camera: frames come at the frame rate",
-                             FALSE, flags));
+    g_object_class_install_property(klass, PROP_IS_LIVE,
+                                    g_param_spec_boolean("is-live", "Is live",
+                                                         "Behave as a live camera: frames come at the frame rate",
+                                                         FALSE, flags));
     g_object_class_install_property(
         klass, PROP_TRUTH_MESSAGES,
         g_param_spec_boolean("truth-messages", "Truth messages",
@@ -155,16 +153,16 @@ void install_scene_properties(GObjectClass* klass)
                             nullptr, flags));
     // Controllable, so that a GstController can move the rig frame by frame (the element
     // syncs them to each frame's timestamp).
-    const auto rig_flags = GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_PLAYING |
-                                       GST_PARAM_CONTROLLABLE);
-    g_object_class_install_property(
-        klass, PROP_HEAD_PAN,
-        g_param_spec_double("head-pan", "Head pan", "Without head: the fixed rig's pan, degrees (positive: right)",
-                            -90.0, 90.0, 0.0, rig_flags));
-    g_object_class_install_property(
-        klass, PROP_HEAD_TILT,
-        g_param_spec_double("head-tilt", "Head tilt", "Without head: the fixed rig's tilt, degrees (positive: up)",
-                            -90.0, 90.0, 0.0, rig_flags));
+    const auto rig_flags =
+        GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_PLAYING | GST_PARAM_CONTROLLABLE);
+    g_object_class_install_property(klass, PROP_HEAD_PAN,
+                                    g_param_spec_double("head-pan", "Head pan",
+                                                        "Without head: the fixed rig's pan, degrees (positive: right)",
+                                                        -90.0, 90.0, 0.0, rig_flags));
+    g_object_class_install_property(klass, PROP_HEAD_TILT,
+                                    g_param_spec_double("head-tilt", "Head tilt",
+                                                        "Without head: the fixed rig's tilt, degrees (positive: up)",
+                                                        -90.0, 90.0, 0.0, rig_flags));
 }
 
 void mark_scene_enums_as_plugin_api()

@@ -24,9 +24,9 @@ struct SceneSettings {
     bool lighting_change = false;
     sim::Variety variety = sim::Variety::None;
     bool truth_messages = true;
-    std::string head;  // URI of the head the cameras sit on; empty: a fixed rig
+    std::string head;             // URI of the head the cameras sit on; empty: a fixed rig
     std::string head_token_file;  // empty: the URI's token, if any
-    HeadPose rig;  // the fixed rig's pose (head-pan, head-tilt)
+    HeadPose rig;                 // the fixed rig's pose (head-pan, head-tilt)
 };
 
 // The is-live property, which basesrc holds rather than SceneSettings.

@@ -14,8 +14,8 @@ namespace {
 
 // The frame-size limit spelt out, as static caps need a literal.
 static_assert(gc::kMaxFrameSide == 8192, "VIDEO_CAPS states gc::kMaxFrameSide");
-#define VIDEO_CAPS(formats)                                                                        \
-    "video/x-raw, format = (string) { " formats " }, width = (int) [ 32, 8192 ], "               \
+#define VIDEO_CAPS(formats)                                                                                            \
+    "video/x-raw, format = (string) { " formats " }, width = (int) [ 32, 8192 ], "                                     \
     "height = (int) [ 32, 8192 ], framerate = (fraction) [ 0/1, 2147483647/1 ]"
 
 static GstStaticPadTemplate sink_left_template =
@@ -53,11 +53,9 @@ PackedLayout sink_layout(GstHandTracker* self, const GstVideoInfo& info)
 bool accept_packed_caps(GstHandTracker* self, GstCaps* caps)
 {
     GstVideoInfo info;
-    if (!gst_caps_is_fixed(caps) || !gst_video_info_from_caps(&info, caps))
-        return true;  // the template check decides
+    if (!gst_caps_is_fixed(caps) || !gst_video_info_from_caps(&info, caps)) return true;  // the template check decides
     const PackedLayout layout = sink_layout(self, info);
-    if (layout.known())
-        return true;
+    if (layout.known()) return true;
     const char* mode = gst_video_multiview_mode_to_caps_string(layout.mode);
     GST_ELEMENT_ERROR(self, STREAM, FORMAT,
                       ("The sink pad takes both views in one frame, but its caps give multiview-mode=%s. Declare "
@@ -73,16 +71,13 @@ bool current_view_size(GstHandTracker* self, int& width, int& height)
 {
     for (const char* name : {"sink_left", "sink_right", "sink"}) {
         GstVideoAggregatorPad* pad = sink_pad(self, name);
-        if (!pad)
-            continue;
+        if (!pad) continue;
         GST_OBJECT_LOCK(self);
         GstVideoInfo info = pad->info;
         GST_OBJECT_UNLOCK(self);
-        if (!info.finfo || GST_VIDEO_INFO_FORMAT(&info) == GST_VIDEO_FORMAT_UNKNOWN || info.width == 0)
-            continue;
+        if (!info.finfo || GST_VIDEO_INFO_FORMAT(&info) == GST_VIDEO_FORMAT_UNKNOWN || info.width == 0) continue;
         cv::Size view(info.width, info.height);
-        if (g_str_equal(name, "sink"))
-            view = sink_layout(self, info).view_size(view);
+        if (g_str_equal(name, "sink")) view = sink_layout(self, info).view_size(view);
         width = view.width;
         height = view.height;
         return true;
@@ -103,8 +98,7 @@ void add_tracker_pad_templates(GstElementClass* klass)
 GstVideoAggregatorPad* sink_pad(GstHandTracker* self, const char* name)
 {
     GstPad* pad = gst_element_get_static_pad(GST_ELEMENT(self), name);
-    if (pad)
-        gst_object_unref(pad);  // the element keeps its pads alive while streaming
+    if (pad) gst_object_unref(pad);  // the element keeps its pads alive while streaming
     return pad ? GST_VIDEO_AGGREGATOR_PAD(pad) : nullptr;
 }
 
@@ -129,8 +123,8 @@ GstAggregatorPad* create_tracker_pad(GstHandTracker* self, GstPadTemplate* templ
                            packed ? "sink_left/sink_right" : "the side-by-side pad sink");
         return nullptr;
     }
-    return GST_AGGREGATOR_PAD(g_object_new(GST_PAD_TEMPLATE_GTYPE(templ), "name", name, "direction",
-                                           GST_PAD_SINK, "template", templ, nullptr));
+    return GST_AGGREGATOR_PAD(g_object_new(GST_PAD_TEMPLATE_GTYPE(templ), "name", name, "direction", GST_PAD_SINK,
+                                           "template", templ, nullptr));
 }
 
 // Any size and format of the template on every sink pad, whatever downstream wants: the

@@ -21,11 +21,11 @@ using Settings = TrackerSettings;
 // The running time of a pad's prepared frame (NONE if it has no timestamp).
 GstClockTime input_running_time(GstVideoAggregatorPad* pad, const GstVideoFrame* frame)
 {
-    if (!pad || !views_ready(frame) || !GST_BUFFER_PTS_IS_VALID(frame->buffer))
-        return GST_CLOCK_TIME_NONE;
+    if (!pad || !views_ready(frame) || !GST_BUFFER_PTS_IS_VALID(frame->buffer)) return GST_CLOCK_TIME_NONE;
     GstAggregatorPad* apad = GST_AGGREGATOR_PAD(pad);
     GST_OBJECT_LOCK(apad);
-    const GstClockTime running = gst_segment_to_running_time(&apad->segment, GST_FORMAT_TIME, GST_BUFFER_PTS(frame->buffer));
+    const GstClockTime running =
+        gst_segment_to_running_time(&apad->segment, GST_FORMAT_TIME, GST_BUFFER_PTS(frame->buffer));
     GST_OBJECT_UNLOCK(apad);
     return running;
 }
@@ -36,16 +36,14 @@ GstClockTime input_running_time(GstVideoAggregatorPad* pad, const GstVideoFrame*
 bool ensure_head_link(GstHandTracker* self, const Settings& settings, cv::Size size)
 {
     TrackerState& e = *self->state;
-    if (e.head && (e.calibration || size == e.head_view_size))
-        return true;
+    if (e.head && (e.calibration || size == e.head_view_size)) return true;
     e.head.reset();
     gc::headctl::HeadLinkConfig config;
     config.uri = settings.head;
     config.token = e.head_token;
     config.steer = settings.steer;
     config.target_distance_mm = settings.target_distance_mm;
-    if (settings.home_preset >= 0)
-        config.fixate.home_preset = settings.home_preset;
+    if (settings.home_preset >= 0) config.fixate.home_preset = settings.home_preset;
     config.fixate.widen_after_s = settings.widen_after_s;
     config.fixate.hold_s = settings.home_after_s;
     config.clock = gc::gst::element_clock(GST_ELEMENT(self));
@@ -56,8 +54,8 @@ bool ensure_head_link(GstHandTracker* self, const Settings& settings, cv::Size s
     if (!GST_CLOCK_TIME_IS_VALID(gst_aggregator_get_latency(GST_AGGREGATOR(self))))
         config.max_view_age = std::chrono::hours(24 * 365);
     try {
-        e.head = std::make_unique<gc::headctl::HeadLink>(std::move(config),
-                                                         e.calibration ? *e.calibration : gc::default_calibration(size));
+        e.head = std::make_unique<gc::headctl::HeadLink>(
+            std::move(config), e.calibration ? *e.calibration : gc::default_calibration(size));
     } catch (const std::exception& err) {
         GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
                           ("Cannot use the head at \"%s\".", gc::headctl::redact_uri(settings.head).c_str()),
@@ -92,10 +90,8 @@ GstFlowReturn head_at_capture(GstHandTracker* self, const Settings& settings, cv
                               headctl::HeadAtCapture& at)
 {
     TrackerState& e = *self->state;
-    if (settings.head.empty())
-        return GST_FLOW_OK;
-    if (!ensure_head_link(self, settings, size))
-        return GST_FLOW_ERROR;
+    if (settings.head.empty()) return GST_FLOW_OK;
+    if (!ensure_head_link(self, settings, size)) return GST_FLOW_ERROR;
     e.head->set_steering(settings.steer, settings.target_distance_mm);
     // The views' own running time, not the output slot's: a live source that started
     // late, or a pad that is behind, gives the slot older views, and the pose must be

@@ -18,8 +18,7 @@ bool should_post(TrackerState& e, GstHandTrackerMessageUpdates mode, gc::TrackSt
     case GST_HAND_TRACKER_MESSAGES_NONE:
         return false;
     case GST_HAND_TRACKER_MESSAGES_ON_CHANGE:
-        if (e.stream.last_posted_state == state)
-            return false;
+        if (e.stream.last_posted_state == state) return false;
         break;
     case GST_HAND_TRACKER_MESSAGES_EVERY_FRAME:
         break;
@@ -54,22 +53,19 @@ void post_message(GstHandTracker* self, GstBuffer* outbuf, const gc::FrameResult
 
 // The region of interest in the output buffer's pixels: the output view's hand box mapped
 // through the crop and the scaling.
-void add_region_of_interest(GstBuffer* outbuf, const gc::FrameResult& result, bool right_view,
-                            const cv::Rect& view, cv::Size out, const gc::gst::ReportContext& context)
+void add_region_of_interest(GstBuffer* outbuf, const gc::FrameResult& result, bool right_view, const cv::Rect& view,
+                            cv::Size out, const gc::gst::ReportContext& context)
 {
     const gc::EyeEstimate& eye = right_view ? result.right : result.left;
-    if (eye.state == gc::TrackState::Acquiring || eye.bbox.area() <= 0 || view.area() <= 0)
-        return;
+    if (eye.state == gc::TrackState::Acquiring || eye.bbox.area() <= 0 || view.area() <= 0) return;
     const double sx = double(out.width) / view.width;
     const double sy = double(out.height) / view.height;
     cv::Rect box(int((eye.bbox.x - view.x) * sx), int((eye.bbox.y - view.y) * sy), int(eye.bbox.width * sx),
                  int(eye.bbox.height * sy));
     box &= cv::Rect(0, 0, out.width, out.height);
-    if (box.area() <= 0)
-        return;
-    GstVideoRegionOfInterestMeta* roi =
-        gst_buffer_add_video_region_of_interest_meta(outbuf, "hand", guint(box.x), guint(box.y), guint(box.width),
-                                                     guint(box.height));
+    if (box.area() <= 0) return;
+    GstVideoRegionOfInterestMeta* roi = gst_buffer_add_video_region_of_interest_meta(
+        outbuf, "hand", guint(box.x), guint(box.y), guint(box.width), guint(box.height));
     gst_video_region_of_interest_meta_add_param(roi, gc::gst::pointing_structure(result, context, false));
 }
 
@@ -88,21 +84,19 @@ GstFlowReturn compose_output(GstHandTracker* self, const Settings& settings, Gst
     }
     const cv::Size out_size(GST_VIDEO_FRAME_WIDTH(&out), GST_VIDEO_FRAME_HEIGHT(&out));
     shown = settings.output == GST_HAND_TRACKER_OUTPUT_RIGHT && stereo ? 1 : 0;
-    if (!in.have[shown])
-        shown = in.have[0] ? 0 : 1;  // an incomplete pair shows the view that is there
+    if (!in.have[shown]) shown = in.have[0] ? 0 : 1;  // an incomplete pair shows the view that is there
     gc::gst::ViewChoice choice;
     choice.shown = shown;
     choice.draw = settings.draw;
     choice.attended = settings.output == GST_HAND_TRACKER_OUTPUT_ATTENDED && shown == 0 && in.have[0];
     if (choice.attended && e.stream.target)
-        choice.target = gc::gst::target_in_view(e.stream.target, settings.target_region_mm,
-                                                e.calibration ? *e.calibration : gc::default_calibration(in.views[0].size()),
-                                                result);
+        choice.target = gc::gst::target_in_view(
+            e.stream.target, settings.target_region_mm,
+            e.calibration ? *e.calibration : gc::default_calibration(in.views[0].size()), result);
     context.incomplete = !complete;
     context.full_view = !choice.attended;
     std::span<const gc::Particle> particles;
-    if (settings.draw && complete)
-        particles = e.tracker->particles(shown == 1 ? gc::Eye::Right : gc::Eye::Left);
+    if (settings.draw && complete) particles = e.tracker->particles(shown == 1 ? gc::Eye::Right : gc::Eye::Left);
     try {
         context.view = gc::gst::compose_view(in, choice, result, particles, out_size, e.stream.attention, e.overlay,
                                              e.canvas, e.scaled);
@@ -116,8 +110,8 @@ GstFlowReturn compose_output(GstHandTracker* self, const Settings& settings, Gst
     return GST_FLOW_OK;
 }
 
-GstFlowReturn publish(GstHandTracker* self, const Settings& settings, GstBuffer* outbuf, bool tracked,
-                      int shown, const gc::gst::ReportContext& context)
+GstFlowReturn publish(GstHandTracker* self, const Settings& settings, GstBuffer* outbuf, bool tracked, int shown,
+                      const gc::gst::ReportContext& context)
 {
     TrackerState& e = *self->state;
     const gc::FrameResult& result = e.tracker->last();
@@ -126,10 +120,8 @@ GstFlowReturn publish(GstHandTracker* self, const Settings& settings, GstBuffer*
     if (GstHandPointingMeta* meta = gst_buffer_add_hand_pointing_meta(outbuf))
         gc::gst::fill_meta(*meta, result, context, e.contour_scratch);
     add_region_of_interest(outbuf, result, shown == 1, context.view, out_size, context);
-    if (should_post(e, settings.message_updates, result.state))
-        post_message(self, outbuf, result, context);
-    if (!tracked || !e.json)
-        return GST_FLOW_OK;
+    if (should_post(e, settings.message_updates, result.state)) post_message(self, outbuf, result, context);
+    if (!tracked || !e.json) return GST_FLOW_OK;
     e.json_line = gc::to_json_line(result);
     // Output frames dropped under QoS since the previous line are counted on this one; the tool
     // never drops, so its lines never have the key.

@@ -13,8 +13,8 @@ GstFlowReturn compose_output(GstHandTracker* self, const TrackerSettings& settin
                              const SlotViews& in, bool stereo, bool complete, int& shown, ReportContext& context);
 
 // The result on the buffer (meta, region of interest), on the bus, and in the JSON lines.
-GstFlowReturn publish(GstHandTracker* self, const TrackerSettings& settings, GstBuffer* outbuf, bool tracked,
-                      int shown, const ReportContext& context);
+GstFlowReturn publish(GstHandTracker* self, const TrackerSettings& settings, GstBuffer* outbuf, bool tracked, int shown,
+                      const ReportContext& context);
 
 // Opens json-location for the JSON lines (none when it is unset); an error on the bus and
 // false when it cannot be opened.

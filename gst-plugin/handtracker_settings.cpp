@@ -43,12 +43,10 @@ static GType gst_hand_tracker_output_get_type()
         {GST_HAND_TRACKER_OUTPUT_LEFT, "The left view", "left"},
         {GST_HAND_TRACKER_OUTPUT_RIGHT, "The right view (the left one for mono input)", "right"},
         {GST_HAND_TRACKER_OUTPUT_ATTENDED,
-         "A smoothed crop of the left view around the hand and where it points, scaled to the output size",
-         "attended"},
+         "A smoothed crop of the left view around the hand and where it points, scaled to the output size", "attended"},
         {0, nullptr, nullptr},
     };
-    if (g_once_init_enter(&type))
-        g_once_init_leave(&type, g_enum_register_static("GstHandTrackerOutput", values));
+    if (g_once_init_enter(&type)) g_once_init_leave(&type, g_enum_register_static("GstHandTrackerOutput", values));
     return type;
 }
 
@@ -57,10 +55,8 @@ static GType gst_hand_tracker_message_updates_get_type()
 {
     static GType type = 0;
     static const GEnumValue values[] = {
-        {GST_HAND_TRACKER_MESSAGES_EVERY_FRAME, "A hand-pointing message for every output frame",
-         "every-frame"},
-        {GST_HAND_TRACKER_MESSAGES_ON_CHANGE, "A hand-pointing message when the tracking state changes",
-         "on-change"},
+        {GST_HAND_TRACKER_MESSAGES_EVERY_FRAME, "A hand-pointing message for every output frame", "every-frame"},
+        {GST_HAND_TRACKER_MESSAGES_ON_CHANGE, "A hand-pointing message when the tracking state changes", "on-change"},
         {GST_HAND_TRACKER_MESSAGES_NONE, "No hand-pointing messages", "none"},
         {0, nullptr, nullptr},
     };
@@ -75,12 +71,12 @@ static GType gst_hand_tracker_steer_get_type()
     static GType type = 0;
     static const GEnumValue values[] = {
         {int(gc::headctl::SteerMode::Off), "Only read the head's pose (for the camera-motion offsets)", "off"},
-        {int(gc::headctl::SteerMode::Fixate), "Keep the hand in the middle of the left view and verge on its depth", "fixate"},
+        {int(gc::headctl::SteerMode::Fixate), "Keep the hand in the middle of the left view and verge on its depth",
+         "fixate"},
         {int(gc::headctl::SteerMode::Point), "Look where the hand points, target-distance along its ray", "point"},
         {0, nullptr, nullptr},
     };
-    if (g_once_init_enter(&type))
-        g_once_init_leave(&type, g_enum_register_static("GstHandTrackerSteer", values));
+    if (g_once_init_enter(&type)) g_once_init_leave(&type, g_enum_register_static("GstHandTrackerSteer", values));
     return type;
 }
 
@@ -96,8 +92,7 @@ static GType gst_hand_tracker_detector_get_type()
          "motion"},
         {0, nullptr, nullptr},
     };
-    if (g_once_init_enter(&type))
-        g_once_init_leave(&type, g_enum_register_static("GstHandTrackerDetector", values));
+    if (g_once_init_enter(&type)) g_once_init_leave(&type, g_enum_register_static("GstHandTrackerDetector", values));
     return type;
 }
 
@@ -123,7 +118,8 @@ void install_tracking_properties(GObjectClass* gobject_class)
         g_param_spec_string("calibration", "Calibration file",
                             "Stereo calibration (OpenCV YAML or XML: image_width, image_height, M1, D1, M2, D2, R, "
                             "T in millimetres); unset: the nominal rig (60 degree field of view, 120 mm baseline)",
-                            nullptr, GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
+                            nullptr,
+                            GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
     g_object_class_install_property(gobject_class, PROP_OUTPUT,
                                     g_param_spec_enum("output", "Output", "The view on the src pad",
                                                       GST_TYPE_HAND_TRACKER_OUTPUT, kDefaultOutput, kMutablePlaying));
@@ -139,11 +135,10 @@ void install_tracking_properties(GObjectClass* gobject_class)
                             "A view is lost when every particle's likelihood stays below this fraction of the "
                             "likelihood at acquisition for lost-frames frames",
                             0.0, 1.0, kDefaultLostThreshold, kMutablePlaying));
-    g_object_class_install_property(
-        gobject_class, PROP_LOST_FRAMES,
-        g_param_spec_int("lost-frames", "Lost frames",
-                         "Consecutive frames below lost-threshold before a view is lost", 1, 1000,
-                         kDefaultLostFrames, kMutablePlaying));
+    g_object_class_install_property(gobject_class, PROP_LOST_FRAMES,
+                                    g_param_spec_int("lost-frames", "Lost frames",
+                                                     "Consecutive frames below lost-threshold before a view is lost", 1,
+                                                     1000, kDefaultLostFrames, kMutablePlaying));
 }
 
 // Where the results go besides the buffer: bus messages and JSON lines.
@@ -158,7 +153,8 @@ void install_report_properties(GObjectClass* gobject_class)
         g_param_spec_string("json-location", "JSON lines file",
                             "Write one JSON line per tracked frame to this file (the gesturecam-track schema); "
                             "unset: none",
-                            nullptr, GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
+                            nullptr,
+                            GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
 }
 
 // The head and how it is steered.
@@ -166,29 +162,31 @@ void install_head_properties(GObjectClass* gobject_class)
 {
     g_object_class_install_property(
         gobject_class, PROP_HEAD,
-        g_param_spec_string("head", "Head URI",
-                            "The motorised head carrying the cameras: tcp://host:port[?token=...] (the GCHP "
-                            "protocol, e.g. headsim), visca-udp://host[:port], visca-tcp://host[:port], "
-                            "visca-serial:///dev/ttyUSB0?baud=9600 or pelco-d:///dev/ttyUSB0?address=1&baud=2400; unset: "
-                            "static cameras. Its pose at each frame's capture enters the tracker as camera motion; "
-                            "`steer` says how it is moved. Connection changes are posted as head-connection "
-                            "messages and a warning. A token reads back as token=***: prefer head-token-file",
-                            nullptr, GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
+        g_param_spec_string(
+            "head", "Head URI",
+            "The motorised head carrying the cameras: tcp://host:port[?token=...] (the GCHP "
+            "protocol, e.g. headsim), visca-udp://host[:port], visca-tcp://host[:port], "
+            "visca-serial:///dev/ttyUSB0?baud=9600 or pelco-d:///dev/ttyUSB0?address=1&baud=2400; unset: "
+            "static cameras. Its pose at each frame's capture enters the tracker as camera motion; "
+            "`steer` says how it is moved. Connection changes are posted as head-connection "
+            "messages and a warning. A token reads back as token=***: prefer head-token-file",
+            nullptr, GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
     g_object_class_install_property(
         gobject_class, PROP_HEAD_TOKEN_FILE,
         g_param_spec_string("head-token-file", "Head token file",
                             "A file whose first line is the head's token (GCHP), read at start; it replaces a "
                             "token in the head URI. Unset: the URI's token, if any",
-                            nullptr, GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
-    g_object_class_install_property(
-        gobject_class, PROP_STEER,
-        g_param_spec_enum("steer", "Steer", "How the head is moved (needs head)", GST_TYPE_HAND_TRACKER_STEER,
-                          int(kDefaultSteer), kMutablePlaying));
+                            nullptr,
+                            GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
+    g_object_class_install_property(gobject_class, PROP_STEER,
+                                    g_param_spec_enum("steer", "Steer", "How the head is moved (needs head)",
+                                                      GST_TYPE_HAND_TRACKER_STEER, int(kDefaultSteer),
+                                                      kMutablePlaying));
     g_object_class_install_property(
         gobject_class, PROP_TARGET_DISTANCE,
         g_param_spec_double("target-distance", "Target distance",
-                            "steer=point: how far along the pointing ray, from the fingertip, the head looks (mm)",
-                            1.0, 1.0e6, kDefaultTargetDistanceMm, kMutablePlaying));
+                            "steer=point: how far along the pointing ray, from the fingertip, the head looks (mm)", 1.0,
+                            1.0e6, kDefaultTargetDistanceMm, kMutablePlaying));
 }
 
 // How the hand is found.
@@ -206,13 +204,15 @@ void install_detector_properties(GObjectClass* gobject_class)
         g_param_spec_double("widen-after", "Widen after",
                             "steer=fixate: once the hand has been lost this long (s) the head zooms out towards its "
                             "widest view until it is found again or goes home; 0: never",
-                            0.0, 3600.0, 0.0, GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
+                            0.0, 3600.0, 0.0,
+                            GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
     g_object_class_install_property(
         gobject_class, PROP_HOME_AFTER,
         g_param_spec_double("home-after", "Home after",
                             "steer=fixate: once the hand has been lost this long (s) the head goes home (or to "
                             "home-preset); until then it holds still where the hand was last seen",
-                            0.0, 3600.0, 2.0, GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
+                            0.0, 3600.0, 2.0,
+                            GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
     g_object_class_install_property(
         gobject_class, PROP_DETECTOR,
         g_param_spec_enum("detector", "Detector", "How the hand is found and checked", GST_TYPE_HAND_TRACKER_DETECTOR,
@@ -223,7 +223,8 @@ void install_detector_properties(GObjectClass* gobject_class)
         g_param_spec_string("model-dir", "Model folder",
                             "Folder of the learned models (palm_detection.onnx, hand_landmark.onnx); unset: "
                             "GESTURECAM_MODEL_DIR, else the installed models, else the source tree's core/models",
-                            nullptr, GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
+                            nullptr,
+                            GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
     g_object_class_install_property(
         gobject_class, PROP_DWELL,
         g_param_spec_double("dwell", "Dwell",

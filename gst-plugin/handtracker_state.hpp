@@ -49,9 +49,9 @@ struct TrackerState {
     std::string calibration_path;  // the file `calibration` was loaded from
     StreamState stream;
     BgrReader readers[2];
-    cv::Mat halves[2];             // the two views of a side-by-side frame
-    cv::Mat canvas;                // the view being drawn on
-    cv::Mat scaled;                // the view at the output size
+    cv::Mat halves[2];  // the two views of a side-by-side frame
+    cv::Mat canvas;     // the view being drawn on
+    cv::Mat scaled;     // the view at the output size
     gc::gst::BgrWriter writer;
     std::vector<float> contour_scratch;
     TrackingOverlay overlay;
@@ -70,8 +70,7 @@ struct TrackerState {
     // The frames no longer follow the previous ones: tracking starts over.
     void forget()
     {
-        if (tracker)
-            tracker->reset();
+        if (tracker) tracker->reset();
         stream = {};
     }
 };

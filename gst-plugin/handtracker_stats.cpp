@@ -10,8 +10,7 @@ std::optional<GstClockTime> TrackerStats::frame_processed(GstClockTime took, boo
     std::lock_guard lock(mutex_);
     tracked_ += tracked ? 1 : 0;
     recent_.push_back(took);
-    if (recent_.size() > kWindow)
-        recent_.pop_front();
+    if (recent_.size() > kWindow) recent_.pop_front();
     // Whole milliseconds, so that small wobbles do not post a latency message each time.
     const GstClockTime longest = *std::max_element(recent_.begin(), recent_.end());
     const GstClockTime latency = (longest + GST_MSECOND - 1) / GST_MSECOND * GST_MSECOND;

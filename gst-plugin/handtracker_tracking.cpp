@@ -26,12 +26,12 @@ bool build_tracker(GstHandTracker* self, const Settings& settings)
     try {
         if (settings.calibration != e.calibration_path) {
             e.calibration.reset();
-            if (!settings.calibration.empty())
-                e.calibration = gc::load_calibration(settings.calibration);
+            if (!settings.calibration.empty()) e.calibration = gc::load_calibration(settings.calibration);
             e.calibration_path = settings.calibration;
         }
     } catch (const std::exception& err) {
-        GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("Cannot use the calibration file \"%s\".", settings.calibration.c_str()),
+        GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
+                          ("Cannot use the calibration file \"%s\".", settings.calibration.c_str()),
                           ("%s", err.what()));
         return false;
     }
@@ -58,8 +58,7 @@ static const char* state_change(gc::TrackState from, gc::TrackState to)
 {
     if (to == gc::TrackState::Tracking)
         return from == gc::TrackState::Lost ? "re-acquired the hand" : "acquired the hand";
-    if (to == gc::TrackState::Lost)
-        return "lost the hand";
+    if (to == gc::TrackState::Lost) return "lost the hand";
     return "is looking for the hand";
 }
 
@@ -78,9 +77,9 @@ void log_result(GstHandTracker* self, TrackerState& e, const gc::FrameResult& r)
                             gc::to_string(e.logged_gesture[i]).data(), gc::to_string(eye.gesture).data());
         e.logged_state[i] = eye.state;
         e.logged_gesture[i] = eye.gesture;
-        GST_DEBUG_OBJECT(self, "frame %" G_GINT64_FORMAT ": %s view %s, confidence %.3f, fingertip (%.1f, %.1f), %.1f deg",
-                         r.frame, name, gc::to_string(eye.state).data(), eye.confidence, eye.fingertip.x,
-                         eye.fingertip.y, eye.pointing_deg);
+        GST_DEBUG_OBJECT(
+            self, "frame %" G_GINT64_FORMAT ": %s view %s, confidence %.3f, fingertip (%.1f, %.1f), %.1f deg", r.frame,
+            name, gc::to_string(eye.state).data(), eye.confidence, eye.fingertip.x, eye.fingertip.y, eye.pointing_deg);
     }
     if (r.pointing.valid)
         GST_DEBUG_OBJECT(self, "frame %" G_GINT64_FORMAT ": ray azimuth %.1f deg, elevation %.1f deg", r.frame,
@@ -90,9 +89,8 @@ void log_result(GstHandTracker* self, TrackerState& e, const gc::FrameResult& r)
                    r.pointing.valid ? "yes" : "no");
 }
 
-GstFlowReturn track_views(GstHandTracker* self, const Settings& settings, const gc::gst::SlotViews& in,
-                          bool stereo, GstVideoAggregatorPad* pose_pad, const GstVideoFrame* pose_frame,
-                          GstBuffer* outbuf)
+GstFlowReturn track_views(GstHandTracker* self, const Settings& settings, const gc::gst::SlotViews& in, bool stereo,
+                          GstVideoAggregatorPad* pose_pad, const GstVideoFrame* pose_frame, GstBuffer* outbuf)
 {
     TrackerState& e = *self->state;
     const cv::Size size = in.views[0].size();
@@ -126,10 +124,10 @@ GstFlowReturn track_views(GstHandTracker* self, const Settings& settings, const 
         // on untracked.
         e.tracker->reset();
         ++e.failed_frames;
-        GST_ELEMENT_WARNING(self, STREAM, FAILED,
-                            ("Tracking failed on a frame (%" G_GUINT64_FORMAT " so far); the tracker starts over.",
-                             e.failed_frames),
-                            ("%s", err.what()));
+        GST_ELEMENT_WARNING(
+            self, STREAM, FAILED,
+            ("Tracking failed on a frame (%" G_GUINT64_FORMAT " so far); the tracker starts over.", e.failed_frames),
+            ("%s", err.what()));
     }
     return GST_FLOW_OK;
 }

@@ -13,8 +13,7 @@ bool PackedLayout::known() const
 
 cv::Size PackedLayout::view_size(cv::Size frame) const
 {
-    if (flags & GST_VIDEO_MULTIVIEW_FLAGS_HALF_ASPECT)
-        return frame;
+    if (flags & GST_VIDEO_MULTIVIEW_FLAGS_HALF_ASPECT) return frame;
     return mode == GST_VIDEO_MULTIVIEW_MODE_TOP_BOTTOM ? cv::Size(frame.width, frame.height / 2)
                                                        : cv::Size(frame.width / 2, frame.height);
 }
@@ -31,12 +30,11 @@ void read_views(BgrReader readers[2], cv::Mat halves[2], const GstVideoFrame* pa
                 const GstVideoFrame* left, const GstVideoFrame* right, SlotViews& out)
 {
     if (packed) {
-        if (!views_ready(packed))
-            return;
+        if (!views_ready(packed)) return;
         const cv::Mat& whole = readers[0].read(*packed);
         const bool top_bottom = layout.mode == GST_VIDEO_MULTIVIEW_MODE_TOP_BOTTOM;
-        const cv::Rect first = top_bottom ? cv::Rect(0, 0, whole.cols, whole.rows / 2)
-                                          : cv::Rect(0, 0, whole.cols / 2, whole.rows);
+        const cv::Rect first =
+            top_bottom ? cv::Rect(0, 0, whole.cols, whole.rows / 2) : cv::Rect(0, 0, whole.cols / 2, whole.rows);
         const cv::Rect second = top_bottom ? cv::Rect(0, whole.rows / 2, whole.cols, whole.rows / 2)
                                            : cv::Rect(whole.cols / 2, 0, whole.cols / 2, whole.rows);
         const bool right_first = (layout.flags & GST_VIDEO_MULTIVIEW_FLAGS_RIGHT_VIEW_FIRST) != 0;
@@ -54,8 +52,7 @@ void read_views(BgrReader readers[2], cv::Mat halves[2], const GstVideoFrame* pa
     }
     const GstVideoFrame* frames[2] = {left, right};
     for (int i = 0; i < 2; ++i) {
-        if (!views_ready(frames[i]))
-            continue;
+        if (!views_ready(frames[i])) continue;
         const cv::Mat& bgr = readers[i].read(*frames[i]);
         // The tracker works on whole rows; padded strides are packed first.
         if (bgr.isContinuous())
@@ -97,11 +94,9 @@ cv::Rect compose_view(const SlotViews& in, const ViewChoice& choice, const Frame
 std::optional<cv::Rect2d> target_in_view(const std::optional<cv::Vec3d>& target, double region_mm,
                                          const StereoCalibration& calibration, const FrameResult& result)
 {
-    if (!target)
-        return std::nullopt;
+    if (!target) return std::nullopt;
     const auto region = region_in_left_view(*target, region_mm, calibration, result.head.value_or(HeadPose{}));
-    if (!region)
-        return std::nullopt;
+    if (!region) return std::nullopt;
     const double w = region->width_px;
     return cv::Rect2d(region->centre.x - w / 2.0, region->centre.y - w / 2.0, w, w);
 }

@@ -49,9 +49,9 @@ void read_views(BgrReader readers[2], cv::Mat halves[2], const GstVideoFrame* pa
 
 // What the output shows and how it is drawn.
 struct ViewChoice {
-    int shown = 0;          // the view shown: 0 left, 1 right
-    bool attended = false;  // the left view cropped to the attention window
-    bool draw = false;      // the tracking drawn over it
+    int shown = 0;                     // the view shown: 0 left, 1 right
+    bool attended = false;             // the left view cropped to the attention window
+    bool draw = false;                 // the tracking drawn over it
     std::optional<cv::Rect2d> target;  // attended: the region a held pointing picked, framed instead of the hand
 };
 

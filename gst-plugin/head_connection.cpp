@@ -31,8 +31,7 @@ std::function<headctl::Timestamp()> element_clock(GstElement* element)
         if (GstClock* clock = gst_element_get_clock(element)) {
             const GstClockTime now = gst_clock_get_time(clock);
             gst_object_unref(clock);
-            if (GST_CLOCK_TIME_IS_VALID(now))
-                return headctl::Timestamp(gint64(now));
+            if (GST_CLOCK_TIME_IS_VALID(now)) return headctl::Timestamp(gint64(now));
         }
         return std::chrono::duration_cast<headctl::Timestamp>(std::chrono::steady_clock::now().time_since_epoch());
     };
@@ -43,10 +42,8 @@ headctl::Timestamp capture_time(GstElement* element, GstClockTime running_time)
     const GstClockTime base = gst_element_get_base_time(element);
     GstClock* clock = gst_element_get_clock(element);
     const bool known = clock && GST_CLOCK_TIME_IS_VALID(running_time) && GST_CLOCK_TIME_IS_VALID(base);
-    if (clock)
-        gst_object_unref(clock);
-    if (known)
-        return headctl::Timestamp(gint64(base + running_time));
+    if (clock) gst_object_unref(clock);
+    if (known) return headctl::Timestamp(gint64(base + running_time));
     return element_clock(element)();
 }
 
@@ -62,44 +59,44 @@ struct ReportedState {
 }  // namespace
 
 std::function<void(headctl::ConnectionState, const std::string&)> connection_reporter(GstElement* element,
-                                                                                     const std::string& uri)
+                                                                                      const std::string& uri)
 {
     init_head_debug();
     auto reported = std::make_shared<ReportedState>();
-    return [element, uri = headctl::redact_uri(uri), reported](headctl::ConnectionState state, const std::string& error) {
-        GST_INFO_OBJECT(element, "head %s %s%s%s", uri.c_str(), std::string(headctl::to_string(state)).c_str(),
-                        error.empty() ? "" : ": ", error.c_str());
-        bool post_change = false, warn = false, back = false;
-        {
-            std::lock_guard lock(reported->mutex);
-            if (state == headctl::ConnectionState::Connected) {
-                post_change = !reported->connected;
-                back = reported->warned;
-                reported->connected = true;
-                reported->warned = false;
-            } else if (state == headctl::ConnectionState::Disconnected) {
-                post_change = reported->connected;
-                warn = !reported->warned;
-                reported->connected = false;
-                reported->warned = true;
+    return
+        [element, uri = headctl::redact_uri(uri), reported](headctl::ConnectionState state, const std::string& error) {
+            GST_INFO_OBJECT(element, "head %s %s%s%s", uri.c_str(), std::string(headctl::to_string(state)).c_str(),
+                            error.empty() ? "" : ": ", error.c_str());
+            bool post_change = false, warn = false, back = false;
+            {
+                std::lock_guard lock(reported->mutex);
+                if (state == headctl::ConnectionState::Connected) {
+                    post_change = !reported->connected;
+                    back = reported->warned;
+                    reported->connected = true;
+                    reported->warned = false;
+                } else if (state == headctl::ConnectionState::Disconnected) {
+                    post_change = reported->connected;
+                    warn = !reported->warned;
+                    reported->connected = false;
+                    reported->warned = true;
+                }
             }
-        }
-        if (post_change || warn) {
-            GstStructure* s = gst_structure_new("head-connection", "uri", G_TYPE_STRING, uri.c_str(), "state",
-                                                G_TYPE_STRING, std::string(headctl::to_string(state)).c_str(),
-                                                "error", G_TYPE_STRING, error.c_str(), nullptr);
-            gst_element_post_message(element, gst_message_new_element(GST_OBJECT(element), s));
-        }
-        if (warn)
-            GST_ELEMENT_WARNING(element, RESOURCE, OPEN_READ_WRITE,
-                                ("Head at %s not connected; retrying in the background.", uri.c_str()),
-                                ("%s", error.empty() ? "connection closed" : error.c_str()));
-        if (back)
-            GST_ELEMENT_INFO(element, RESOURCE, OPEN_READ_WRITE, ("Head at %s connected again.", uri.c_str()),
-                             (nullptr));
-    };
+            if (post_change || warn) {
+                GstStructure* s = gst_structure_new("head-connection", "uri", G_TYPE_STRING, uri.c_str(), "state",
+                                                    G_TYPE_STRING, std::string(headctl::to_string(state)).c_str(),
+                                                    "error", G_TYPE_STRING, error.c_str(), nullptr);
+                gst_element_post_message(element, gst_message_new_element(GST_OBJECT(element), s));
+            }
+            if (warn)
+                GST_ELEMENT_WARNING(element, RESOURCE, OPEN_READ_WRITE,
+                                    ("Head at %s not connected; retrying in the background.", uri.c_str()),
+                                    ("%s", error.empty() ? "connection closed" : error.c_str()));
+            if (back)
+                GST_ELEMENT_INFO(element, RESOURCE, OPEN_READ_WRITE, ("Head at %s connected again.", uri.c_str()),
+                                 (nullptr));
+        };
 }
-
 
 std::function<void(const headctl::HeadCommand&)> command_logger(GstElement* element)
 {

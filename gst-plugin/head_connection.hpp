@@ -28,7 +28,7 @@ headctl::Timestamp capture_time(GstElement* element, GstClockTime running_time);
 // shown with its token hidden. Every change, each retry's failure included, is also logged in
 // the gesturecam-head debug category (INFO).
 std::function<void(headctl::ConnectionState, const std::string&)> connection_reporter(GstElement* element,
-                                                                                     const std::string& uri);
+                                                                                      const std::string& uri);
 
 // A command callback for the head link that logs each command sent to the head (DEBUG in
 // the gesturecam-head debug category, with the element as the object).

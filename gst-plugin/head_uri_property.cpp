@@ -11,8 +11,7 @@ void set_head_uri(std::string& uri, const GValue* value)
 {
     const gchar* text = g_value_get_string(value);
     const std::string given = text ? text : "";
-    if (given != headctl::redact_uri(uri))
-        uri = given;
+    if (given != headctl::redact_uri(uri)) uri = given;
 }
 
 void get_head_uri(const std::string& uri, GValue* value)
@@ -23,8 +22,7 @@ void get_head_uri(const std::string& uri, GValue* value)
 bool read_head_token(GstElement* element, const std::string& path, std::string& token)
 {
     token.clear();
-    if (path.empty())
-        return true;
+    if (path.empty()) return true;
     try {
         token = headctl::read_token_file(path);
     } catch (const std::exception& err) {

@@ -9,9 +9,12 @@ namespace gc::gst {
 TrackState track_state(GstHandPointingState s)
 {
     switch (s) {
-    case GST_HAND_POINTING_STATE_TRACKING: return TrackState::Tracking;
-    case GST_HAND_POINTING_STATE_LOST: return TrackState::Lost;
-    case GST_HAND_POINTING_STATE_ACQUIRING: break;
+    case GST_HAND_POINTING_STATE_TRACKING:
+        return TrackState::Tracking;
+    case GST_HAND_POINTING_STATE_LOST:
+        return TrackState::Lost;
+    case GST_HAND_POINTING_STATE_ACQUIRING:
+        break;
     }
     return TrackState::Acquiring;
 }
@@ -19,11 +22,16 @@ TrackState track_state(GstHandPointingState s)
 Gesture track_gesture(GstHandPointingGesture g)
 {
     switch (g) {
-    case GST_HAND_POINTING_GESTURE_POINTING: return Gesture::Pointing;
-    case GST_HAND_POINTING_GESTURE_OPEN: return Gesture::Open;
-    case GST_HAND_POINTING_GESTURE_FIST: return Gesture::Fist;
-    case GST_HAND_POINTING_GESTURE_OTHER: return Gesture::Other;
-    case GST_HAND_POINTING_GESTURE_UNKNOWN: break;
+    case GST_HAND_POINTING_GESTURE_POINTING:
+        return Gesture::Pointing;
+    case GST_HAND_POINTING_GESTURE_OPEN:
+        return Gesture::Open;
+    case GST_HAND_POINTING_GESTURE_FIST:
+        return Gesture::Fist;
+    case GST_HAND_POINTING_GESTURE_OTHER:
+        return Gesture::Other;
+    case GST_HAND_POINTING_GESTURE_UNKNOWN:
+        break;
     }
     return Gesture::Unknown;
 }
@@ -55,8 +63,7 @@ EyeEstimate eye_from_meta(const GstHandPointingMeta& meta, bool right, cv::Size 
     eye.gesture = track_gesture(right && stereo ? meta.right_gesture : meta.left_gesture);
     const guint n = std::min<guint>(in.n_contour_points, GST_HAND_POINTING_MAX_CONTOUR_POINTS);
     eye.contour.reserve(n);
-    for (guint i = 0; i < n; ++i)
-        eye.contour.push_back(map(in.contour[i][0], in.contour[i][1]));
+    for (guint i = 0; i < n; ++i) eye.contour.push_back(map(in.contour[i][0], in.contour[i][1]));
     const cv::Point2f box = map(in.bbox_x, in.bbox_y);
     eye.bbox = cv::Rect(int(box.x), int(box.y), int(in.bbox_width * sx), int(in.bbox_height * sy));
     return eye;

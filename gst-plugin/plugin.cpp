@@ -17,5 +17,5 @@ static gboolean plugin_init(GstPlugin* plugin)
 }
 
 GST_PLUGIN_DEFINE(GST_VERSION_MAJOR, GST_VERSION_MINOR, gesturecam,
-                  "Stereo tracking of a pointing hand (CONDENSATION) for conferencing pipelines",
-                  plugin_init, GC_PLUGIN_VERSION, GC_PLUGIN_LICENSE, GC_PLUGIN_PACKAGE, GC_PLUGIN_ORIGIN)
+                  "Stereo tracking of a pointing hand (CONDENSATION) for conferencing pipelines", plugin_init,
+                  GC_PLUGIN_VERSION, GC_PLUGIN_LICENSE, GC_PLUGIN_PACKAGE, GC_PLUGIN_ORIGIN)

@@ -42,18 +42,14 @@ void set_structure(GstStructure* parent, const char* name, GstStructure* child)
 
 GstStructure* eye_structure(const EyeEstimate& eye, bool with_contour)
 {
-    GstStructure* s = gst_structure_new("hand-eye", "state", G_TYPE_STRING, to_string(eye.state).data(),
-                                        "x", G_TYPE_DOUBLE, eye.mean.x, "y", G_TYPE_DOUBLE, eye.mean.y,
-                                        "rotation-deg", G_TYPE_DOUBLE, degrees(eye.mean.rotation),
-                                        "scale", G_TYPE_DOUBLE, eye.mean.scale,
-                                        "confidence", G_TYPE_DOUBLE, eye.confidence,
-                                        "bbox-x", G_TYPE_INT, eye.bbox.x, "bbox-y", G_TYPE_INT, eye.bbox.y,
-                                        "bbox-width", G_TYPE_INT, eye.bbox.width,
-                                        "bbox-height", G_TYPE_INT, eye.bbox.height,
-                                        "fingertip-x", G_TYPE_DOUBLE, double(eye.fingertip.x),
-                                        "fingertip-y", G_TYPE_DOUBLE, double(eye.fingertip.y),
-                                        "pointing-deg", G_TYPE_DOUBLE, eye.pointing_deg,
-                                        "gesture", G_TYPE_STRING, to_string(eye.gesture).data(), nullptr);
+    GstStructure* s = gst_structure_new(
+        "hand-eye", "state", G_TYPE_STRING, to_string(eye.state).data(), "x", G_TYPE_DOUBLE, eye.mean.x, "y",
+        G_TYPE_DOUBLE, eye.mean.y, "rotation-deg", G_TYPE_DOUBLE, degrees(eye.mean.rotation), "scale", G_TYPE_DOUBLE,
+        eye.mean.scale, "confidence", G_TYPE_DOUBLE, eye.confidence, "bbox-x", G_TYPE_INT, eye.bbox.x, "bbox-y",
+        G_TYPE_INT, eye.bbox.y, "bbox-width", G_TYPE_INT, eye.bbox.width, "bbox-height", G_TYPE_INT, eye.bbox.height,
+        "fingertip-x", G_TYPE_DOUBLE, double(eye.fingertip.x), "fingertip-y", G_TYPE_DOUBLE, double(eye.fingertip.y),
+        "pointing-deg", G_TYPE_DOUBLE, eye.pointing_deg, "gesture", G_TYPE_STRING, to_string(eye.gesture).data(),
+        nullptr);
     if (with_contour) {
         // Flat (x0, y0, x1, y1, ...) keeps the serialised message readable and cheap.
         GValue array = G_VALUE_INIT;
@@ -89,11 +85,16 @@ void set_vec3(GstStructure* s, const char* name, const cv::Vec3d& v)
 GstHandPointingGesture meta_gesture(Gesture g)
 {
     switch (g) {
-    case Gesture::Pointing: return GST_HAND_POINTING_GESTURE_POINTING;
-    case Gesture::Open: return GST_HAND_POINTING_GESTURE_OPEN;
-    case Gesture::Fist: return GST_HAND_POINTING_GESTURE_FIST;
-    case Gesture::Other: return GST_HAND_POINTING_GESTURE_OTHER;
-    case Gesture::Unknown: break;
+    case Gesture::Pointing:
+        return GST_HAND_POINTING_GESTURE_POINTING;
+    case Gesture::Open:
+        return GST_HAND_POINTING_GESTURE_OPEN;
+    case Gesture::Fist:
+        return GST_HAND_POINTING_GESTURE_FIST;
+    case Gesture::Other:
+        return GST_HAND_POINTING_GESTURE_OTHER;
+    case Gesture::Unknown:
+        break;
     }
     return GST_HAND_POINTING_GESTURE_UNKNOWN;
 }
@@ -101,9 +102,12 @@ GstHandPointingGesture meta_gesture(Gesture g)
 GstHandPointingState meta_state(TrackState s)
 {
     switch (s) {
-    case TrackState::Tracking: return GST_HAND_POINTING_STATE_TRACKING;
-    case TrackState::Lost: return GST_HAND_POINTING_STATE_LOST;
-    case TrackState::Acquiring: break;
+    case TrackState::Tracking:
+        return GST_HAND_POINTING_STATE_TRACKING;
+    case TrackState::Lost:
+        return GST_HAND_POINTING_STATE_LOST;
+    case TrackState::Acquiring:
+        break;
     }
     return GST_HAND_POINTING_STATE_ACQUIRING;
 }
@@ -114,16 +118,11 @@ void fill_meta(GstHandPointingMeta& meta, const FrameResult& result, const Repor
     meta.frame = guint64(std::max<std::int64_t>(result.frame, 0));
     meta.state = meta_state(result.state);
     guint flags = GST_HAND_POINTING_FLAG_NONE;
-    if (result.stereo)
-        flags |= GST_HAND_POINTING_FLAG_STEREO;
-    if (result.pointing.valid)
-        flags |= GST_HAND_POINTING_FLAG_HAS_3D;
-    if (result.head)
-        flags |= GST_HAND_POINTING_FLAG_HAS_HEAD;
-    if (context.incomplete)
-        flags |= GST_HAND_POINTING_FLAG_INCOMPLETE;
-    if (context.full_view)
-        flags |= GST_HAND_POINTING_FLAG_FULL_VIEW;
+    if (result.stereo) flags |= GST_HAND_POINTING_FLAG_STEREO;
+    if (result.pointing.valid) flags |= GST_HAND_POINTING_FLAG_HAS_3D;
+    if (result.head) flags |= GST_HAND_POINTING_FLAG_HAS_HEAD;
+    if (context.incomplete) flags |= GST_HAND_POINTING_FLAG_INCOMPLETE;
+    if (context.full_view) flags |= GST_HAND_POINTING_FLAG_FULL_VIEW;
     meta.flags = flags;
     fill_eye(meta.left, result.left, scratch);
     fill_eye(meta.right, result.stereo ? result.right : EyeEstimate{}, scratch);
@@ -148,18 +147,14 @@ void fill_meta(GstHandPointingMeta& meta, const FrameResult& result, const Repor
     meta.right_gesture = result.stereo ? meta_gesture(result.right.gesture) : GST_HAND_POINTING_GESTURE_UNKNOWN;
 }
 
-GstStructure* pointing_structure(const FrameResult& result, const ReportContext& context,
-                                 bool with_contours)
+GstStructure* pointing_structure(const FrameResult& result, const ReportContext& context, bool with_contours)
 {
-    GstStructure* s = gst_structure_new("hand-pointing", "frame", G_TYPE_UINT64,
-                                        guint64(std::max<std::int64_t>(result.frame, 0)),
-                                        "state", G_TYPE_STRING, to_string(result.state).data(),
-                                        "stereo", G_TYPE_BOOLEAN, gboolean(result.stereo),
-                                        "incomplete", G_TYPE_BOOLEAN, gboolean(context.incomplete),
-                                        nullptr);
+    GstStructure* s =
+        gst_structure_new("hand-pointing", "frame", G_TYPE_UINT64, guint64(std::max<std::int64_t>(result.frame, 0)),
+                          "state", G_TYPE_STRING, to_string(result.state).data(), "stereo", G_TYPE_BOOLEAN,
+                          gboolean(result.stereo), "incomplete", G_TYPE_BOOLEAN, gboolean(context.incomplete), nullptr);
     set_structure(s, "left", eye_structure(result.left, with_contours));
-    if (result.stereo)
-        set_structure(s, "right", eye_structure(result.right, with_contours));
+    if (result.stereo) set_structure(s, "right", eye_structure(result.right, with_contours));
     if (result.pointing.valid) {
         const Pointing3D& p = result.pointing;
         GstStructure* ps = gst_structure_new("hand-pointing-3d", "azimuth-deg", G_TYPE_DOUBLE, p.azimuth_deg,
@@ -172,10 +167,10 @@ GstStructure* pointing_structure(const FrameResult& result, const ReportContext&
     if (result.head) {
         const HeadPose& h = *result.head;
         set_structure(s, "head",
-                      gst_structure_new("head-pose", "pan-deg", G_TYPE_DOUBLE, h.pan_deg, "tilt-deg",
-                                        G_TYPE_DOUBLE, h.tilt_deg, "verge-left-deg", G_TYPE_DOUBLE,
-                                        h.verge_left_deg, "verge-right-deg", G_TYPE_DOUBLE,
-                                        h.verge_right_deg, "zoom", G_TYPE_DOUBLE, h.zoom, nullptr));
+                      gst_structure_new("head-pose", "pan-deg", G_TYPE_DOUBLE, h.pan_deg, "tilt-deg", G_TYPE_DOUBLE,
+                                        h.tilt_deg, "verge-left-deg", G_TYPE_DOUBLE, h.verge_left_deg,
+                                        "verge-right-deg", G_TYPE_DOUBLE, h.verge_right_deg, "zoom", G_TYPE_DOUBLE,
+                                        h.zoom, nullptr));
     }
     return s;
 }

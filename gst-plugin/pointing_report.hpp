@@ -32,7 +32,6 @@ void fill_meta(GstHandPointingMeta& meta, const FrameResult& result, const Repor
 // The `hand-pointing` structure: frame, state, stereo, incomplete, left, right (stereo
 // only), pointing (when the 3D ray is known) and head (when the pose is known). Fields as
 // documented in docs/metadata.md. Caller owns the result.
-GstStructure* pointing_structure(const FrameResult& result, const ReportContext& context,
-                                 bool with_contours);
+GstStructure* pointing_structure(const FrameResult& result, const ReportContext& context, bool with_contours);
 
 }  // namespace gc::gst

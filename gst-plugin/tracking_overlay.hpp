@@ -17,8 +17,7 @@ namespace gc::gst {
 class TrackingOverlay {
 public:
     // `particles` may be empty (no distribution to show); `pointing` may be null.
-    void draw(cv::Mat& bgr, const EyeEstimate& eye, std::span<const Particle> particles,
-              const Pointing3D* pointing);
+    void draw(cv::Mat& bgr, const EyeEstimate& eye, std::span<const Particle> particles, const Pointing3D* pointing);
 
 private:
     void draw_marginals(cv::Mat& bgr, std::span<const Particle> particles);

@@ -8,8 +8,8 @@ namespace {
 
 std::string describe(const GstVideoInfo& info)
 {
-    return std::to_string(GST_VIDEO_INFO_WIDTH(&info)) + "x" + std::to_string(GST_VIDEO_INFO_HEIGHT(&info)) +
-           " " + gst_video_format_to_string(GST_VIDEO_INFO_FORMAT(&info));
+    return std::to_string(GST_VIDEO_INFO_WIDTH(&info)) + "x" + std::to_string(GST_VIDEO_INFO_HEIGHT(&info)) + " " +
+           gst_video_format_to_string(GST_VIDEO_INFO_FORMAT(&info));
 }
 
 bool supported(GstVideoFormat format, const char* list)
@@ -53,8 +53,8 @@ void CachedConverter::convert(const GstVideoFrame& src, GstVideoFrame& dst)
         in_ = src.info;
         out_ = dst.info;
         // One thread: the tracker already works on both eyes at once.
-        GstStructure* config = gst_structure_new("GstVideoConverter", GST_VIDEO_CONVERTER_OPT_THREADS,
-                                                 G_TYPE_UINT, 1u, nullptr);
+        GstStructure* config =
+            gst_structure_new("GstVideoConverter", GST_VIDEO_CONVERTER_OPT_THREADS, G_TYPE_UINT, 1u, nullptr);
         converter_.reset(gst_video_converter_new(&in_, &out_, config));
         if (!converter_)
             throw std::invalid_argument("GStreamer cannot convert " + describe(in_) + " to " + describe(out_));

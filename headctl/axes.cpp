@@ -14,42 +14,62 @@ std::string_view axis_name(Axis axis) { return kNames[static_cast<std::size_t>(a
 
 double home_value(Axis axis) { return axis == Axis::Zoom ? 1.0 : 0.0; }
 
-std::optional<Axis> axis_from_name(std::string_view name) {
+std::optional<Axis> axis_from_name(std::string_view name)
+{
     for (Axis a : kAllAxes) {
         if (axis_name(a) == name) return a;
     }
     return std::nullopt;
 }
 
-double axis_value(const HeadPose& pose, Axis axis) {
+double axis_value(const HeadPose& pose, Axis axis)
+{
     switch (axis) {
-        case Axis::Pan: return pose.pan_deg;
-        case Axis::Tilt: return pose.tilt_deg;
-        case Axis::VergeLeft: return pose.verge_left_deg;
-        case Axis::VergeRight: return pose.verge_right_deg;
-        case Axis::Zoom: return pose.zoom;
+    case Axis::Pan:
+        return pose.pan_deg;
+    case Axis::Tilt:
+        return pose.tilt_deg;
+    case Axis::VergeLeft:
+        return pose.verge_left_deg;
+    case Axis::VergeRight:
+        return pose.verge_right_deg;
+    case Axis::Zoom:
+        return pose.zoom;
     }
     return 0.0;
 }
 
-void set_axis_value(HeadPose& pose, Axis axis, double deg) {
+void set_axis_value(HeadPose& pose, Axis axis, double deg)
+{
     switch (axis) {
-        case Axis::Pan: pose.pan_deg = deg; break;
-        case Axis::Tilt: pose.tilt_deg = deg; break;
-        case Axis::VergeLeft: pose.verge_left_deg = deg; break;
-        case Axis::VergeRight: pose.verge_right_deg = deg; break;
-        case Axis::Zoom: pose.zoom = deg; break;
+    case Axis::Pan:
+        pose.pan_deg = deg;
+        break;
+    case Axis::Tilt:
+        pose.tilt_deg = deg;
+        break;
+    case Axis::VergeLeft:
+        pose.verge_left_deg = deg;
+        break;
+    case Axis::VergeRight:
+        pose.verge_right_deg = deg;
+        break;
+    case Axis::Zoom:
+        pose.zoom = deg;
+        break;
     }
 }
 
-bool AxisValues::empty() const {
+bool AxisValues::empty() const
+{
     for (const auto& v : values_) {
         if (v) return false;
     }
     return true;
 }
 
-void validate(const HeadLimits& limits) {
+void validate(const HeadLimits& limits)
+{
     for (Axis a : kAllAxes) {
         const AxisLimits& l = limits[a];
         const std::string name(axis_name(a));

@@ -16,8 +16,8 @@ namespace gc::headctl {
 enum class Axis { Pan = 0, Tilt = 1, VergeLeft = 2, VergeRight = 3, Zoom = 4 };
 
 inline constexpr std::size_t kAxisCount = 5;
-inline constexpr std::array<Axis, kAxisCount> kAllAxes{Axis::Pan, Axis::Tilt, Axis::VergeLeft,
-                                                       Axis::VergeRight, Axis::Zoom};
+inline constexpr std::array<Axis, kAxisCount> kAllAxes{Axis::Pan, Axis::Tilt, Axis::VergeLeft, Axis::VergeRight,
+                                                       Axis::Zoom};
 
 // Where HOME puts an axis: 0 degrees, or the widest zoom (1).
 double home_value(Axis axis);

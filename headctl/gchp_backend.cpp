@@ -5,14 +5,17 @@ namespace gc::headctl {
 namespace {
 // Replies to requests abandoned after a timeout may still arrive; at most this many are skipped.
 constexpr int kMaxStaleReplies = 64;
-}
+}  // namespace
 
 GchpBackend::GchpBackend(std::string host, std::uint16_t port, std::string token)
-    : host_(std::move(host)), port_(port), token_(std::move(token)) {}
+    : host_(std::move(host)), port_(port), token_(std::move(token))
+{
+}
 
 std::string GchpBackend::name() const { return "tcp://" + host_ + ":" + std::to_string(port_); }
 
-void GchpBackend::open(Deadline deadline) {
+void GchpBackend::open(Deadline deadline)
+{
     close();
     fd_ = net::connect_to(host_, port_, net::Transport::Tcp, deadline);
     const auto line = reader_.read_line(fd_.get(), deadline);
@@ -38,12 +41,14 @@ void GchpBackend::open(Deadline deadline) {
     }
 }
 
-void GchpBackend::close() {
+void GchpBackend::close()
+{
     fd_.reset();
     reader_.clear();
 }
 
-Reply GchpBackend::transact(Request request, Deadline deadline) {
+Reply GchpBackend::transact(Request request, Deadline deadline)
+{
     if (!fd_) throw net::NetError("not connected");
     request.id = next_id_++;
     const std::string line = format_request(request) + "\n";
@@ -62,7 +67,8 @@ Reply GchpBackend::transact(Request request, Deadline deadline) {
     throw net::NetError(name() + " sent too many replies to other requests");
 }
 
-HeadState GchpBackend::query_state(Deadline deadline) {
+HeadState GchpBackend::query_state(Deadline deadline)
+{
     Request r;
     r.command = Command::Status;
     const Reply reply = transact(r, deadline);
@@ -71,7 +77,8 @@ HeadState GchpBackend::query_state(Deadline deadline) {
     return reply.state;
 }
 
-std::optional<HeadLimits> GchpBackend::query_limits(Deadline deadline) {
+std::optional<HeadLimits> GchpBackend::query_limits(Deadline deadline)
+{
     Request r;
     r.command = Command::Limits;
     const Reply reply = transact(r, deadline);
@@ -79,17 +86,36 @@ std::optional<HeadLimits> GchpBackend::query_limits(Deadline deadline) {
     return reply.limits;
 }
 
-void GchpBackend::send(const HeadCommand& command, Deadline deadline) {
+void GchpBackend::send(const HeadCommand& command, Deadline deadline)
+{
     Request r;
     r.values = command.values;
     switch (command.kind) {
-        case CommandKind::Absolute: r.command = Command::MoveAbsolute; break;
-        case CommandKind::Relative: r.command = Command::MoveRelative; break;
-        case CommandKind::Velocity: r.command = Command::MoveVelocity; break;
-        case CommandKind::Stop: r.command = Command::Stop; r.values = {}; break;
-        case CommandKind::Home: r.command = Command::Home; r.values = {}; break;
-        case CommandKind::SavePreset: r.command = Command::PresetSave; r.values = {}; break;
-        case CommandKind::RecallPreset: r.command = Command::PresetRecall; r.values = {}; break;
+    case CommandKind::Absolute:
+        r.command = Command::MoveAbsolute;
+        break;
+    case CommandKind::Relative:
+        r.command = Command::MoveRelative;
+        break;
+    case CommandKind::Velocity:
+        r.command = Command::MoveVelocity;
+        break;
+    case CommandKind::Stop:
+        r.command = Command::Stop;
+        r.values = {};
+        break;
+    case CommandKind::Home:
+        r.command = Command::Home;
+        r.values = {};
+        break;
+    case CommandKind::SavePreset:
+        r.command = Command::PresetSave;
+        r.values = {};
+        break;
+    case CommandKind::RecallPreset:
+        r.command = Command::PresetRecall;
+        r.values = {};
+        break;
     }
     r.preset = command.preset;
     const Reply reply = transact(r, deadline);

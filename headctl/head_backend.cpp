@@ -8,16 +8,27 @@
 
 namespace gc::headctl {
 
-std::string describe(const HeadCommand& c) {
+std::string describe(const HeadCommand& c)
+{
     std::string out;
     switch (c.kind) {
-        case CommandKind::Absolute: out = "move abs"; break;
-        case CommandKind::Relative: out = "move rel"; break;
-        case CommandKind::Velocity: out = "move vel"; break;
-        case CommandKind::Stop: return "stop";
-        case CommandKind::Home: return "home";
-        case CommandKind::SavePreset: return "preset save " + std::to_string(c.preset);
-        case CommandKind::RecallPreset: return "preset recall " + std::to_string(c.preset);
+    case CommandKind::Absolute:
+        out = "move abs";
+        break;
+    case CommandKind::Relative:
+        out = "move rel";
+        break;
+    case CommandKind::Velocity:
+        out = "move vel";
+        break;
+    case CommandKind::Stop:
+        return "stop";
+    case CommandKind::Home:
+        return "home";
+    case CommandKind::SavePreset:
+        return "preset save " + std::to_string(c.preset);
+    case CommandKind::RecallPreset:
+        return "preset recall " + std::to_string(c.preset);
     }
     for (Axis a : kAllAxes) {
         if (!c.values.has(a)) continue;
@@ -28,26 +39,30 @@ std::string describe(const HeadCommand& c) {
     return out;
 }
 
-void flag_motion_since(HeadState& s, std::optional<HeadPose>& last) {
+void flag_motion_since(HeadState& s, std::optional<HeadPose>& last)
+{
     if (last)
         for (Axis a : kAllAxes) s.moving[static_cast<std::size_t>(a)] = axis_value(s.pose, a) != axis_value(*last, a);
     last = s.pose;
 }
 
-std::unique_ptr<HeadBackend> make_backend(const HeadUri& uri, const std::string& token) {
+std::unique_ptr<HeadBackend> make_backend(const HeadUri& uri, const std::string& token)
+{
     switch (uri.scheme) {
-        case HeadScheme::Gchp:
-            return std::make_unique<GchpBackend>(uri.host, uri.port, token.empty() ? uri.param("token").value_or("") : token);
-        case HeadScheme::ViscaUdp:
-            return std::make_unique<ViscaBackend>(uri.host, uri.port, ViscaBackend::Transport::Udp,
-                                                  ViscaSettings::from_uri(uri));
-        case HeadScheme::PelcoD: return std::make_unique<PelcoBackend>(uri.path, PelcoSettings::from_uri(uri));
-        case HeadScheme::ViscaSerial:
-            return std::make_unique<ViscaBackend>(uri.path, 0, ViscaBackend::Transport::Serial,
-                                                  ViscaSettings::from_uri(uri));
-        case HeadScheme::ViscaTcp:
-            return std::make_unique<ViscaBackend>(uri.host, uri.port, ViscaBackend::Transport::Tcp,
-                                                  ViscaSettings::from_uri(uri));
+    case HeadScheme::Gchp:
+        return std::make_unique<GchpBackend>(uri.host, uri.port,
+                                             token.empty() ? uri.param("token").value_or("") : token);
+    case HeadScheme::ViscaUdp:
+        return std::make_unique<ViscaBackend>(uri.host, uri.port, ViscaBackend::Transport::Udp,
+                                              ViscaSettings::from_uri(uri));
+    case HeadScheme::PelcoD:
+        return std::make_unique<PelcoBackend>(uri.path, PelcoSettings::from_uri(uri));
+    case HeadScheme::ViscaSerial:
+        return std::make_unique<ViscaBackend>(uri.path, 0, ViscaBackend::Transport::Serial,
+                                              ViscaSettings::from_uri(uri));
+    case HeadScheme::ViscaTcp:
+        return std::make_unique<ViscaBackend>(uri.host, uri.port, ViscaBackend::Transport::Tcp,
+                                              ViscaSettings::from_uri(uri));
     }
     throw std::invalid_argument("unknown head URI scheme");
 }

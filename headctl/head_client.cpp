@@ -6,18 +6,24 @@ namespace gc::headctl {
 
 using SteadyClock = std::chrono::steady_clock;
 
-std::string_view to_string(ConnectionState s) {
+std::string_view to_string(ConnectionState s)
+{
     switch (s) {
-        case ConnectionState::Connecting: return "connecting";
-        case ConnectionState::Connected: return "connected";
-        case ConnectionState::Disconnected: return "disconnected";
-        case ConnectionState::Stopped: return "stopped";
+    case ConnectionState::Connecting:
+        return "connecting";
+    case ConnectionState::Connected:
+        return "connected";
+    case ConnectionState::Disconnected:
+        return "disconnected";
+    case ConnectionState::Stopped:
+        return "stopped";
     }
     return "?";
 }
 
 HeadClient::HeadClient(HeadClientConfig config)
-    : config_(std::move(config)), history_(config_.history_capacity < 2 ? 2 : config_.history_capacity) {
+    : config_(std::move(config)), history_(config_.history_capacity < 2 ? 2 : config_.history_capacity)
+{
     using std::chrono::milliseconds;
     auto positive = [](milliseconds d, const char* name) {
         if (d <= milliseconds{0}) throw std::invalid_argument(std::string("head client: ") + name + " must be > 0");
@@ -43,7 +49,8 @@ HeadClient::HeadClient(HeadClientConfig config)
     thread_ = std::thread([this] { run(); });
 }
 
-HeadClient::~HeadClient() {
+HeadClient::~HeadClient()
+{
     {
         std::lock_guard lock(mutex_);
         stopping_ = true;
@@ -53,7 +60,8 @@ HeadClient::~HeadClient() {
     thread_.join();
 }
 
-void HeadClient::submit(const HeadCommand& command) {
+void HeadClient::submit(const HeadCommand& command)
+{
     for (Axis a : kAllAxes) {
         if (!command.values.has(a)) continue;
         if (!std::isfinite(command.values.get(a)))
@@ -76,39 +84,46 @@ void HeadClient::submit(const HeadCommand& command) {
     wake_.notify_all();
 }
 
-ConnectionState HeadClient::state() const {
+ConnectionState HeadClient::state() const
+{
     std::lock_guard lock(mutex_);
     return state_;
 }
 
-std::string HeadClient::last_error() const {
+std::string HeadClient::last_error() const
+{
     std::lock_guard lock(mutex_);
     return last_error_;
 }
 
-HeadClientStats HeadClient::stats() const {
+HeadClientStats HeadClient::stats() const
+{
     std::lock_guard lock(mutex_);
     return stats_;
 }
 
-std::optional<HeadLimits> HeadClient::limits() const {
+std::optional<HeadLimits> HeadClient::limits() const
+{
     std::lock_guard lock(mutex_);
     return limits_;
 }
 
-std::optional<StateSample> HeadClient::latest() const {
+std::optional<StateSample> HeadClient::latest() const
+{
     std::lock_guard lock(mutex_);
     return history_.newest();
 }
 
-std::optional<HeadPose> HeadClient::pose_at(Timestamp t) const {
+std::optional<HeadPose> HeadClient::pose_at(Timestamp t) const
+{
     std::lock_guard lock(mutex_);
     return history_.pose_at(t, config_.max_extrapolation);
 }
 
 Timestamp HeadClient::now() const { return config_.clock(); }
 
-void HeadClient::set_state(ConnectionState s, const std::string& error) {
+void HeadClient::set_state(ConnectionState s, const std::string& error)
+{
     bool changed = false;
     {
         std::lock_guard lock(mutex_);
@@ -119,12 +134,14 @@ void HeadClient::set_state(ConnectionState s, const std::string& error) {
     if (changed && config_.on_state_change) config_.on_state_change(s, error);
 }
 
-void HeadClient::wait_for(SteadyClock::duration d) {
+void HeadClient::wait_for(SteadyClock::duration d)
+{
     std::unique_lock lock(mutex_);
     wake_.wait_for(lock, d, [this] { return stopping_; });
 }
 
-void HeadClient::run() {
+void HeadClient::run()
+{
     const net::CancelScope cancel_scope(cancel_);
     auto backoff = config_.backoff_initial;
     for (;;) {
@@ -163,7 +180,8 @@ void HeadClient::run() {
     set_state(ConnectionState::Stopped, {});
 }
 
-void HeadClient::serve(HeadBackend& backend) {
+void HeadClient::serve(HeadBackend& backend)
+{
     auto deadline = [this] { return SteadyClock::now() + config_.request_timeout; };
     if (auto limits = backend.query_limits(deadline())) {
         std::lock_guard lock(mutex_);
@@ -176,9 +194,8 @@ void HeadClient::serve(HeadBackend& backend) {
         {
             std::unique_lock lock(mutex_);
             const auto wake_at = pending_ ? std::min(next_status, next_command) : next_status;
-            wake_.wait_until(lock, wake_at, [&] {
-                return stopping_ || (pending_ && SteadyClock::now() >= next_command);
-            });
+            wake_.wait_until(lock, wake_at,
+                             [&] { return stopping_ || (pending_ && SteadyClock::now() >= next_command); });
             if (stopping_) return;
             if (pending_ && SteadyClock::now() >= next_command) {
                 command = std::move(pending_);

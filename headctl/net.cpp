@@ -19,13 +19,15 @@ namespace {
 thread_local const std::atomic<bool>* t_cancel = nullptr;
 constexpr long long kCancelCheckMs = 20;
 
-int poll_timeout_ms(Clock::time_point deadline) {
+int poll_timeout_ms(Clock::time_point deadline)
+{
     const auto left = std::chrono::ceil<std::chrono::milliseconds>(deadline - Clock::now()).count();
     return static_cast<int>(std::clamp<long long>(left, 0, t_cancel ? kCancelCheckMs : 60'000));
 }
 
 // Waits for events on fd; false on timeout.
-bool wait_for(int fd, short events, Clock::time_point deadline) {
+bool wait_for(int fd, short events, Clock::time_point deadline)
+{
     for (;;) {
         if (t_cancel && t_cancel->load()) throw NetError("cancelled");
         pollfd p{fd, events, 0};
@@ -46,7 +48,8 @@ std::string errno_text(const char* what) { return std::string(what) + ": " + std
 CancelScope::CancelScope(const std::atomic<bool>& flag) : previous_(t_cancel) { t_cancel = &flag; }
 CancelScope::~CancelScope() { t_cancel = previous_; }
 
-Fd& Fd::operator=(Fd&& o) noexcept {
+Fd& Fd::operator=(Fd&& o) noexcept
+{
     if (this != &o) {
         reset();
         fd_ = o.release();
@@ -54,23 +57,27 @@ Fd& Fd::operator=(Fd&& o) noexcept {
     return *this;
 }
 
-int Fd::release() {
+int Fd::release()
+{
     const int fd = fd_;
     fd_ = -1;
     return fd;
 }
 
-void Fd::reset() {
+void Fd::reset()
+{
     if (fd_ >= 0) ::close(fd_);
     fd_ = -1;
 }
 
-void set_nonblocking(int fd) {
+void set_nonblocking(int fd)
+{
     const int flags = ::fcntl(fd, F_GETFL, 0);
     if (flags < 0 || ::fcntl(fd, F_SETFL, flags | O_NONBLOCK) < 0) throw NetError(errno_text("fcntl"));
 }
 
-Fd connect_to(const std::string& host, std::uint16_t port, Transport transport, Clock::time_point deadline) {
+Fd connect_to(const std::string& host, std::uint16_t port, Transport transport, Clock::time_point deadline)
+{
     addrinfo hints{};
     hints.ai_family = AF_UNSPEC;
     hints.ai_socktype = transport == Transport::Tcp ? SOCK_STREAM : SOCK_DGRAM;
@@ -114,7 +121,8 @@ Fd connect_to(const std::string& host, std::uint16_t port, Transport transport, 
     throw NetError("cannot connect to " + host + ":" + service + " (" + last_error + ")");
 }
 
-void send_all(int fd, std::span<const char> data, Clock::time_point deadline) {
+void send_all(int fd, std::span<const char> data, Clock::time_point deadline)
+{
     std::size_t sent = 0;
     while (sent < data.size()) {
         ssize_t n = ::send(fd, data.data() + sent, data.size() - sent, MSG_NOSIGNAL);
@@ -132,11 +140,13 @@ void send_all(int fd, std::span<const char> data, Clock::time_point deadline) {
     }
 }
 
-void send_all(int fd, std::span<const std::uint8_t> data, Clock::time_point deadline) {
+void send_all(int fd, std::span<const std::uint8_t> data, Clock::time_point deadline)
+{
     send_all(fd, std::span<const char>(reinterpret_cast<const char*>(data.data()), data.size()), deadline);
 }
 
-std::optional<std::size_t> receive_some(int fd, std::span<std::uint8_t> buffer, Clock::time_point deadline) {
+std::optional<std::size_t> receive_some(int fd, std::span<std::uint8_t> buffer, Clock::time_point deadline)
+{
     for (;;) {
         const ssize_t n = ::read(fd, buffer.data(), buffer.size());
         if (n > 0) return static_cast<std::size_t>(n);
@@ -147,7 +157,8 @@ std::optional<std::size_t> receive_some(int fd, std::span<std::uint8_t> buffer, 
     }
 }
 
-std::optional<std::string> LineReader::read_line(int fd, Clock::time_point deadline) {
+std::optional<std::string> LineReader::read_line(int fd, Clock::time_point deadline)
+{
     auto too_long = [this] {
         return NetError("the head sent a line longer than " + std::to_string(max_length_) + " bytes");
     };

@@ -24,7 +24,7 @@ struct Drive {
     int pan = 0;
     int tilt = 0;
     int zoom = 0;
-    int pan_speed = 0;   // clamped to 0..kMaxSpeed
+    int pan_speed = 0;  // clamped to 0..kMaxSpeed
     int tilt_speed = 0;
 };
 

@@ -6,7 +6,8 @@
 namespace gc::headctl {
 
 namespace {
-HeadPose lerp(const HeadPose& a, const HeadPose& b, double f) {
+HeadPose lerp(const HeadPose& a, const HeadPose& b, double f)
+{
     HeadPose p;
     for (Axis axis : kAllAxes) {
         const double va = axis_value(a, axis);
@@ -16,13 +17,15 @@ HeadPose lerp(const HeadPose& a, const HeadPose& b, double f) {
 }
 }  // namespace
 
-PoseHistory::PoseHistory(std::size_t capacity) : ring_(capacity) {
+PoseHistory::PoseHistory(std::size_t capacity) : ring_(capacity)
+{
     if (capacity < 2) throw std::invalid_argument("a pose history needs room for at least 2 samples");
 }
 
 const StateSample& PoseHistory::at(std::size_t i) const { return ring_[(head_ + i) % ring_.size()]; }
 
-void PoseHistory::push(const StateSample& sample) {
+void PoseHistory::push(const StateSample& sample)
+{
     if (count_ > 0 && sample.time <= at(count_ - 1).time) return;
     if (count_ < ring_.size()) {
         ring_[(head_ + count_) % ring_.size()] = sample;
@@ -33,12 +36,14 @@ void PoseHistory::push(const StateSample& sample) {
     }
 }
 
-std::optional<StateSample> PoseHistory::newest() const {
+std::optional<StateSample> PoseHistory::newest() const
+{
     if (count_ == 0) return std::nullopt;
     return at(count_ - 1);
 }
 
-std::optional<HeadPose> PoseHistory::pose_at(Timestamp t, Timestamp max_extrapolation) const {
+std::optional<HeadPose> PoseHistory::pose_at(Timestamp t, Timestamp max_extrapolation) const
+{
     if (count_ == 0) return std::nullopt;
     const StateSample& first = at(0);
     const StateSample& last = at(count_ - 1);
@@ -59,8 +64,10 @@ std::optional<HeadPose> PoseHistory::pose_at(Timestamp t, Timestamp max_extrapol
     std::size_t hi = count_ - 1;
     while (lo < hi) {
         const std::size_t mid = (lo + hi) / 2;
-        if (at(mid).time > t) hi = mid;
-        else lo = mid + 1;
+        if (at(mid).time > t)
+            hi = mid;
+        else
+            lo = mid + 1;
     }
     const StateSample& a = at(lo - 1);
     const StateSample& b = at(lo);

@@ -30,7 +30,8 @@ constexpr std::array<ErrorName, 9> kErrorNames{{
 [[noreturn]] void fail(ErrorCode code, const std::string& message) { throw ProtocolError(code, message); }
 
 // Shows a piece of untrusted input in an error message: bounded, printable.
-std::string quoted(std::string_view s) {
+std::string quoted(std::string_view s)
+{
     constexpr std::size_t kShown = 32;
     std::string out = "'";
     for (char c : s.substr(0, kShown)) out += (c >= 0x20 && c < 0x7f) ? c : '?';
@@ -39,11 +40,12 @@ std::string quoted(std::string_view s) {
 }
 
 // Strips the optional '\r', checks the length and the alphabet, splits on blanks.
-std::vector<std::string_view> split_line(std::string_view line) {
+std::vector<std::string_view> split_line(std::string_view line)
+{
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     if (line.size() > kMaxLineLength)
-        fail(ErrorCode::LineTooLong, "line of " + std::to_string(line.size()) + " bytes exceeds " +
-                                         std::to_string(kMaxLineLength));
+        fail(ErrorCode::LineTooLong,
+             "line of " + std::to_string(line.size()) + " bytes exceeds " + std::to_string(kMaxLineLength));
     std::vector<std::string_view> words;
     std::size_t i = 0;
     while (i < line.size()) {
@@ -58,8 +60,8 @@ std::vector<std::string_view> split_line(std::string_view line) {
             if (d < 0x20 || d >= 0x7f) {
                 char hex[8];
                 std::snprintf(hex, sizeof hex, "0x%02x", d);
-                fail(ErrorCode::Syntax, std::string("non-printable byte ") + hex + " at column " +
-                                            std::to_string(j + 1));
+                fail(ErrorCode::Syntax,
+                     std::string("non-printable byte ") + hex + " at column " + std::to_string(j + 1));
             }
             ++j;
         }
@@ -69,14 +71,16 @@ std::vector<std::string_view> split_line(std::string_view line) {
     return words;
 }
 
-bool iequals(std::string_view a, std::string_view b) {
+bool iequals(std::string_view a, std::string_view b)
+{
     return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
                auto lower = [](char c) { return (c >= 'A' && c <= 'Z') ? char(c - 'A' + 'a') : c; };
                return lower(x) == lower(y);
            });
 }
 
-double parse_number(std::string_view what, std::string_view text) {
+double parse_number(std::string_view what, std::string_view text)
+{
     double v = 0.0;
     const char* end = text.data() + text.size();
     auto [ptr, ec] = std::from_chars(text.data(), end, v, std::chars_format::general);
@@ -90,7 +94,8 @@ double parse_number(std::string_view what, std::string_view text) {
 }
 
 template <typename Int>
-Int parse_integer(std::string_view what, std::string_view text) {
+Int parse_integer(std::string_view what, std::string_view text)
+{
     Int v{};
     const char* end = text.data() + text.size();
     auto [ptr, ec] = std::from_chars(text.data(), end, v);
@@ -100,7 +105,8 @@ Int parse_integer(std::string_view what, std::string_view text) {
 }
 
 // "#123" -> 123, if the word is an id.
-std::optional<std::uint32_t> parse_id(std::string_view word) {
+std::optional<std::uint32_t> parse_id(std::string_view word)
+{
     if (word.empty() || word.front() != '#') return std::nullopt;
     const std::string_view digits = word.substr(1);
     if (digits.empty() || digits.size() > 10 ||
@@ -112,20 +118,22 @@ std::optional<std::uint32_t> parse_id(std::string_view word) {
     return static_cast<std::uint32_t>(v);
 }
 
-std::pair<std::string_view, std::string_view> split_key_value(std::string_view word) {
+std::pair<std::string_view, std::string_view> split_key_value(std::string_view word)
+{
     const auto eq = word.find('=');
-    if (eq == std::string_view::npos || eq == 0)
-        fail(ErrorCode::Syntax, "expected key=value, got " + quoted(word));
+    if (eq == std::string_view::npos || eq == 0) fail(ErrorCode::Syntax, "expected key=value, got " + quoted(word));
     return {word.substr(0, eq), word.substr(eq + 1)};
 }
 
-Axis parse_axis(std::string_view name) {
+Axis parse_axis(std::string_view name)
+{
     auto axis = axis_from_name(name);
     if (!axis) fail(ErrorCode::BadArgument, "unknown axis " + quoted(name) + " (pan, tilt, verge_l, verge_r, zoom)");
     return *axis;
 }
 
-std::string format_number(double v) {
+std::string format_number(double v)
+{
     if (!std::isfinite(v)) throw std::invalid_argument("cannot send a value that is not finite");
     if (std::abs(v) > kMaxWireValue) throw std::invalid_argument("cannot send a value beyond +-1e5");
     char buf[32];
@@ -141,7 +149,8 @@ std::string format_number(double v) {
 // The axes every STATE and LIMITS carries; zoom may be missing (a head without one).
 constexpr std::size_t kAngleAxes = 4;
 
-void append_id(std::string& out, const std::optional<std::uint32_t>& id) {
+void append_id(std::string& out, const std::optional<std::uint32_t>& id)
+{
     if (!id) return;
     out += " #";
     out += std::to_string(*id);
@@ -162,21 +171,25 @@ constexpr std::array<Verb, 6> kSimpleVerbs{{
 
 }  // namespace
 
-std::string_view error_code_name(ErrorCode code) {
+std::string_view error_code_name(ErrorCode code)
+{
     for (const auto& e : kErrorNames)
         if (e.code == code) return e.name;
     return "unknown";
 }
 
-std::optional<ErrorCode> error_code_from_number(int number) {
+std::optional<ErrorCode> error_code_from_number(int number)
+{
     for (const auto& e : kErrorNames)
         if (static_cast<int>(e.code) == number) return e.code;
     return std::nullopt;
 }
 
-Greeting parse_greeting(std::string_view line) {
+Greeting parse_greeting(std::string_view line)
+{
     const auto words = split_line(line);
-    if (words.size() < 2 || words[0] != "HELLO") fail(ErrorCode::Syntax, "greeting must start with 'HELLO GCHP/<version>'");
+    if (words.size() < 2 || words[0] != "HELLO")
+        fail(ErrorCode::Syntax, "greeting must start with 'HELLO GCHP/<version>'");
     const std::string_view proto = words[1];
     const std::string prefix = std::string(kProtocolName) + "/";
     if (proto.substr(0, prefix.size()) != prefix)
@@ -201,11 +214,16 @@ Greeting parse_greeting(std::string_view line) {
             have_caps = true;
             g.caps = Capabilities{false, false, false, false, false};
             for (auto item : items) {  // unknown capabilities are a later minor version's: ignored
-                if (item == "abs") g.caps.absolute = true;
-                else if (item == "rel") g.caps.relative = true;
-                else if (item == "vel") g.caps.velocity = true;
-                else if (item == "auth") g.caps.auth_required = true;
-                else if (item == "preset") g.caps.presets = true;
+                if (item == "abs")
+                    g.caps.absolute = true;
+                else if (item == "rel")
+                    g.caps.relative = true;
+                else if (item == "vel")
+                    g.caps.velocity = true;
+                else if (item == "auth")
+                    g.caps.auth_required = true;
+                else if (item == "preset")
+                    g.caps.presets = true;
             }
         }
     }
@@ -213,7 +231,8 @@ Greeting parse_greeting(std::string_view line) {
     return g;
 }
 
-std::string format_greeting(const Greeting& g) {
+std::string format_greeting(const Greeting& g)
+{
     std::string out = "HELLO " + std::string(kProtocolName) + "/" + std::to_string(g.version) + " axes=";
     bool first = true;
     for (Axis a : kAllAxes) {
@@ -236,7 +255,8 @@ std::string format_greeting(const Greeting& g) {
     return out + " caps=" + caps;
 }
 
-Request parse_request(std::string_view line) {
+Request parse_request(std::string_view line)
+{
     const auto words = split_line(line);
     Request r;
     std::size_t i = 0;
@@ -249,10 +269,14 @@ Request parse_request(std::string_view line) {
     if (iequals(verb, "MOVE")) {
         if (nargs < 2) fail(ErrorCode::Syntax, "MOVE needs a mode (ABS, REL, VEL) and at least one axis=value");
         const std::string_view mode = words[i++];
-        if (iequals(mode, "ABS")) r.command = Command::MoveAbsolute;
-        else if (iequals(mode, "REL")) r.command = Command::MoveRelative;
-        else if (iequals(mode, "VEL")) r.command = Command::MoveVelocity;
-        else fail(ErrorCode::Syntax, "MOVE mode " + quoted(mode) + " is not ABS, REL or VEL");
+        if (iequals(mode, "ABS"))
+            r.command = Command::MoveAbsolute;
+        else if (iequals(mode, "REL"))
+            r.command = Command::MoveRelative;
+        else if (iequals(mode, "VEL"))
+            r.command = Command::MoveVelocity;
+        else
+            fail(ErrorCode::Syntax, "MOVE mode " + quoted(mode) + " is not ABS, REL or VEL");
         for (; i < words.size(); ++i) {
             auto [key, value] = split_key_value(words[i]);
             const Axis axis = parse_axis(key);
@@ -264,9 +288,12 @@ Request parse_request(std::string_view line) {
     if (iequals(verb, "PRESET")) {
         if (nargs != 2) fail(ErrorCode::Syntax, "PRESET takes SAVE or RECALL and a number");
         const std::string_view action = words[i];
-        if (iequals(action, "SAVE")) r.command = Command::PresetSave;
-        else if (iequals(action, "RECALL")) r.command = Command::PresetRecall;
-        else fail(ErrorCode::Syntax, "PRESET action " + quoted(action) + " is not SAVE or RECALL");
+        if (iequals(action, "SAVE"))
+            r.command = Command::PresetSave;
+        else if (iequals(action, "RECALL"))
+            r.command = Command::PresetRecall;
+        else
+            fail(ErrorCode::Syntax, "PRESET action " + quoted(action) + " is not SAVE or RECALL");
         r.preset = parse_integer<int>("preset", words[i + 1]);
         if (r.preset < 0 || r.preset > kMaxWirePreset)
             fail(ErrorCode::BadArgument, "preset " + quoted(words[i + 1]) + " is not in 0..255");
@@ -289,7 +316,8 @@ Request parse_request(std::string_view line) {
     fail(ErrorCode::UnknownCommand, "unknown command " + quoted(verb));
 }
 
-std::string format_request(const Request& r) {
+std::string format_request(const Request& r)
+{
     std::string out;
     if (r.id) {
         out += '#';
@@ -309,33 +337,39 @@ std::string format_request(const Request& r) {
         }
     };
     switch (r.command) {
-        case Command::MoveAbsolute: move("ABS"); break;
-        case Command::MoveRelative: move("REL"); break;
-        case Command::MoveVelocity: move("VEL"); break;
-        case Command::PresetSave:
-        case Command::PresetRecall:
-            if (r.preset < 0 || r.preset > kMaxWirePreset) throw std::invalid_argument("a preset is 0..255");
-            out += r.command == Command::PresetSave ? "PRESET SAVE " : "PRESET RECALL ";
-            out += std::to_string(r.preset);
-            break;
-        case Command::Auth: {
-            const bool printable = std::all_of(r.token.begin(), r.token.end(),
-                                               [](char c) { return c > 0x20 && c < 0x7f; });
-            if (r.token.empty() || r.token.size() > kMaxTokenLength || !printable)
-                throw std::invalid_argument("a token is 1 to 64 printable characters without blanks");
-            out += "AUTH " + r.token;
-            break;
-        }
-        default:
-            for (const auto& v : kSimpleVerbs)
-                if (v.command == r.command) out += v.word;
+    case Command::MoveAbsolute:
+        move("ABS");
+        break;
+    case Command::MoveRelative:
+        move("REL");
+        break;
+    case Command::MoveVelocity:
+        move("VEL");
+        break;
+    case Command::PresetSave:
+    case Command::PresetRecall:
+        if (r.preset < 0 || r.preset > kMaxWirePreset) throw std::invalid_argument("a preset is 0..255");
+        out += r.command == Command::PresetSave ? "PRESET SAVE " : "PRESET RECALL ";
+        out += std::to_string(r.preset);
+        break;
+    case Command::Auth: {
+        const bool printable = std::all_of(r.token.begin(), r.token.end(), [](char c) { return c > 0x20 && c < 0x7f; });
+        if (r.token.empty() || r.token.size() > kMaxTokenLength || !printable)
+            throw std::invalid_argument("a token is 1 to 64 printable characters without blanks");
+        out += "AUTH " + r.token;
+        break;
+    }
+    default:
+        for (const auto& v : kSimpleVerbs)
+            if (v.command == r.command) out += v.word;
     }
     return out;
 }
 
 namespace {
 
-HeadState parse_state_fields(const std::vector<std::string_view>& words, std::size_t i) {
+HeadState parse_state_fields(const std::vector<std::string_view>& words, std::size_t i)
+{
     HeadState s;
     bool have_t = false;
     bool have_moving = false;
@@ -369,7 +403,8 @@ HeadState parse_state_fields(const std::vector<std::string_view>& words, std::si
     return s;
 }
 
-HeadLimits parse_limit_fields(const std::vector<std::string_view>& words, std::size_t i) {
+HeadLimits parse_limit_fields(const std::vector<std::string_view>& words, std::size_t i)
+{
     HeadLimits limits;
     std::array<bool, kAxisCount> have{};
     for (; i < words.size(); ++i) {
@@ -402,14 +437,18 @@ HeadLimits parse_limit_fields(const std::vector<std::string_view>& words, std::s
 
 }  // namespace
 
-Reply parse_reply(std::string_view line) {
+Reply parse_reply(std::string_view line)
+{
     const auto words = split_line(line);
     if (words.empty()) fail(ErrorCode::Syntax, "empty reply");
     Reply r;
     std::size_t i = 1;
-    if (words[0] == "OK") r.ok = true;
-    else if (words[0] == "ERR") r.ok = false;
-    else fail(ErrorCode::Syntax, "reply must start with OK or ERR, got " + quoted(words[0]));
+    if (words[0] == "OK")
+        r.ok = true;
+    else if (words[0] == "ERR")
+        r.ok = false;
+    else
+        fail(ErrorCode::Syntax, "reply must start with OK or ERR, got " + quoted(words[0]));
     if (i < words.size()) {
         r.id = parse_id(words[i]);
         if (r.id) ++i;
@@ -439,7 +478,8 @@ Reply parse_reply(std::string_view line) {
     return r;
 }
 
-std::string format_reply(const Reply& r) {
+std::string format_reply(const Reply& r)
+{
     std::string out = r.ok ? "OK" : "ERR";
     append_id(out, r.id);
     if (!r.ok) {
@@ -488,7 +528,8 @@ std::string format_reply(const Reply& r) {
     return out;
 }
 
-std::optional<std::uint32_t> peek_request_id(std::string_view line) noexcept {
+std::optional<std::uint32_t> peek_request_id(std::string_view line) noexcept
+{
     const auto start = line.find_first_not_of(" \t");
     if (start == std::string_view::npos || line[start] != '#') return std::nullopt;
     const auto end = std::min(line.find_first_of(" \t\r", start), line.size());
@@ -500,7 +541,8 @@ std::optional<std::uint32_t> peek_request_id(std::string_view line) noexcept {
     return static_cast<std::uint32_t>(v);
 }
 
-Reply make_error_reply(std::optional<std::uint32_t> id, ErrorCode code, std::string message) {
+Reply make_error_reply(std::optional<std::uint32_t> id, ErrorCode code, std::string message)
+{
     Reply r;
     r.id = id;
     r.ok = false;

@@ -38,8 +38,7 @@ std::optional<ErrorCode> error_code_from_number(int number);
 // A malformed or unacceptable line; code is what the server answers with.
 class ProtocolError : public std::runtime_error {
 public:
-    ProtocolError(ErrorCode code, const std::string& message)
-        : std::runtime_error(message), code_(code) {}
+    ProtocolError(ErrorCode code, const std::string& message) : std::runtime_error(message), code_(code) {}
     ErrorCode code() const { return code_; }
 
 private:
@@ -63,7 +62,19 @@ struct Greeting {
     bool operator==(const Greeting&) const = default;
 };
 
-enum class Command { Auth, Status, MoveAbsolute, MoveRelative, MoveVelocity, Stop, Home, Limits, Quit, PresetSave, PresetRecall };
+enum class Command {
+    Auth,
+    Status,
+    MoveAbsolute,
+    MoveRelative,
+    MoveVelocity,
+    Stop,
+    Home,
+    Limits,
+    Quit,
+    PresetSave,
+    PresetRecall
+};
 
 // Preset numbers on the wire.
 inline constexpr int kMaxWirePreset = 255;
@@ -85,7 +96,7 @@ struct Reply {
     std::optional<std::uint32_t> id;
     bool ok = true;
     ErrorCode error = ErrorCode::Internal;  // when !ok
-    std::string message;                     // when !ok
+    std::string message;                    // when !ok
     ReplyBody body = ReplyBody::None;
     HeadState state;    // body == State
     HeadLimits limits;  // body == Limits

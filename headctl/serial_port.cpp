@@ -18,22 +18,31 @@ struct Rate {
     speed_t code;
 };
 constexpr std::array<Rate, 7> kRates{{
-    {2400, B2400}, {4800, B4800}, {9600, B9600}, {19200, B19200}, {38400, B38400}, {57600, B57600}, {115200, B115200},
+    {2400, B2400},
+    {4800, B4800},
+    {9600, B9600},
+    {19200, B19200},
+    {38400, B38400},
+    {57600, B57600},
+    {115200, B115200},
 }};
 
-[[noreturn]] void fail(const std::string& path, const char* what) {
+[[noreturn]] void fail(const std::string& path, const char* what)
+{
     throw net::NetError("serial port " + path + ": " + what + " (" + std::strerror(errno) + ")");
 }
 
 }  // namespace
 
-bool is_supported_baud(int baud) {
+bool is_supported_baud(int baud)
+{
     for (const Rate& r : kRates)
         if (r.baud == baud) return true;
     return false;
 }
 
-net::Fd open_serial_port(const std::string& path, int baud) {
+net::Fd open_serial_port(const std::string& path, int baud)
+{
     speed_t code = 0;
     for (const Rate& r : kRates)
         if (r.baud == baud) code = r.code;

@@ -12,13 +12,15 @@
 
 namespace gc::headctl {
 
-void check_token(std::string_view token) {
+void check_token(std::string_view token)
+{
     const bool printable = std::all_of(token.begin(), token.end(), [](char c) { return c > 0x20 && c < 0x7f; });
     if (token.empty() || token.size() > kMaxTokenLength || !printable)
         throw std::invalid_argument("a token is 1 to 64 printable characters without blanks");
 }
 
-std::string read_token_file(const std::string& path) {
+std::string read_token_file(const std::string& path)
+{
     std::ifstream in(path, std::ios::binary);
     if (!in) throw std::invalid_argument("cannot read the token file " + path + ": " + std::strerror(errno));
     std::string token;
@@ -32,7 +34,8 @@ std::string read_token_file(const std::string& path) {
     return token;
 }
 
-std::string token_from_environment() {
+std::string token_from_environment()
+{
     const char* value = std::getenv(kTokenEnvironmentVariable);
     if (!value || !*value) return {};
     try {
@@ -45,11 +48,13 @@ std::string token_from_environment() {
 
 void hide_argument(char* argument) { std::fill(argument, argument + std::strlen(argument), '*'); }
 
-void hide_token_in_uri_argument(char* uri) {
+void hide_token_in_uri_argument(char* uri)
+{
     for (const TextSpan& value : token_values(uri)) std::fill_n(uri + value.offset, value.length, '*');
 }
 
-void hide_secret_arguments(int argc, char** argv) {
+void hide_secret_arguments(int argc, char** argv)
+{
     for (int i = 1; i < argc; ++i) {
         const std::string_view a = argv[i];
         if ((a == "--token" || a == "--uri") && i + 1 < argc) {

@@ -25,23 +25,25 @@ constexpr std::array<SchemeInfo, 5> kSchemes{{
 }};
 
 constexpr std::array<std::string_view, 1> kGchpKeys{"token"};
-constexpr std::array<std::string_view, 6> kPelcoKeys{"address",  "baud",     "pan_max_speed_dps", "tilt_max_speed_dps",
+constexpr std::array<std::string_view, 6> kPelcoKeys{"address",  "baud",      "pan_max_speed_dps", "tilt_max_speed_dps",
                                                      "zoom_max", "timeout_ms"};
 constexpr std::array<std::string_view, 10> kViscaKeys{
-    "address",   "pan_units_per_deg", "tilt_units_per_deg", "pan_max_speed_dps", "tilt_max_speed_dps",
-    "zoom_max",  "zoom_tele_units",   "zoom_max_speed",     "timeout_ms", "baud"};
+    "address",  "pan_units_per_deg", "tilt_units_per_deg", "pan_max_speed_dps", "tilt_max_speed_dps",
+    "zoom_max", "zoom_tele_units",   "zoom_max_speed",     "timeout_ms",        "baud"};
 
 [[noreturn]] void fail(const std::string& message) { throw std::invalid_argument("head URI: " + message); }
 
 // A piece of the URI quoted for an error message: a token in it hidden, at most 64 characters.
-std::string shown(std::string_view text) {
+std::string shown(std::string_view text)
+{
     const std::string s = redact_uri(text);
     std::string out;
     for (char c : std::string_view(s).substr(0, 64)) out += (c >= 0x20 && c < 0x7f) ? c : '?';
     return "'" + out + (s.size() > 64 ? "...'" : "'");
 }
 
-bool is_host_char(char c) {
+bool is_host_char(char c)
+{
     return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' || c == '.' ||
            c == '_';
 }
@@ -50,25 +52,29 @@ bool is_param_char(char c) { return c > 0x20 && c < 0x7f && c != '&' && c != '='
 
 }  // namespace
 
-std::string_view scheme_name(HeadScheme scheme) {
+std::string_view scheme_name(HeadScheme scheme)
+{
     for (const auto& s : kSchemes)
         if (s.scheme == scheme) return s.name;
     return "?";
 }
 
-std::uint16_t default_port(HeadScheme scheme) {
+std::uint16_t default_port(HeadScheme scheme)
+{
     for (const auto& s : kSchemes)
         if (s.scheme == scheme) return s.port;
     return 0;
 }
 
-std::optional<std::string> HeadUri::param(std::string_view key) const {
+std::optional<std::string> HeadUri::param(std::string_view key) const
+{
     for (const auto& [k, v] : params)
         if (k == key) return v;
     return std::nullopt;
 }
 
-double HeadUri::number_param(std::string_view key, double fallback, double min, double max) const {
+double HeadUri::number_param(std::string_view key, double fallback, double min, double max) const
+{
     const auto text = param(key);
     if (!text) return fallback;
     double v = 0.0;
@@ -85,7 +91,8 @@ double HeadUri::number_param(std::string_view key, double fallback, double min, 
 namespace {
 
 // The query's key=value pairs into uri.params, each key checked against the scheme's.
-void parse_query(HeadUri& uri, std::string_view query, std::string_view scheme) {
+void parse_query(HeadUri& uri, std::string_view query, std::string_view scheme)
+{
     const bool visca = uri.scheme != HeadScheme::Gchp;
     while (!query.empty()) {
         const auto amp = query.find('&');
@@ -99,7 +106,9 @@ void parse_query(HeadUri& uri, std::string_view query, std::string_view scheme) 
         if (!std::all_of(value.begin(), value.end(), is_param_char))
             fail("value of " + shown(key) + " contains a blank or reserved character");
         const auto among = [&](const auto& keys) { return std::find(keys.begin(), keys.end(), key) != keys.end(); };
-        const bool known = uri.scheme == HeadScheme::PelcoD ? among(kPelcoKeys) : visca ? among(kViscaKeys) : among(kGchpKeys);
+        const bool known = uri.scheme == HeadScheme::PelcoD ? among(kPelcoKeys)
+                           : visca                          ? among(kViscaKeys)
+                                                            : among(kGchpKeys);
         if (!known) fail("parameter " + shown(key) + " is not known for " + std::string(scheme) + "://");
         if (uri.param(key)) fail("parameter " + shown(key) + " given twice");
         uri.params.emplace_back(std::string(key), std::string(value));
@@ -108,14 +117,16 @@ void parse_query(HeadUri& uri, std::string_view query, std::string_view scheme) 
 
 }  // namespace
 
-HeadUri parse_head_uri(std::string_view text) {
+HeadUri parse_head_uri(std::string_view text)
+{
     if (text.size() > kMaxUriLength) fail("longer than " + std::to_string(kMaxUriLength) + " characters");
     const auto sep = text.find("://");
     if (sep == std::string_view::npos) fail(shown(text) + " lacks '://' (e.g. tcp://127.0.0.1:5050)");
     const std::string_view scheme = text.substr(0, sep);
     HeadUri uri;
     const auto info = std::find_if(kSchemes.begin(), kSchemes.end(), [&](const auto& s) { return s.name == scheme; });
-    if (info == kSchemes.end()) fail("unknown scheme " + shown(scheme) + " (tcp, visca-udp, visca-tcp, visca-serial, pelco-d)");
+    if (info == kSchemes.end())
+        fail("unknown scheme " + shown(scheme) + " (tcp, visca-udp, visca-tcp, visca-serial, pelco-d)");
     uri.scheme = info->scheme;
     uri.port = info->port;
 
@@ -141,9 +152,8 @@ HeadUri parse_head_uri(std::string_view text) {
         host = rest.substr(1, close - 1);
         // At least one ':' and at most the 45 characters of the longest textual IPv6 address.
         if (host.size() > 45 || host.find(':') == std::string_view::npos ||
-            !std::all_of(host.begin(), host.end(), [](char c) {
-                return std::isxdigit(static_cast<unsigned char>(c)) || c == ':' || c == '.';
-            }))
+            !std::all_of(host.begin(), host.end(),
+                         [](char c) { return std::isxdigit(static_cast<unsigned char>(c)) || c == ':' || c == '.'; }))
             fail("IPv6 address " + shown(host) + " is malformed");
         const std::string_view after = rest.substr(close + 1);
         if (!after.empty()) {
@@ -175,7 +185,8 @@ HeadUri parse_head_uri(std::string_view text) {
     return uri;
 }
 
-std::vector<TextSpan> token_values(std::string_view text) {
+std::vector<TextSpan> token_values(std::string_view text)
+{
     // Every "token=" wherever it stands (a malformed URI may carry it outside its query),
     // in any case, up to the next separator.
     constexpr std::string_view kKey = "token=";
@@ -197,7 +208,8 @@ std::vector<TextSpan> token_values(std::string_view text) {
     return spans;
 }
 
-std::string redact_uri(std::string_view text) {
+std::string redact_uri(std::string_view text)
+{
     std::string out;
     std::size_t from = 0;
     for (const TextSpan& value : token_values(text)) {
@@ -207,11 +219,14 @@ std::string redact_uri(std::string_view text) {
     return out.append(text.substr(from));
 }
 
-std::string to_string(const HeadUri& uri) {
+std::string to_string(const HeadUri& uri)
+{
     const bool v6 = uri.host.find(':') != std::string::npos;
     std::string out = std::string(scheme_name(uri.scheme)) + "://";
-    if (is_serial(uri.scheme)) out += uri.path;
-    else out += (v6 ? "[" + uri.host + "]" : uri.host) + ":" + std::to_string(uri.port);
+    if (is_serial(uri.scheme))
+        out += uri.path;
+    else
+        out += (v6 ? "[" + uri.host + "]" : uri.host) + ":" + std::to_string(uri.port);
     char sep = '?';
     for (const auto& [k, v] : uri.params) {
         out += sep + k + "=" + v;

@@ -19,9 +19,9 @@ inline constexpr std::size_t kMaxUriLength = 1024;
 
 struct HeadUri {
     HeadScheme scheme = HeadScheme::Gchp;
-    std::string host;     // a name or an address; IPv6 without its brackets
+    std::string host;  // a name or an address; IPv6 without its brackets
     std::uint16_t port = 0;
-    std::string path;     // serial schemes: the device, e.g. /dev/ttyUSB0
+    std::string path;                                         // serial schemes: the device, e.g. /dev/ttyUSB0
     std::vector<std::pair<std::string, std::string>> params;  // the query, in order
 
     std::optional<std::string> param(std::string_view key) const;

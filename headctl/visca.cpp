@@ -7,19 +7,23 @@ namespace gc::headctl::visca {
 
 namespace {
 
-std::uint8_t header(int address) {
-    if (address < 1 || address > 7) throw ViscaError("VISCA camera address " + std::to_string(address) + " is not in 1..7");
+std::uint8_t header(int address)
+{
+    if (address < 1 || address > 7)
+        throw ViscaError("VISCA camera address " + std::to_string(address) + " is not in 1..7");
     return static_cast<std::uint8_t>(0x80 | address);
 }
 
 std::uint8_t speed(int value, int max) { return static_cast<std::uint8_t>(std::clamp(value, 1, max)); }
 
-std::uint8_t direction(Direction d, std::uint8_t negative, std::uint8_t positive) {
+std::uint8_t direction(Direction d, std::uint8_t negative, std::uint8_t positive)
+{
     return d == Direction::Stop ? 0x03 : (d == Direction::Negative ? negative : positive);
 }
 
 // A signed 16-bit position as four bytes carrying one nibble each, most significant first.
-void append_nibbles(Bytes& out, int units, const char* axis) {
+void append_nibbles(Bytes& out, int units, const char* axis)
+{
     if (units < -0x8000 || units > 0x7FFF)
         throw ViscaError(std::string("VISCA ") + axis + " position " + std::to_string(units) +
                          " does not fit in 16 bits");
@@ -27,7 +31,8 @@ void append_nibbles(Bytes& out, int units, const char* axis) {
     for (int shift = 12; shift >= 0; shift -= 4) out.push_back(static_cast<std::uint8_t>((u >> shift) & 0x0F));
 }
 
-std::uint16_t read_unsigned_nibbles(std::span<const std::uint8_t> bytes) {
+std::uint16_t read_unsigned_nibbles(std::span<const std::uint8_t> bytes)
+{
     std::uint16_t u = 0;
     for (std::uint8_t b : bytes) {
         if (b > 0x0F) throw ViscaError("VISCA position byte has its high nibble set");
@@ -36,9 +41,13 @@ std::uint16_t read_unsigned_nibbles(std::span<const std::uint8_t> bytes) {
     return u;
 }
 
-int read_nibbles(std::span<const std::uint8_t> bytes) { return static_cast<std::int16_t>(read_unsigned_nibbles(bytes)); }
+int read_nibbles(std::span<const std::uint8_t> bytes)
+{
+    return static_cast<std::int16_t>(read_unsigned_nibbles(bytes));
+}
 
-Bytes move(int address, std::uint8_t kind, int pan_speed, int tilt_speed, int pan_units, int tilt_units) {
+Bytes move(int address, std::uint8_t kind, int pan_speed, int tilt_speed, int pan_units, int tilt_units)
+{
     Bytes out{header(address), 0x01, 0x06, kind, speed(pan_speed, kMaxPanSpeed), speed(tilt_speed, kMaxTiltSpeed)};
     append_nibbles(out, pan_units, "pan");
     append_nibbles(out, tilt_units, "tilt");
@@ -46,7 +55,8 @@ Bytes move(int address, std::uint8_t kind, int pan_speed, int tilt_speed, int pa
     return out;
 }
 
-std::string hex(std::span<const std::uint8_t> bytes) {
+std::string hex(std::span<const std::uint8_t> bytes)
+{
     std::string out;
     char b[4];
     for (std::size_t i = 0; i < std::min<std::size_t>(bytes.size(), 16); ++i) {
@@ -59,28 +69,40 @@ std::string hex(std::span<const std::uint8_t> bytes) {
 
 }  // namespace
 
-Bytes pan_tilt_drive(int address, int pan_speed, int tilt_speed, Direction pan, Direction tilt) {
-    return {header(address), 0x01, 0x06, 0x01, speed(pan_speed, kMaxPanSpeed), speed(tilt_speed, kMaxTiltSpeed),
-            direction(pan, 0x01, 0x02), direction(tilt, 0x02, 0x01), 0xFF};
+Bytes pan_tilt_drive(int address, int pan_speed, int tilt_speed, Direction pan, Direction tilt)
+{
+    return {header(address),
+            0x01,
+            0x06,
+            0x01,
+            speed(pan_speed, kMaxPanSpeed),
+            speed(tilt_speed, kMaxTiltSpeed),
+            direction(pan, 0x01, 0x02),
+            direction(tilt, 0x02, 0x01),
+            0xFF};
 }
 
-Bytes pan_tilt_absolute(int address, int pan_speed, int tilt_speed, int pan_units, int tilt_units) {
+Bytes pan_tilt_absolute(int address, int pan_speed, int tilt_speed, int pan_units, int tilt_units)
+{
     return move(address, 0x02, pan_speed, tilt_speed, pan_units, tilt_units);
 }
 
-Bytes pan_tilt_relative(int address, int pan_speed, int tilt_speed, int pan_units, int tilt_units) {
+Bytes pan_tilt_relative(int address, int pan_speed, int tilt_speed, int pan_units, int tilt_units)
+{
     return move(address, 0x03, pan_speed, tilt_speed, pan_units, tilt_units);
 }
 
 Bytes pan_tilt_home(int address) { return {header(address), 0x01, 0x06, 0x04, 0xFF}; }
 
-Bytes pan_tilt_stop(int address) {
+Bytes pan_tilt_stop(int address)
+{
     return pan_tilt_drive(address, kMaxPanSpeed, kMaxTiltSpeed, Direction::Stop, Direction::Stop);
 }
 
 Bytes pan_tilt_position_inquiry(int address) { return {header(address), 0x09, 0x06, 0x12, 0xFF}; }
 
-Bytes zoom_direct(int address, int zoom_units) {
+Bytes zoom_direct(int address, int zoom_units)
+{
     if (zoom_units < 0 || zoom_units > 0xFFFF)
         throw ViscaError("VISCA zoom position " + std::to_string(zoom_units) + " is not in 0..65535");
     Bytes out{header(address), 0x01, 0x04, 0x47};
@@ -89,20 +111,24 @@ Bytes zoom_direct(int address, int zoom_units) {
     return out;
 }
 
-Bytes zoom_drive(int address, int speed, Direction d) {
+Bytes zoom_drive(int address, int speed, Direction d)
+{
     const auto p = static_cast<std::uint8_t>(std::clamp(speed, 0, kMaxZoomSpeed));
     const std::uint8_t code = d == Direction::Stop ? 0x00 : (d == Direction::Positive ? 0x20 | p : 0x30 | p);
     return {header(address), 0x01, 0x04, 0x07, code, 0xFF};
 }
 
-Bytes memory(int address, MemoryAction action, int number) {
+Bytes memory(int address, MemoryAction action, int number)
+{
     if (number < 0 || number > 0x7F) throw ViscaError("VISCA memory " + std::to_string(number) + " is not in 0..127");
-    return {header(address), 0x01, 0x04, 0x3F, static_cast<std::uint8_t>(action), static_cast<std::uint8_t>(number), 0xFF};
+    return {
+        header(address), 0x01, 0x04, 0x3F, static_cast<std::uint8_t>(action), static_cast<std::uint8_t>(number), 0xFF};
 }
 
 Bytes zoom_position_inquiry(int address) { return {header(address), 0x09, 0x04, 0x47, 0xFF}; }
 
-Reply parse_reply(std::span<const std::uint8_t> m) {
+Reply parse_reply(std::span<const std::uint8_t> m)
+{
     if (m.size() < 3) throw ViscaError("VISCA reply of " + std::to_string(m.size()) + " bytes is too short");
     if (m.size() > kMaxMessageSize) throw ViscaError("VISCA reply longer than 16 bytes");
     if (m.back() != 0xFF) throw ViscaError("VISCA reply [" + hex(m) + "] does not end in FF");
@@ -115,54 +141,62 @@ Reply parse_reply(std::span<const std::uint8_t> m) {
     r.address = from;
     r.socket = m[1] & 0x0F;
     switch (m[1] >> 4) {
-        case 0x4:
-            if (m.size() != 3) throw ViscaError("VISCA ACK [" + hex(m) + "] must be 3 bytes");
-            r.kind = ReplyKind::Ack;
+    case 0x4:
+        if (m.size() != 3) throw ViscaError("VISCA ACK [" + hex(m) + "] must be 3 bytes");
+        r.kind = ReplyKind::Ack;
+        return r;
+    case 0x5:
+        if (m.size() == 3) {
+            r.kind = ReplyKind::Completion;
             return r;
-        case 0x5:
-            if (m.size() == 3) {
-                r.kind = ReplyKind::Completion;
-                return r;
-            }
-            if (m.size() == 11 && r.socket == 0) {
-                r.kind = ReplyKind::Position;
-                r.pan_units = read_nibbles(m.subspan(2, 4));
-                r.tilt_units = read_nibbles(m.subspan(6, 4));
-                return r;
-            }
-            if (m.size() == 7 && r.socket == 0) {
-                r.kind = ReplyKind::ZoomPosition;
-                r.zoom_units = read_unsigned_nibbles(m.subspan(2, 4));
-                return r;
-            }
-            throw ViscaError("VISCA completion [" + hex(m) + "] has an unexpected length");
-        case 0x6:
-            if (m.size() != 4) throw ViscaError("VISCA error reply [" + hex(m) + "] must be 4 bytes");
-            r.kind = ReplyKind::Error;
-            r.error = m[2];
-            return r;
-        default:
-            throw ViscaError("VISCA reply [" + hex(m) + "] is not an ACK, completion or error");
-    }
-}
-
-std::string describe_error(int error) {
-    switch (error) {
-        case 0x01: return "message length error";
-        case 0x02: return "syntax error";
-        case 0x03: return "command buffer full";
-        case 0x04: return "command cancelled";
-        case 0x05: return "no socket";
-        case 0x41: return "command not executable";
-        default: {
-            char b[16];
-            std::snprintf(b, sizeof b, "error 0x%02X", error & 0xFF);
-            return b;
         }
+        if (m.size() == 11 && r.socket == 0) {
+            r.kind = ReplyKind::Position;
+            r.pan_units = read_nibbles(m.subspan(2, 4));
+            r.tilt_units = read_nibbles(m.subspan(6, 4));
+            return r;
+        }
+        if (m.size() == 7 && r.socket == 0) {
+            r.kind = ReplyKind::ZoomPosition;
+            r.zoom_units = read_unsigned_nibbles(m.subspan(2, 4));
+            return r;
+        }
+        throw ViscaError("VISCA completion [" + hex(m) + "] has an unexpected length");
+    case 0x6:
+        if (m.size() != 4) throw ViscaError("VISCA error reply [" + hex(m) + "] must be 4 bytes");
+        r.kind = ReplyKind::Error;
+        r.error = m[2];
+        return r;
+    default:
+        throw ViscaError("VISCA reply [" + hex(m) + "] is not an ACK, completion or error");
     }
 }
 
-Bytes wrap_ip(std::uint16_t type, std::uint32_t seq, std::span<const std::uint8_t> payload) {
+std::string describe_error(int error)
+{
+    switch (error) {
+    case 0x01:
+        return "message length error";
+    case 0x02:
+        return "syntax error";
+    case 0x03:
+        return "command buffer full";
+    case 0x04:
+        return "command cancelled";
+    case 0x05:
+        return "no socket";
+    case 0x41:
+        return "command not executable";
+    default: {
+        char b[16];
+        std::snprintf(b, sizeof b, "error 0x%02X", error & 0xFF);
+        return b;
+    }
+    }
+}
+
+Bytes wrap_ip(std::uint16_t type, std::uint32_t seq, std::span<const std::uint8_t> payload)
+{
     if (payload.size() > kMaxMessageSize) throw ViscaError("VISCA payload longer than 16 bytes");
     Bytes out(kIpHeaderSize + payload.size());
     out[0] = static_cast<std::uint8_t>(type >> 8);
@@ -174,7 +208,8 @@ Bytes wrap_ip(std::uint16_t type, std::uint32_t seq, std::span<const std::uint8_
     return out;
 }
 
-IpMessage unwrap_ip(std::span<const std::uint8_t> d) {
+IpMessage unwrap_ip(std::span<const std::uint8_t> d)
+{
     if (d.size() < kIpHeaderSize) throw ViscaError("VISCA-over-IP datagram shorter than its 8-byte header");
     IpMessage m;
     m.payload_type = static_cast<std::uint16_t>((d[0] << 8) | d[1]);
@@ -189,7 +224,8 @@ IpMessage unwrap_ip(std::span<const std::uint8_t> d) {
     return m;
 }
 
-Bytes ip_reset_sequence(std::uint32_t sequence) {
+Bytes ip_reset_sequence(std::uint32_t sequence)
+{
     const std::uint8_t reset = 0x01;
     return wrap_ip(kIpControl, sequence, std::span<const std::uint8_t>(&reset, 1));
 }

@@ -56,9 +56,10 @@ enum class ReplyKind { Ack, Completion, Error, Position, ZoomPosition };
 
 struct Reply {
     ReplyKind kind = ReplyKind::Ack;
-    int address = 1;   // the replying camera
-    int socket = 0;    // Ack, Completion, Error
-    int error = 0;     // Error: 0x01 length, 0x02 syntax, 0x03 buffer full, 0x04 cancelled, 0x05 no socket, 0x41 not executable
+    int address = 1;  // the replying camera
+    int socket = 0;   // Ack, Completion, Error
+    int error =
+        0;  // Error: 0x01 length, 0x02 syntax, 0x03 buffer full, 0x04 cancelled, 0x05 no socket, 0x41 not executable
     int pan_units = 0;   // Position
     int tilt_units = 0;  // Position
     int zoom_units = 0;  // ZoomPosition

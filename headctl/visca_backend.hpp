@@ -62,7 +62,7 @@ private:
     ViscaSettings settings_;
     net::Fd fd_;
     std::uint32_t sequence_ = 0;
-    visca::Bytes stream_;  // TCP: bytes of the unfinished message
+    visca::Bytes stream_;                // TCP: bytes of the unfinished message
     std::array<double, 2> drive_dps_{};  // last velocity per axis, so one-axis drives keep the other
     std::optional<HeadPose> last_pose_;
 };

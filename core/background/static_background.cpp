@@ -8,12 +8,14 @@
 
 namespace gc {
 
-StaticBackground::StaticBackground(const StaticBackgroundParams& params) : p_(params) {
+StaticBackground::StaticBackground(const StaticBackgroundParams& params) : p_(params)
+{
     if (p_.tolerance <= 0 || p_.tolerance >= 256 || p_.trusted_after <= 0 || p_.trusted_after >= 256)
         throw std::invalid_argument("StaticBackground: tolerance and trusted_after must be in 1..255");
 }
 
-void StaticBackground::reset() {
+void StaticBackground::reset()
+{
     median_.release();
     trust_.release();
 }
@@ -21,14 +23,15 @@ void StaticBackground::reset() {
 namespace {
 
 // Whether a BGR pixel is within `tol` of the median on every channel.
-inline bool matches(const std::uint8_t* f, const std::uint8_t* m, int tol) {
+inline bool matches(const std::uint8_t* f, const std::uint8_t* m, int tol)
+{
     return std::max({std::abs(f[0] - m[0]), std::abs(f[1] - m[1]), std::abs(f[2] - m[2])}) <= tol;
 }
 
 }  // namespace
 
-void StaticBackground::learn(const cv::Mat& bgr, const cv::Rect& keep_out,
-                             const cv::Mat1b& keep_out_mask) {
+void StaticBackground::learn(const cv::Mat& bgr, const cv::Rect& keep_out, const cv::Mat1b& keep_out_mask)
+{
     if (bgr.empty() || bgr.type() != CV_8UC3)
         throw std::invalid_argument("StaticBackground: expected a non-empty CV_8UC3 frame");
     if (!keep_out_mask.empty() && keep_out_mask.size() != keep_out.size())
@@ -69,8 +72,7 @@ void StaticBackground::learn(const cv::Mat& bgr, const cv::Rect& keep_out,
         // Inside the box, the median is held where the mask is set (all of it without a
         // mask), while trust keeps counting against it: a static object the hand covers
         // is still known as the scene's.
-        const std::uint8_t* mask =
-            keep_out_mask.empty() ? nullptr : keep_out_mask.ptr<std::uint8_t>(y - keep_out.y);
+        const std::uint8_t* mask = keep_out_mask.empty() ? nullptr : keep_out_mask.ptr<std::uint8_t>(y - keep_out.y);
         const auto held_at = [&](int x) { return !mask || mask[x - keep_out.x] != 0; };
         for (int x = out.x; x < out.x + out.width;) {
             const bool held = held_at(x);
@@ -82,7 +84,8 @@ void StaticBackground::learn(const cv::Mat& bgr, const cv::Rect& keep_out,
     row_parity_ ^= 1;
 }
 
-StaticBackground::Look StaticBackground::look(const cv::Mat& bgr, cv::Point p) const {
+StaticBackground::Look StaticBackground::look(const cv::Mat& bgr, cv::Point p) const
+{
     if (median_.empty() || bgr.size() != median_.size() || bgr.type() != CV_8UC3) return Look::Unknown;
     const auto trusted = [this](int x, int y) {
         const cv::Vec3b& t = trust_(y, x);
@@ -100,7 +103,8 @@ StaticBackground::Look StaticBackground::look(const cv::Mat& bgr, cv::Point p) c
     return Look::Scene;
 }
 
-const cv::Mat1b& StaticBackground::find_static(const cv::Mat& bgr, const cv::Rect& roi) {
+const cv::Mat1b& StaticBackground::find_static(const cv::Mat& bgr, const cv::Rect& roi)
+{
     if (median_.empty() || bgr.size() != median_.size() || bgr.type() != CV_8UC3) return none_;
     const cv::Rect frame(0, 0, bgr.cols, bgr.rows);
     if (scene_.size() != median_.size()) {

@@ -63,11 +63,11 @@ public:
 private:
     StaticBackgroundParams p_;
     cv::Mat3b median_;
-    cv::Mat3b trust_;    // per channel: matches minus misses, saturating at 0 and 255
-    int row_parity_ = 0;  // the rows learn() steps next: even (0) or odd (1)
+    cv::Mat3b trust_;            // per channel: matches minus misses, saturating at 0 and 255
+    int row_parity_ = 0;         // the rows learn() steps next: even (0) or odd (1)
     cv::Mat1b matches_, scene_;  // per pixel: matches the median; and so do its neighbours
     cv::Rect scene_area_;        // where scene_ was last filled (0 elsewhere)
-    cv::Mat1b none_;  // stays empty: the map returned where nothing is known
+    cv::Mat1b none_;             // stays empty: the map returned where nothing is known
 };
 
 }  // namespace gc

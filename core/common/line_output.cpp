@@ -28,8 +28,7 @@ LineOutput::LineOutput(int fd, std::string name, bool owned, bool regular)
 LineOutput LineOutput::create(const std::string& path)
 {
     const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC | O_NOCTTY, 0666);
-    if (fd < 0)
-        throw OutputError("cannot open '" + path + "' for writing: " + std::strerror(errno));
+    if (fd < 0) throw OutputError("cannot open '" + path + "' for writing: " + std::strerror(errno));
     return LineOutput(fd, "'" + path + "'", true, is_regular(fd));
 }
 
@@ -39,16 +38,15 @@ LineOutput LineOutput::standard_output()
 }
 
 LineOutput::LineOutput(LineOutput&& other) noexcept
-    : fd_(std::exchange(other.fd_, -1)), name_(std::move(other.name_)), owned_(other.owned_),
-      regular_(other.regular_), committed_(other.committed_)
+    : fd_(std::exchange(other.fd_, -1)), name_(std::move(other.name_)), owned_(other.owned_), regular_(other.regular_),
+      committed_(other.committed_)
 {
 }
 
 LineOutput& LineOutput::operator=(LineOutput&& other) noexcept
 {
     if (this != &other) {
-        if (owned_ && fd_ >= 0)
-            ::close(fd_);
+        if (owned_ && fd_ >= 0) ::close(fd_);
         fd_ = std::exchange(other.fd_, -1);
         name_ = std::move(other.name_);
         owned_ = other.owned_;
@@ -60,8 +58,7 @@ LineOutput& LineOutput::operator=(LineOutput&& other) noexcept
 
 LineOutput::~LineOutput()
 {
-    if (owned_ && fd_ >= 0)
-        ::close(fd_);
+    if (owned_ && fd_ >= 0) ::close(fd_);
 }
 
 void LineOutput::fail(const char* action, int error) const
@@ -71,8 +68,7 @@ void LineOutput::fail(const char* action, int error) const
 
 void LineOutput::write_line(std::string_view line)
 {
-    if (fd_ < 0)
-        throw OutputError("cannot write to " + name_ + ": already closed");
+    if (fd_ < 0) throw OutputError("cannot write to " + name_ + ": already closed");
     std::size_t done = 0;
     // One call writes the whole line; the loop only finishes a write a signal cut short.
     while (done < line.size()) {
@@ -81,8 +77,7 @@ void LineOutput::write_line(std::string_view line)
             done += static_cast<std::size_t>(n);
             continue;
         }
-        if (n < 0 && errno == EINTR)
-            continue;
+        if (n < 0 && errno == EINTR) continue;
         const int error = n < 0 ? errno : ENOSPC;
         const bool cut_back = regular_ && done > 0 && ::ftruncate(fd_, committed_) == 0;
         fail(cut_back ? "write a whole line to" : "write to", error);
@@ -93,10 +88,8 @@ void LineOutput::write_line(std::string_view line)
 void LineOutput::close()
 {
     const int fd = std::exchange(fd_, -1);
-    if (!owned_ || fd < 0)
-        return;
-    if (::close(fd) != 0 && errno != EINTR)
-        fail("close", errno);
+    if (!owned_ || fd < 0) return;
+    if (::close(fd) != 0 && errno != EINTR) fail("close", errno);
 }
 
 }  // namespace gc

@@ -43,8 +43,8 @@ private:
 
     int fd_ = -1;
     std::string name_;
-    bool owned_ = false;    // close the descriptor at the end
-    bool regular_ = false;  // a regular file: can be cut back after a partial line
+    bool owned_ = false;       // close the descriptor at the end
+    bool regular_ = false;     // a regular file: can be cut back after a partial line
     long long committed_ = 0;  // bytes of whole lines written so far
 };
 

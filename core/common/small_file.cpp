@@ -21,10 +21,7 @@ std::string kind_of(mode_t mode)
     return "not a regular file";
 }
 
-std::string limit_text(std::size_t max_bytes)
-{
-    return std::to_string(max_bytes) + " bytes";
-}
+std::string limit_text(std::size_t max_bytes) { return std::to_string(max_bytes) + " bytes"; }
 
 // Closes the descriptor on every way out.
 struct Descriptor {
@@ -38,14 +35,11 @@ std::string read_small_file(const std::string& path, std::size_t max_bytes)
 {
     // O_NONBLOCK: opening a FIFO without a writer would otherwise wait for one forever.
     const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
-    if (fd < 0)
-        throw SmallFileError(std::string("cannot be opened for reading: ") + std::strerror(errno));
+    if (fd < 0) throw SmallFileError(std::string("cannot be opened for reading: ") + std::strerror(errno));
     const Descriptor guard{fd};
     struct stat st {};
-    if (::fstat(fd, &st) != 0)
-        throw SmallFileError(std::string("cannot be examined: ") + std::strerror(errno));
-    if (!S_ISREG(st.st_mode))
-        throw SmallFileError("is " + kind_of(st.st_mode) + ", not a regular file");
+    if (::fstat(fd, &st) != 0) throw SmallFileError(std::string("cannot be examined: ") + std::strerror(errno));
+    if (!S_ISREG(st.st_mode)) throw SmallFileError("is " + kind_of(st.st_mode) + ", not a regular file");
     if (static_cast<unsigned long long>(st.st_size) > max_bytes)
         throw SmallFileError("is " + std::to_string(st.st_size) + " bytes, more than the limit of " +
                              limit_text(max_bytes));
@@ -53,11 +47,9 @@ std::string read_small_file(const std::string& path, std::size_t max_bytes)
     std::size_t size = 0;
     while (size < content.size()) {
         const ssize_t n = ::read(fd, content.data() + size, content.size() - size);
-        if (n == 0)
-            break;
+        if (n == 0) break;
         if (n < 0) {
-            if (errno == EINTR)
-                continue;
+            if (errno == EINTR) continue;
             throw SmallFileError(std::string("read error: ") + std::strerror(errno));
         }
         size += static_cast<std::size_t>(n);

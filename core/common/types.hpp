@@ -48,17 +48,17 @@ std::string_view to_string(Gesture g);
 // What one eye's tracker reports for one frame; the JSON "left"/"right" objects.
 struct EyeEstimate {
     TrackState state = TrackState::Acquiring;
-    HandState mean;                     // weighted mean of the particles
-    HandState best;                     // the highest-weight hypothesis
-    double confidence = 0.0;            // best likelihood / P_init, clamped to [0, 1]
-    cv::Rect bbox;                      // of the estimated contour, image pixels
-    std::vector<cv::Point2f> contour;   // closed polygon of the estimated contour
-    cv::Point2f fingertip;              // index fingertip, image pixels
-    cv::Point2f palm;                   // palm centre, image pixels
-    double pointing_deg = 0.0;          // palm -> fingertip, 0 = +x, counter-clockwise, y up
+    HandState mean;                    // weighted mean of the particles
+    HandState best;                    // the highest-weight hypothesis
+    double confidence = 0.0;           // best likelihood / P_init, clamped to [0, 1]
+    cv::Rect bbox;                     // of the estimated contour, image pixels
+    std::vector<cv::Point2f> contour;  // closed polygon of the estimated contour
+    cv::Point2f fingertip;             // index fingertip, image pixels
+    cv::Point2f palm;                  // palm centre, image pixels
+    double pointing_deg = 0.0;         // palm -> fingertip, 0 = +x, counter-clockwise, y up
     Gesture gesture = Gesture::Unknown;
-    std::vector<cv::Point2f> landmarks; // the 21 key points, or none (motion-only detector)
-    bool models_ran = false;            // the learned models looked at this frame
+    std::vector<cv::Point2f> landmarks;  // the 21 key points, or none (motion-only detector)
+    bool models_ran = false;             // the learned models looked at this frame
     bool valid() const { return state == TrackState::Tracking; }
     // Whether this estimate may say where the hand points: a tracked hand whose gesture is
     // pointing, or unknown (the motion-only detector tracks a pointing hand by design).

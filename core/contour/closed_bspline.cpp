@@ -12,7 +12,8 @@ namespace {
 
 // Uniform cubic B-spline basis on one span, t in [0, 1), weights of P[i-1], P[i], P[i+1],
 // P[i+2].
-void basis(double t, double w[4]) {
+void basis(double t, double w[4])
+{
     const double t2 = t * t, t3 = t2 * t;
     w[0] = (1.0 - 3.0 * t + 3.0 * t2 - t3) / 6.0;
     w[1] = (4.0 - 6.0 * t2 + 3.0 * t3) / 6.0;
@@ -20,7 +21,8 @@ void basis(double t, double w[4]) {
     w[3] = t3 / 6.0;
 }
 
-void basis_derivative(double t, double w[4]) {
+void basis_derivative(double t, double w[4])
+{
     const double t2 = t * t;
     w[0] = (-3.0 + 6.0 * t - 3.0 * t2) / 6.0;
     w[1] = (-12.0 * t + 9.0 * t2) / 6.0;
@@ -30,16 +32,14 @@ void basis_derivative(double t, double w[4]) {
 
 }  // namespace
 
-ClosedBSpline ClosedBSpline::interpolate(std::span<const cv::Point2d> through) {
+ClosedBSpline ClosedBSpline::interpolate(std::span<const cv::Point2d> through)
+{
     const int n = static_cast<int>(through.size());
-    if (n < 4)
-        throw std::invalid_argument("ClosedBSpline: need at least 4 points, got " +
-                                    std::to_string(n));
+    if (n < 4) throw std::invalid_argument("ClosedBSpline: need at least 4 points, got " + std::to_string(n));
     for (int i = 0; i < n; ++i) {
         const auto& p = through[i];
         if (!std::isfinite(p.x) || !std::isfinite(p.y))
-            throw std::invalid_argument("ClosedBSpline: point " + std::to_string(i) +
-                                        " is not finite");
+            throw std::invalid_argument("ClosedBSpline: point " + std::to_string(i) + " is not finite");
         const auto& q = through[(i + 1) % n];
         if (std::hypot(p.x - q.x, p.y - q.y) < 1e-9)
             throw std::invalid_argument("ClosedBSpline: points " + std::to_string(i) + " and " +
@@ -67,15 +67,15 @@ ClosedBSpline ClosedBSpline::interpolate(std::span<const cv::Point2d> through) {
         const auto& v = through[(i + 1) % n];
         area2 += u.x * v.y - v.x * u.y;
     }
-    if (std::abs(area2) < 1e-9)
-        throw std::invalid_argument("ClosedBSpline: the points enclose no area");
+    if (std::abs(area2) < 1e-9) throw std::invalid_argument("ClosedBSpline: the points enclose no area");
     s.orientation_ = area2 > 0 ? 1.0 : -1.0;
     return s;
 }
 
 // Sums the four control points of the span holding u (taken modulo the closed curve's
 // length) with the weights `weights` gives for the position within the span.
-cv::Point2d ClosedBSpline::blend(double u, void (*weights)(double, double*)) const {
+cv::Point2d ClosedBSpline::blend(double u, void (*weights)(double, double*)) const
+{
     const int n = size();
     double f = std::fmod(u, double(n));
     if (f < 0) f += n;
@@ -92,7 +92,8 @@ cv::Point2d ClosedBSpline::point(double u) const { return blend(u, basis); }
 
 cv::Point2d ClosedBSpline::derivative(double u) const { return blend(u, basis_derivative); }
 
-cv::Point2d ClosedBSpline::outward_normal(double u) const {
+cv::Point2d ClosedBSpline::outward_normal(double u) const
+{
     const cv::Point2d d = derivative(u);
     const double len = std::hypot(d.x, d.y);
     if (len < 1e-12) return {0.0, 0.0};

@@ -22,7 +22,8 @@ double norm(const cv::Point2d& p) { return std::hypot(p.x, p.y); }
 
 // Circular Gaussian smoothing of a pixel chain: removes the staircase of the raster outline
 // before points are taken from it.
-std::vector<cv::Point2d> smooth_ring(const std::vector<cv::Point>& ring, double sigma) {
+std::vector<cv::Point2d> smooth_ring(const std::vector<cv::Point>& ring, double sigma)
+{
     const int n = static_cast<int>(ring.size());
     const int half = std::max(1, static_cast<int>(std::ceil(2.5 * sigma)));
     std::vector<double> kernel(2 * half + 1);
@@ -42,11 +43,11 @@ std::vector<cv::Point2d> smooth_ring(const std::vector<cv::Point>& ring, double 
 
 // Distance to the outline of each pixel inside it (holes filled), over `box` (the
 // outline's bounding box) with a one-pixel margin: pixel (x, y) is at (x - box.x + 1, y - box.y + 1).
-cv::Mat1f inside_distance(const std::vector<cv::Point>& outline, const cv::Rect& box) {
+cv::Mat1f inside_distance(const std::vector<cv::Point>& outline, const cv::Rect& box)
+{
     cv::Mat1b filled(box.height + 2, box.width + 2, uchar(0));
     std::vector<std::vector<cv::Point>> one{outline};
-    cv::drawContours(filled, one, 0, 255, cv::FILLED, cv::LINE_8, cv::noArray(), 0,
-                     cv::Point(1 - box.x, 1 - box.y));
+    cv::drawContours(filled, one, 0, 255, cv::FILLED, cv::LINE_8, cv::noArray(), 0, cv::Point(1 - box.x, 1 - box.y));
     cv::Mat1f dist;
     cv::distanceTransform(filled, dist, cv::DIST_L2, cv::DIST_MASK_5);
     return dist;
@@ -55,7 +56,8 @@ cv::Mat1f inside_distance(const std::vector<cv::Point>& outline, const cv::Rect&
 // Whether a pixel of the shape (`mask`) within kTipMotionReach of `p` changed recently
 // (`motion`). Changes outside the shape do not count: there a moving sleeve or arm may
 // pass the end of a static thing merged with the hand.
-bool moved_near(const cv::Mat& mask, const cv::Mat1b& motion, const cv::Point& p) {
+bool moved_near(const cv::Mat& mask, const cv::Mat1b& motion, const cv::Point& p)
+{
     const cv::Rect around(p.x - kTipMotionReach, p.y - kTipMotionReach, 2 * kTipMotionReach + 1,
                           2 * kTipMotionReach + 1);
     const cv::Rect r = around & cv::Rect(0, 0, motion.cols, motion.rows);
@@ -70,23 +72,22 @@ bool moved_near(const cv::Mat& mask, const cv::Mat1b& motion, const cv::Point& p
 
 }  // namespace
 
-HandLandmarks find_hand_landmarks(const cv::Mat& mask, const cv::Mat1b& motion) {
+HandLandmarks find_hand_landmarks(const cv::Mat& mask, const cv::Mat1b& motion)
+{
     if (mask.empty()) throw std::invalid_argument("hand template: empty mask");
     if (!motion.empty() && motion.size() != mask.size())
         throw std::invalid_argument("hand template: motion map size differs from mask size");
     if (mask.type() != CV_8UC1)
-        throw std::invalid_argument("hand template: mask must be CV_8UC1, got " +
-                                    std::to_string(mask.channels()) + " channel(s)");
+        throw std::invalid_argument("hand template: mask must be CV_8UC1, got " + std::to_string(mask.channels()) +
+                                    " channel(s)");
     std::vector<std::vector<cv::Point>> contours;
     cv::findContours(mask, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
     if (contours.empty()) throw std::invalid_argument("hand template: mask has no shape");
-    const auto largest = std::max_element(contours.begin(), contours.end(), [](auto& a, auto& b) {
-        return cv::contourArea(a) < cv::contourArea(b);
-    });
+    const auto largest = std::max_element(contours.begin(), contours.end(),
+                                          [](auto& a, auto& b) { return cv::contourArea(a) < cv::contourArea(b); });
     const double area = cv::contourArea(*largest);
     if (area < kMinHandArea)
-        throw std::invalid_argument("hand template: shape of " + std::to_string(int(area)) +
-                                    " px is too small (need " +
+        throw std::invalid_argument("hand template: shape of " + std::to_string(int(area)) + " px is too small (need " +
                                     std::to_string(int(kMinHandArea)) + ")");
     HandLandmarks lm;
     lm.outline = std::move(*largest);
@@ -112,16 +113,18 @@ HandLandmarks find_hand_landmarks(const cv::Mat& mask, const cv::Mat1b& motion) 
     std::vector<int> moved_before;  // moved_before[i]: moved points among outline[0, i)
     if (!motion.empty()) {
         moved_before.resize(n + 1, 0);
-        for (int i = 0; i < n; ++i)
-            moved_before[i + 1] = moved_before[i] + moved_near(mask, motion, lm.outline[i]);
+        for (int i = 0; i < n; ++i) moved_before[i + 1] = moved_before[i] + moved_near(mask, motion, lm.outline[i]);
     }
     const int half = std::clamp(static_cast<int>(lm.palm_radius), 1, std::max(1, (n - 1) / 2));
     auto mostly_moved = [&](int i) {  // over outline[i - half, i + half], circularly
         const int lo = i - half, hi = i + half + 1;
         int moved = 0;
-        if (lo < 0) moved = moved_before[hi] + moved_before[n] - moved_before[n + lo];
-        else if (hi > n) moved = moved_before[n] - moved_before[lo] + moved_before[hi - n];
-        else moved = moved_before[hi] - moved_before[lo];
+        if (lo < 0)
+            moved = moved_before[hi] + moved_before[n] - moved_before[n + lo];
+        else if (hi > n)
+            moved = moved_before[n] - moved_before[lo] + moved_before[hi - n];
+        else
+            moved = moved_before[hi] - moved_before[lo];
         return 2 * moved > 2 * half + 1;
     };
     double best = -1.0, best_moving = -1.0;
@@ -148,7 +151,8 @@ namespace {
 
 // Points along the smoothed outline by arc length, the step shrinking on the finger:
 // there the curve must be faithful, and more normals there weight the orientation.
-std::vector<cv::Point2d> outline_points(const HandLandmarks& lm, double reach, const TemplateOptions& options) {
+std::vector<cv::Point2d> outline_points(const HandLandmarks& lm, double reach, const TemplateOptions& options)
+{
     const std::vector<cv::Point2d> ring = smooth_ring(lm.outline, 1.2);
     const int n = static_cast<int>(ring.size());
     double perimeter = 0.0;
@@ -172,17 +176,16 @@ std::vector<cv::Point2d> outline_points(const HandLandmarks& lm, double reach, c
         travelled += seg;
     }
     // The last point must not nearly coincide with the first one on the ring.
-    while (through.size() > 4 && norm(through.back() - through.front()) < 0.5 * finger_step)
-        through.pop_back();
-    if (through.size() < 8)
-        throw std::invalid_argument("hand template: outline too short to model");
+    while (through.size() > 4 && norm(through.back() - through.front()) < 0.5 * finger_step) through.pop_back();
+    if (through.size() < 8) throw std::invalid_argument("hand template: outline too short to model");
     return through;
 }
 
 // Sub-pixel snapping to the skin boundary of the image, so the template sits where the
 // measurement will look for edges (the raster outline is half a pixel inside).
 void snap_to_skin_edge(std::vector<cv::Point2d>& through, const cv::Mat1b& membership, const cv::Mat& bgr,
-                       double snap_range) {
+                       double snap_range)
+{
     const ClosedBSpline rough = ClosedBSpline::interpolate(through);
     for (std::size_t i = 0; i < through.size(); ++i) {
         const cv::Point2d nrm = rough.outward_normal(double(i));
@@ -191,15 +194,18 @@ void snap_to_skin_edge(std::vector<cv::Point2d>& through, const cv::Mat1b& membe
             through[i] += colour_edge_offset(bgr, through[i], nrm, off) * nrm;
     }
     for (std::size_t i = 0; i + 1 < through.size();) {  // snapping may merge neighbours
-        if (norm(through[i + 1] - through[i]) < 0.3) through.erase(through.begin() + i + 1);
-        else ++i;
+        if (norm(through[i + 1] - through[i]) < 0.3)
+            through.erase(through.begin() + i + 1);
+        else
+            ++i;
     }
 }
 
 // `count` points of the template's spline evenly in its parameter, with their outward
 // normals and weights (the finger's weighted by `finger_weight`, all summing to 1).
 void sample_spline(const HandTemplate& t, int count, double finger_weight, std::vector<cv::Point2f>& pts,
-                   std::vector<cv::Point2f>& nrms, std::vector<float>& wts) {
+                   std::vector<cv::Point2f>& nrms, std::vector<float>& wts)
+{
     const int knots = t.spline.size();
     pts.resize(count);
     nrms.resize(count);
@@ -218,12 +224,11 @@ void sample_spline(const HandTemplate& t, int count, double finger_weight, std::
 
 }  // namespace
 
-HandTemplate HandTemplate::from_mask(const cv::Mat& mask, const cv::Mat1b& membership,
-                                     const TemplateOptions& options, const cv::Mat& bgr,
-                                     const cv::Mat1b& motion) {
-    if (options.measurement_normals < 8 || options.outline_points < 16 ||
-        options.palm_points < 8 || !(options.finger_density >= 1.0) ||
-        !(options.finger_weight > 0.0) || !(options.snap_range >= 0.0))
+HandTemplate HandTemplate::from_mask(const cv::Mat& mask, const cv::Mat1b& membership, const TemplateOptions& options,
+                                     const cv::Mat& bgr, const cv::Mat1b& motion)
+{
+    if (options.measurement_normals < 8 || options.outline_points < 16 || options.palm_points < 8 ||
+        !(options.finger_density >= 1.0) || !(options.finger_weight > 0.0) || !(options.snap_range >= 0.0))
         throw std::invalid_argument("hand template: invalid options");
     if (!membership.empty() && membership.size() != mask.size())
         throw std::invalid_argument("hand template: membership map size differs from mask size");
@@ -247,7 +252,8 @@ HandTemplate HandTemplate::from_mask(const cv::Mat& mask, const cv::Mat1b& membe
     return t;
 }
 
-HandProportions hand_proportions(const cv::Mat& mask, const cv::Mat1b& motion) {
+HandProportions hand_proportions(const cv::Mat& mask, const cv::Mat1b& motion)
+{
     HandProportions out;
     HandLandmarks lm;
     try {
@@ -261,8 +267,7 @@ HandProportions hand_proportions(const cv::Mat& mask, const cv::Mat1b& motion) {
     for (int k = 0; k <= 8; ++k) {
         const cv::Point2d p = lm.palm + (0.55 + 0.05 * k) * (lm.fingertip - lm.palm);
         const int x = cvRound(p.x) - box.x + 1, y = cvRound(p.y) - box.y + 1;
-        if (x >= 0 && y >= 0 && x < dist.cols && y < dist.rows)
-            widest = std::max(widest, double(dist(y, x)));
+        if (x >= 0 && y >= 0 && x < dist.cols && y < dist.rows) widest = std::max(widest, double(dist(y, x)));
     }
     const double r = std::max(1.0, lm.palm_radius);
     out.finger_width = widest / r;

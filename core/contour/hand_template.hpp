@@ -28,18 +28,19 @@ inline constexpr double kFingerZone = 0.6;
 struct HandTemplate {
     // All geometry relative to the origin (the palm centre), in pixels at scale 1.
     ClosedBSpline spline;
-    std::vector<cv::Point2f> outline;   // closed polygon, dense
-    std::vector<cv::Point2f> points;    // measurement points on the curve
-    std::vector<cv::Point2f> normals;   // their unit outward normals
-    std::vector<float> weights;         // their measurement weights, summing to 1
-    std::vector<float> outline_weights; // finger-weighting of the outline points, sum 1
+    std::vector<cv::Point2f> outline;    // closed polygon, dense
+    std::vector<cv::Point2f> points;     // measurement points on the curve
+    std::vector<cv::Point2f> normals;    // their unit outward normals
+    std::vector<float> weights;          // their measurement weights, summing to 1
+    std::vector<float> outline_weights;  // finger-weighting of the outline points, sum 1
     std::vector<cv::Point2f> outline_normals;
-    cv::Point2f fingertip;              // index fingertip
-    double palm_radius = 0.0;           // largest inscribed circle of the palm
-    cv::Point2d origin_px;              // where the origin was in the capture image
+    cv::Point2f fingertip;     // index fingertip
+    double palm_radius = 0.0;  // largest inscribed circle of the palm
+    cv::Point2d origin_px;     // where the origin was in the capture image
 
     // Whether a template point (relative to the origin) lies on the index finger.
-    bool on_finger(const cv::Point2f& u) const {
+    bool on_finger(const cv::Point2f& u) const
+    {
         const cv::Point2f d = u - fingertip;
         return d.dot(d) < kFingerZone * kFingerZone * fingertip.dot(fingertip);
     }
@@ -83,9 +84,7 @@ struct HandProportions {
     double reach = 0.0;
     bool farthest_moved = true;
     bool valid = false;  // false: no landmarks could be found
-    bool pointing() const {
-        return valid && farthest_moved && finger_width <= 0.33 && reach >= 1.8 && reach <= 3.0;
-    }
+    bool pointing() const { return valid && farthest_moved && finger_width <= 0.33 && reach >= 1.8 && reach <= 3.0; }
 };
 HandProportions hand_proportions(const cv::Mat& mask, const cv::Mat1b& motion = {});
 

@@ -4,12 +4,14 @@
 
 namespace gc {
 
-cv::Mat make_square_blob(int side) {
+cv::Mat make_square_blob(int side)
+{
     const int shape[] = {1, 3, side, side};
     return cv::Mat(4, shape, CV_32F);
 }
 
-void fill_rgb_blob(const cv::Mat3b& bgr, double scale, double shift, cv::Mat3f& scratch, cv::Mat& blob) {
+void fill_rgb_blob(const cv::Mat3b& bgr, double scale, double shift, cv::Mat3f& scratch, cv::Mat& blob)
+{
     const int side = bgr.rows;
     if (bgr.cols != side || blob.dims != 4 || blob.size[2] != side || blob.size[3] != side)
         throw std::logic_error("fill_rgb_blob: the image and the blob differ in size");

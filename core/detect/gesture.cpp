@@ -13,7 +13,8 @@ constexpr float kExtendedReach = 1.1f;
 
 }  // namespace
 
-std::array<bool, 4> extended_fingers(const HandKeyPoints& hand) {
+std::array<bool, 4> extended_fingers(const HandKeyPoints& hand)
+{
     const HandPoint joints[4][2] = {{HandPoint::IndexPip, HandPoint::IndexTip},
                                     {HandPoint::MiddlePip, HandPoint::MiddleTip},
                                     {HandPoint::RingPip, HandPoint::RingTip},
@@ -28,7 +29,8 @@ std::array<bool, 4> extended_fingers(const HandKeyPoints& hand) {
     return extended;
 }
 
-Gesture classify_gesture(const HandKeyPoints& hand) {
+Gesture classify_gesture(const HandKeyPoints& hand)
+{
     const std::array<bool, 4> e = extended_fingers(hand);
     const int count = int(std::count(e.begin(), e.end(), true));
     if (count == 0) return Gesture::Fist;

@@ -18,9 +18,7 @@ FoundHand found(const HandKeyPoints& h) { return FoundHand{h.points, h.presence,
 
 }  // namespace
 
-cv::Point2f palm_centre(const std::array<cv::Point2f, 21>& p) {
-    return (p[0] + p[5] + p[9] + p[13] + p[17]) * 0.2f;
-}
+cv::Point2f palm_centre(const std::array<cv::Point2f, 21>& p) { return (p[0] + p[5] + p[9] + p[13] + p[17]) * 0.2f; }
 
 struct HandFinder::Impl {
     HandFinderParams params;
@@ -30,11 +28,13 @@ struct HandFinder::Impl {
     int landmark_calls = 0;
 
     explicit Impl(const HandFinderParams& p)
-        : params(p),
-          palms(find_model(kPalmModelFile, p.model_dir)),
-          landmarks(find_model(kLandmarkModelFile, p.model_dir)) {}
+        : params(p), palms(find_model(kPalmModelFile, p.model_dir)),
+          landmarks(find_model(kLandmarkModelFile, p.model_dir))
+    {
+    }
 
-    std::optional<FoundHand> confirmed(const cv::Mat& bgr, const HandCrop& crop) {
+    std::optional<FoundHand> confirmed(const cv::Mat& bgr, const HandCrop& crop)
+    {
         ++landmark_calls;
         const HandKeyPoints hand = landmarks.run(bgr, crop);
         if (hand.presence < params.min_presence) return std::nullopt;
@@ -47,7 +47,8 @@ HandFinder::~HandFinder() = default;
 HandFinder::HandFinder(HandFinder&&) noexcept = default;
 HandFinder& HandFinder::operator=(HandFinder&&) noexcept = default;
 
-std::optional<FoundHand> HandFinder::find(const cv::Mat& bgr) {
+std::optional<FoundHand> HandFinder::find(const cv::Mat& bgr)
+{
     ++impl_->palm_calls;
     const std::vector<PalmDetection> palms = impl_->palms.detect(bgr, impl_->params.min_palm_score);
     for (std::size_t i = 0; i < std::min(palms.size(), kPalmsTried); ++i)
@@ -55,7 +56,8 @@ std::optional<FoundHand> HandFinder::find(const cv::Mat& bgr) {
     return std::nullopt;
 }
 
-std::optional<FoundHand> HandFinder::follow(const cv::Mat& bgr, const std::array<cv::Point2f, 21>& around) {
+std::optional<FoundHand> HandFinder::follow(const cv::Mat& bgr, const std::array<cv::Point2f, 21>& around)
+{
     HandKeyPoints known;
     known.points = around;
     return impl_->confirmed(bgr, crop_from_landmarks(known));
@@ -63,7 +65,8 @@ std::optional<FoundHand> HandFinder::follow(const cv::Mat& bgr, const std::array
 
 // The crop a pointing hand fills: centred a little towards the finger, 2.5 palm-to-tip
 // lengths wide, turned so that the finger points up.
-std::optional<FoundHand> HandFinder::confirm(const cv::Mat& bgr, cv::Point2f palm, cv::Point2f fingertip) {
+std::optional<FoundHand> HandFinder::confirm(const cv::Mat& bgr, cv::Point2f palm, cv::Point2f fingertip)
+{
     const cv::Point2f reach = fingertip - palm;
     const float length = std::hypot(reach.x, reach.y);
     if (!(length > 4.0f)) return std::nullopt;

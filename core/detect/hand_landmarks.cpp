@@ -30,34 +30,37 @@ constexpr CropRule kFromLandmarkBox{2.0f, 0.1f};
 // wrist, the point this model places least steadily (a crop fitted to the palm alone
 // shrinks from frame to frame); the fingertips are left out so that a finger that curls
 // or stretches does not resize the crop.
-constexpr HandPoint kCropPoints[] = {
-    HandPoint::Wrist,    HandPoint::ThumbCmc,  HandPoint::ThumbMcp,  HandPoint::ThumbIp,
-    HandPoint::IndexMcp, HandPoint::IndexPip,  HandPoint::MiddleMcp, HandPoint::MiddlePip,
-    HandPoint::RingMcp,  HandPoint::RingPip,   HandPoint::PinkyMcp,  HandPoint::PinkyPip};
+constexpr HandPoint kCropPoints[] = {HandPoint::Wrist,     HandPoint::ThumbCmc,  HandPoint::ThumbMcp,
+                                     HandPoint::ThumbIp,   HandPoint::IndexMcp,  HandPoint::IndexPip,
+                                     HandPoint::MiddleMcp, HandPoint::MiddlePip, HandPoint::RingMcp,
+                                     HandPoint::RingPip,   HandPoint::PinkyMcp,  HandPoint::PinkyPip};
 
 // The rotation that turns the line from `wrist` to `middle_mcp` upright (see HandCrop).
-float upright_rotation(cv::Point2f wrist, cv::Point2f middle_mcp) {
+float upright_rotation(cv::Point2f wrist, cv::Point2f middle_mcp)
+{
     const double angle = std::numbers::pi / 2 - std::atan2(-(middle_mcp.y - wrist.y), middle_mcp.x - wrist.x);
     return float(std::remainder(angle, 2 * std::numbers::pi));
 }
 
 // The crop for a box of `size` (along the crop's axes) at `centre`, turned by `rotation`.
-HandCrop crop_around_box(cv::Point2f centre, cv::Size2f size, float rotation, CropRule rule) {
+HandCrop crop_around_box(cv::Point2f centre, cv::Size2f size, float rotation, CropRule rule)
+{
     const cv::Point2f up(std::sin(rotation), -std::cos(rotation));
-    return {centre + up * (rule.shift_up * size.height), rule.scale * std::max(size.width, size.height),
-            rotation};
+    return {centre + up * (rule.shift_up * size.height), rule.scale * std::max(size.width, size.height), rotation};
 }
 
 }  // namespace
 
-HandCrop crop_from_palm(const PalmDetection& palm) {
+HandCrop crop_from_palm(const PalmDetection& palm)
+{
     const cv::Point2f centre(palm.box.x + palm.box.width / 2, palm.box.y + palm.box.height / 2);
     return crop_around_box(centre, palm.box.size(),
                            upright_rotation(palm.point(PalmPoint::Wrist), palm.point(PalmPoint::MiddleMcp)),
                            kFromPalmBox);
 }
 
-HandCrop crop_from_landmarks(const HandKeyPoints& hand) {
+HandCrop crop_from_landmarks(const HandKeyPoints& hand)
+{
     const float rotation = upright_rotation(hand.point(HandPoint::Wrist), hand.point(HandPoint::MiddleMcp));
     // The points' box in the crop's axes (u right, v down), then its centre back in the frame.
     const float c = std::cos(rotation), s = std::sin(rotation);
@@ -73,36 +76,37 @@ HandCrop crop_from_landmarks(const HandKeyPoints& hand) {
     return crop_around_box(centre, cv::Size2f(u_max - u_min, v_max - v_min), rotation, kFromLandmarkBox);
 }
 
-cv::Matx23f crop_to_frame(const HandCrop& crop, int side_px) {
+cv::Matx23f crop_to_frame(const HandCrop& crop, int side_px)
+{
     const float k = crop.side / float(side_px);
     const float c = std::cos(crop.rotation_rad) * k, s = std::sin(crop.rotation_rad) * k;
     const float half = side_px / 2.0f;
-    return {c, -s, crop.centre.x - (c - s) * half,
-            s, c, crop.centre.y - (s + c) * half};
+    return {c, -s, crop.centre.x - (c - s) * half, s, c, crop.centre.y - (s + c) * half};
 }
 
 LandmarkModel::LandmarkModel(const std::filesystem::path& model_path)
-    : net_(load_onnx_model(model_path, {"Identity", "Identity_1", "Identity_2"})),
-      output_names_{"Identity", "Identity_1", "Identity_2"},
-      crop_(kInputSide, kInputSide),
-      scaled_(kInputSide, kInputSide),
-      blob_(make_square_blob(kInputSide)) {}
+    : net_(load_onnx_model(model_path, {"Identity", "Identity_1", "Identity_2"})), output_names_{"Identity",
+                                                                                                 "Identity_1",
+                                                                                                 "Identity_2"},
+      crop_(kInputSide, kInputSide), scaled_(kInputSide, kInputSide), blob_(make_square_blob(kInputSide))
+{
+}
 
-HandKeyPoints LandmarkModel::run(const cv::Mat& bgr, const HandCrop& crop) {
+HandKeyPoints LandmarkModel::run(const cv::Mat& bgr, const HandCrop& crop)
+{
     if (bgr.empty() || bgr.type() != CV_8UC3)
         throw std::invalid_argument("LandmarkModel: expected a non-empty CV_8UC3 (BGR) frame");
-    const bool finite = std::isfinite(crop.centre.x) && std::isfinite(crop.centre.y) &&
-                        std::isfinite(crop.side) && std::isfinite(crop.rotation_rad);
-    if (!finite || !(crop.side > 0.0f))
-        throw std::invalid_argument("LandmarkModel: empty or non-finite crop");
+    const bool finite = std::isfinite(crop.centre.x) && std::isfinite(crop.centre.y) && std::isfinite(crop.side) &&
+                        std::isfinite(crop.rotation_rad);
+    if (!finite || !(crop.side > 0.0f)) throw std::invalid_argument("LandmarkModel: empty or non-finite crop");
     const cv::Matx23f to_frame = crop_to_frame(crop, kInputSide);
     // warpAffine maps pixel indices; a pixel's centre lies at index + 0.5 in the continuous
     // coordinates of crop_to_frame, in the crop as in the frame.
     cv::Matx23f sample = to_frame;
     sample(0, 2) += 0.5f * (to_frame(0, 0) + to_frame(0, 1)) - 0.5f;
     sample(1, 2) += 0.5f * (to_frame(1, 0) + to_frame(1, 1)) - 0.5f;
-    cv::warpAffine(bgr, crop_, sample, crop_.size(), cv::INTER_LINEAR | cv::WARP_INVERSE_MAP,
-                   cv::BORDER_CONSTANT, cv::Scalar::all(0));
+    cv::warpAffine(bgr, crop_, sample, crop_.size(), cv::INTER_LINEAR | cv::WARP_INVERSE_MAP, cv::BORDER_CONSTANT,
+                   cv::Scalar::all(0));
     fill_rgb_blob(crop_, 1.0 / 255.0, 0.0, scaled_, blob_);
     net_.setInput(blob_);
     net_.forward(outputs_, output_names_);
@@ -110,8 +114,7 @@ HandKeyPoints LandmarkModel::run(const cv::Mat& bgr, const HandCrop& crop) {
         throw std::runtime_error("LandmarkModel: the network's outputs are not 63, 1 and 1 values");
     HandKeyPoints hand;
     const float* xyz = outputs_[0].ptr<float>();
-    for (int i = 0; i < kHandPoints; ++i)
-        hand.points[i] = to_frame * cv::Vec3f(xyz[3 * i], xyz[3 * i + 1], 1.0f);
+    for (int i = 0; i < kHandPoints; ++i) hand.points[i] = to_frame * cv::Vec3f(xyz[3 * i], xyz[3 * i + 1], 1.0f);
     hand.presence = outputs_[1].ptr<float>()[0];
     hand.handedness = outputs_[2].ptr<float>()[0];
     return hand;

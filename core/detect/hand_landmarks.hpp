@@ -19,18 +19,33 @@ namespace gc {
 // (CMC/MCP) to the tip, thumb first.
 enum class HandPoint {
     Wrist = 0,
-    ThumbCmc, ThumbMcp, ThumbIp, ThumbTip,
-    IndexMcp, IndexPip, IndexDip, IndexTip,
-    MiddleMcp, MiddlePip, MiddleDip, MiddleTip,
-    RingMcp, RingPip, RingDip, RingTip,
-    PinkyMcp, PinkyPip, PinkyDip, PinkyTip,
+    ThumbCmc,
+    ThumbMcp,
+    ThumbIp,
+    ThumbTip,
+    IndexMcp,
+    IndexPip,
+    IndexDip,
+    IndexTip,
+    MiddleMcp,
+    MiddlePip,
+    MiddleDip,
+    MiddleTip,
+    RingMcp,
+    RingPip,
+    RingDip,
+    RingTip,
+    PinkyMcp,
+    PinkyPip,
+    PinkyDip,
+    PinkyTip,
 };
 inline constexpr int kHandPoints = 21;
 
 struct HandKeyPoints {
     std::array<cv::Point2f, kHandPoints> points;  // frame pixels, HandPoint order
-    float presence = 0.0f;    // probability that the crop holds a hand, 0..1
-    float handedness = 0.0f;  // the model's left/right score, 0..1
+    float presence = 0.0f;                        // probability that the crop holds a hand, 0..1
+    float handedness = 0.0f;                      // the model's left/right score, 0..1
     cv::Point2f point(HandPoint p) const { return points[static_cast<int>(p)]; }
 };
 

@@ -10,14 +10,15 @@ namespace gc {
 
 namespace fs = std::filesystem;
 
-std::vector<fs::path> model_search_dirs(const fs::path& explicit_dir) {
+std::vector<fs::path> model_search_dirs(const fs::path& explicit_dir)
+{
     if (!explicit_dir.empty()) return {explicit_dir};
-    if (const char* env = std::getenv(kModelDirEnv); env != nullptr && *env != '\0')
-        return {fs::path(env)};
+    if (const char* env = std::getenv(kModelDirEnv); env != nullptr && *env != '\0') return {fs::path(env)};
     return {fs::path(GC_MODEL_INSTALL_DIR), fs::path(GC_MODEL_SOURCE_DIR)};
 }
 
-fs::path find_model(const std::string& file_name, const fs::path& explicit_dir) {
+fs::path find_model(const std::string& file_name, const fs::path& explicit_dir)
+{
     const std::vector<fs::path> dirs = model_search_dirs(explicit_dir);
     std::string searched;
     for (const fs::path& dir : dirs) {
@@ -29,11 +30,11 @@ fs::path find_model(const std::string& file_name, const fs::path& explicit_dir) 
     throw std::runtime_error("model " + file_name + " not found (looked for " + searched + ")");
 }
 
-cv::dnn::Net load_onnx_model(const fs::path& path, const std::vector<std::string>& expected_outputs) {
+cv::dnn::Net load_onnx_model(const fs::path& path, const std::vector<std::string>& expected_outputs)
+{
     const std::string name = path.string();
     std::error_code ec;
-    if (!fs::is_regular_file(path, ec))
-        throw std::runtime_error("model file " + name + ": no such file");
+    if (!fs::is_regular_file(path, ec)) throw std::runtime_error("model file " + name + ": no such file");
     cv::dnn::Net net;
     try {
         net = cv::dnn::readNetFromONNX(name);

@@ -22,13 +22,11 @@ std::vector<std::filesystem::path> model_search_dirs(const std::filesystem::path
 
 // The path of `file_name` in the first of model_search_dirs that holds it. Throws
 // std::runtime_error naming the file and every folder searched when none does.
-std::filesystem::path find_model(const std::string& file_name,
-                                 const std::filesystem::path& explicit_dir = {});
+std::filesystem::path find_model(const std::string& file_name, const std::filesystem::path& explicit_dir = {});
 
 // Reads an ONNX network and checks that it has the named outputs. Throws
 // std::runtime_error naming `path` and what is wrong: missing, unreadable or not a network
 // OpenCV can load, or a network without one of the outputs.
-cv::dnn::Net load_onnx_model(const std::filesystem::path& path,
-                             const std::vector<std::string>& expected_outputs);
+cv::dnn::Net load_onnx_model(const std::filesystem::path& path, const std::vector<std::string>& expected_outputs);
 
 }  // namespace gc

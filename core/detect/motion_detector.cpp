@@ -38,18 +38,20 @@ constexpr double kStrandOpening = 0.3;
 constexpr double kStrandKeep = 0.75;
 constexpr int kStrandPieces = 3;
 
-void check_frame(const cv::Mat& bgr) {
+void check_frame(const cv::Mat& bgr)
+{
     if (bgr.empty()) throw std::invalid_argument("MotionDetector: empty frame");
     if (bgr.type() != CV_8UC3)
-        throw std::invalid_argument("MotionDetector: expected CV_8UC3 (BGR), got " +
-                                    std::to_string(bgr.channels()) + " channel(s)");
+        throw std::invalid_argument("MotionDetector: expected CV_8UC3 (BGR), got " + std::to_string(bgr.channels()) +
+                                    " channel(s)");
 }
 
 // Normalised colour cannot tell the hand from a static object of its skin tone, and
 // moving pixels include some of such an object (where the arm or hand uncovers it); its
 // brightness mostly differs. Keeps the `pixels` (non-zero) whose brightness R + G + B lies
 // near the mode of theirs, so the hand's band is learnt from the hand.
-void keep_brightness_mode(const cv::Mat& bgr, cv::Mat1b& pixels) {
+void keep_brightness_mode(const cv::Mat& bgr, cv::Mat1b& pixels)
+{
     constexpr int kBinWidth = 8;
     constexpr int kBins = 766 / kBinWidth + 1;
     cv::Mat wide, brightness;  // brightness: R + G + B, 16-bit (it reaches 765)
@@ -69,8 +71,8 @@ void keep_brightness_mode(const cv::Mat& bgr, cv::Mat1b& pixels) {
     const double centre = (mode.y + 0.5) * kBinWidth;
     const double half_width = std::max(kModeBandFraction * centre, 2.0 * kBinWidth);
     cv::Mat1b in_band;
-    cv::inRange(brightness, cv::Scalar(std::ceil(centre - half_width)),
-                cv::Scalar(std::floor(centre + half_width)), in_band);
+    cv::inRange(brightness, cv::Scalar(std::ceil(centre - half_width)), cv::Scalar(std::floor(centre + half_width)),
+                in_band);
     cv::bitwise_and(pixels, in_band, pixels);
 }
 
@@ -78,8 +80,9 @@ void keep_brightness_mode(const cv::Mat& bgr, cv::Mat1b& pixels) {
 // (within a gate around the prior, weighted by it), then a Gaussian fitted to the pixels near the
 // mode (near the mode of their brightness too, when their brightness is spread wider than
 // a hand's shading), refitted once on the pixels it accepts.
-std::optional<SkinModel> learn_skin(const cv::Mat& bgr, const cv::Mat1b& moving,
-                                    const SkinModel& prior, double gate_sigma) {
+std::optional<SkinModel> learn_skin(const cv::Mat& bgr, const cv::Mat1b& moving, const SkinModel& prior,
+                                    double gate_sigma)
+{
     const double gate2 = gate_sigma * gate_sigma;
     cv::Mat1f hist(kHistBins, kHistBins, 0.0f);
     cv::Mat1b candidates(bgr.size(), uchar(0));
@@ -138,7 +141,8 @@ std::optional<SkinModel> learn_skin(const cv::Mat& bgr, const cv::Mat1b& moving,
 }
 
 // The largest 8-connected component of `mask` and its area (0 and an empty mask if none).
-cv::Mat1b largest_component(const cv::Mat1b& mask, int& area) {
+cv::Mat1b largest_component(const cv::Mat1b& mask, int& area)
+{
     cv::Mat1i labels;
     cv::Mat stats, centroids;
     const int n = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
@@ -157,14 +161,14 @@ cv::Mat1b largest_component(const cv::Mat1b& mask, int& area) {
 // the pixels within the element's reach of `where` are read: a dilation of the whole frame
 // by a wide disc costs as much as the rest of a detection, where only the blob's box is
 // looked at.
-cv::Mat1b dilated_within(const cv::Mat1b& mask, const cv::Mat& element, const cv::Rect& where) {
+cv::Mat1b dilated_within(const cv::Mat1b& mask, const cv::Mat& element, const cv::Rect& where)
+{
     const cv::Rect frame(0, 0, mask.cols, mask.rows);
     const cv::Rect inner = where & frame;
     cv::Mat1b out(mask.size(), uchar(0));
     if (inner.area() == 0) return out;
     const int rx = element.cols / 2, ry = element.rows / 2;
-    const cv::Rect wide =
-        cv::Rect(inner.x - rx, inner.y - ry, inner.width + 2 * rx, inner.height + 2 * ry) & frame;
+    const cv::Rect wide = cv::Rect(inner.x - rx, inner.y - ry, inner.width + 2 * rx, inner.height + 2 * ry) & frame;
     cv::Mat1b grown;
     cv::dilate(mask(wide), grown, element);
     grown(inner - wide.tl()).copyTo(out(inner));
@@ -173,7 +177,8 @@ cv::Mat1b dilated_within(const cv::Mat1b& mask, const cv::Mat& element, const cv
 
 // The label (1 to count - 1) holding the most `moving` pixels (a view of labels' size), or
 // 0 when none holds any.
-int most_moving_label(const cv::Mat1i& labels, int count, const cv::Mat1b& moving) {
+int most_moving_label(const cv::Mat1i& labels, int count, const cv::Mat1b& moving)
+{
     std::vector<int> votes(count, 0);
     for (int y = 0; y < labels.rows; ++y) {
         const int* l = labels.ptr<int>(y);
@@ -192,7 +197,8 @@ int most_moving_label(const cv::Mat1i& labels, int count, const cv::Mat1b& movin
 // finger drops them; of what it leaves, the piece holding the most moving pixels is the
 // hand, and dilating it by the same element within the blob gives back the outline the
 // opening rounded (a strand keeps a root as long as the element is wide).
-void drop_thin_strands(cv::Mat1b& blob, int& area, const cv::Mat1b& moving) {
+void drop_thin_strands(cv::Mat1b& blob, int& area, const cv::Mat1b& moving)
+{
     const cv::Rect bound = cv::boundingRect(blob);
     if (bound.area() == 0) return;
     cv::Mat1b padded;
@@ -204,8 +210,7 @@ void drop_thin_strands(cv::Mat1b& blob, int& area, const cv::Mat1b& moving) {
     const int side = int(std::lround(kStrandOpening * palm_radius)) | 1;
     if (side < 3) return;
     const cv::Mat element = cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(side, side));
-    const cv::Rect around = cv::Rect(bound.x - side, bound.y - side, bound.width + 2 * side,
-                                     bound.height + 2 * side) &
+    const cv::Rect around = cv::Rect(bound.x - side, bound.y - side, bound.width + 2 * side, bound.height + 2 * side) &
                             cv::Rect(0, 0, blob.cols, blob.rows);
     cv::Mat1b opened;
     cv::morphologyEx(blob(around), opened, cv::MORPH_OPEN, element);
@@ -225,11 +230,11 @@ void drop_thin_strands(cv::Mat1b& blob, int& area, const cv::Mat1b& moving) {
 
 }  // namespace
 
-std::optional<Detection> segment_hand(const cv::Mat& bgr, const cv::Mat1b& moving,
-                                      const cv::Rect& box, const SkinModel& prior,
-                                      const DetectionParams& params,
+std::optional<Detection> segment_hand(const cv::Mat& bgr, const cv::Mat1b& moving, const cv::Rect& box,
+                                      const SkinModel& prior, const DetectionParams& params,
                                       const cv::Mat1b& recent_motion, bool history_mature,
-                                      const cv::Mat1b& static_scene) {
+                                      const cv::Mat1b& static_scene)
+{
     check_frame(bgr);
     if (moving.size() != bgr.size() || moving.type() != CV_8UC1)
         throw std::invalid_argument("segment_hand: moving-pixel mask must be CV_8UC1 of the frame size");
@@ -254,8 +259,7 @@ std::optional<Detection> segment_hand(const cv::Mat& bgr, const cv::Mat1b& movin
         cv::bitwise_and(seg, static_scene, cleared);
         seg.setTo(0, static_scene);
     }
-    const cv::Mat kernel = cv::getStructuringElement(
-        cv::MORPH_ELLIPSE, cv::Size(params.close_size, params.close_size));
+    const cv::Mat kernel = cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(params.close_size, params.close_size));
     cv::morphologyEx(seg, seg, cv::MORPH_CLOSE, kernel);
     cv::Mat1i labels;
     cv::Mat stats, centroids;
@@ -272,8 +276,8 @@ std::optional<Detection> segment_hand(const cv::Mat& bgr, const cv::Mat1b& movin
     const cv::Mat1b motion = has_history ? recent_motion : cv::Mat1b();
     if (has_history) {
         const int k = 2 * params.history_reach + 1;
-        cv::Mat1b near = dilated_within(
-            recent_motion, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(k, k)), cv::boundingRect(blob));
+        cv::Mat1b near = dilated_within(recent_motion, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(k, k)),
+                                        cv::boundingRect(blob));
         cv::bitwise_and(near, blob, near);
         const int kept = cv::countNonZero(near);
         support = double(kept) / std::max(1, area);
@@ -302,8 +306,7 @@ std::optional<Detection> segment_hand(const cv::Mat& bgr, const cv::Mat1b& movin
         for (const int reach : {params.history_reach * 2 / 3, params.history_reach / 3}) {
             if (reach < 2) break;
             cv::Mat1b near = dilated_within(
-                recent_motion,
-                cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * reach + 1, 2 * reach + 1)),
+                recent_motion, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * reach + 1, 2 * reach + 1)),
                 component_box);
             cv::bitwise_and(near, component, near);
             std::vector<std::vector<cv::Point>> outer;
@@ -331,8 +334,7 @@ std::optional<Detection> segment_hand(const cv::Mat& bgr, const cv::Mat1b& movin
         cv::bitwise_and(near, cleared(around), near);
         if (cv::countNonZero(near) > kStaticCutFraction * area) cut = true;
     }
-    if (area < params.min_hand_area ||
-        area > params.max_hand_fraction * double(bgr.rows) * bgr.cols)
+    if (area < params.min_hand_area || area > params.max_hand_fraction * double(bgr.rows) * bgr.cols)
         return std::nullopt;
     // The history changes with the next frame; the detection keeps the present one.
     Detection d{blob, roi, *skin, double(area), support, cut, motion.clone()};
@@ -344,22 +346,23 @@ std::optional<Detection> segment_hand(const cv::Mat& bgr, const cv::Mat1b& movin
     return d;
 }
 
-CaptureQuality capture_quality(const Detection& d) {
+CaptureQuality capture_quality(const Detection& d)
+{
     if (!hand_proportions(d.mask, d.motion).pointing()) return CaptureQuality::Unsure;
-    return !d.cut && d.motion_support >= kCleanSupport ? CaptureQuality::Clean
-                                                       : CaptureQuality::Pointing;
+    return !d.cut && d.motion_support >= kCleanSupport ? CaptureQuality::Clean : CaptureQuality::Pointing;
 }
 
-MotionDetector::MotionDetector(const DetectionParams& params) : p_(params) {
-    if (p_.diff_threshold < 1 || p_.diff_threshold > 254 || p_.min_changed_pixels < 1 ||
-        p_.box_margin < 0 || p_.close_size < 1 || p_.close_size % 2 == 0 ||
-        p_.min_hand_area < 1 || !(p_.max_hand_fraction > 0.0 && p_.max_hand_fraction <= 1.0) ||
-        !(p_.prior_gate_sigma > 0.0) || p_.history_frames < 1 || p_.history_frames > 250 ||
-        p_.history_reach < 0)
+MotionDetector::MotionDetector(const DetectionParams& params) : p_(params)
+{
+    if (p_.diff_threshold < 1 || p_.diff_threshold > 254 || p_.min_changed_pixels < 1 || p_.box_margin < 0 ||
+        p_.close_size < 1 || p_.close_size % 2 == 0 || p_.min_hand_area < 1 ||
+        !(p_.max_hand_fraction > 0.0 && p_.max_hand_fraction <= 1.0) || !(p_.prior_gate_sigma > 0.0) ||
+        p_.history_frames < 1 || p_.history_frames > 250 || p_.history_reach < 0)
         throw std::invalid_argument("MotionDetector: invalid detection parameters");
 }
 
-int frame_noise_threshold(const cv::Mat1b& difference) {
+int frame_noise_threshold(const cv::Mat1b& difference)
+{
     // Every 4th pixel of every 4th row: a VGA frame gives 19200 samples.
     constexpr int kStride = 4;
     std::array<int, 256> histogram{};
@@ -387,13 +390,15 @@ int frame_noise_threshold(const cv::Mat1b& difference) {
     return threshold_below(threshold_below(256) + 1);
 }
 
-void MotionDetector::reset() {
+void MotionDetector::reset()
+{
     previous_.release();
     history_.release();
 }
 
-std::optional<Detection> MotionDetector::process(const cv::Mat& bgr, const SkinModel& prior,
-                                                 bool segment, const cv::Mat1b& static_scene) {
+std::optional<Detection> MotionDetector::process(const cv::Mat& bgr, const SkinModel& prior, bool segment,
+                                                 const cv::Mat1b& static_scene)
+{
     check_frame(bgr);
     if (!static_scene.empty() && static_scene.size() != bgr.size())
         throw std::invalid_argument("MotionDetector: the static-scene mask must have the frame's size");
@@ -424,8 +429,7 @@ std::optional<Detection> MotionDetector::process(const cv::Mat& bgr, const SkinM
     box.width += 2 * p_.box_margin;
     box.height += 2 * p_.box_margin;
     box &= cv::Rect(0, 0, bgr.cols, bgr.rows);
-    return segment_hand(bgr, changed_, box, prior, p_, history_,
-                        motion_frames_ >= p_.history_frames, static_scene);
+    return segment_hand(bgr, changed_, box, prior, p_, history_, motion_frames_ >= p_.history_frames, static_scene);
 }
 
 }  // namespace gc

@@ -19,14 +19,14 @@ struct DetectionParams {
     // (frame_noise_threshold), so that a noisy sensor does not flag a few percent of the
     // frame, more than the waving hand's own change.
     int diff_threshold = 12;
-    int min_changed_pixels = 40;    // less change than this is not a waving hand
-    int box_margin = 24;            // pixels added around the change box
-    int close_size = 5;             // morphological close kernel (pixels, odd)
-    int min_hand_area = 400;        // pixels
-    double max_hand_fraction = 0.3; // of the frame: a larger blob is not a hand
-    double prior_gate_sigma = 3.0;  // candidate colours must lie this close to the prior
-    int history_frames = 6;         // motion remembered for separating the hand from
-    int history_reach = 15;         // ... static skin-coloured things it touches (pixels)
+    int min_changed_pixels = 40;     // less change than this is not a waving hand
+    int box_margin = 24;             // pixels added around the change box
+    int close_size = 5;              // morphological close kernel (pixels, odd)
+    int min_hand_area = 400;         // pixels
+    double max_hand_fraction = 0.3;  // of the frame: a larger blob is not a hand
+    double prior_gate_sigma = 3.0;   // candidate colours must lie this close to the prior
+    int history_frames = 6;          // motion remembered for separating the hand from
+    int history_reach = 15;          // ... static skin-coloured things it touches (pixels)
 };
 
 struct Detection {
@@ -64,8 +64,7 @@ public:
     // (cheap), and nullopt is returned: for watching the hand between full detections.
     // `static_scene` (CV_8UC1 of the frame's size, or empty): pixels known to show the
     // static scene, which are not the hand whatever their colour; another size throws.
-    std::optional<Detection> process(const cv::Mat& bgr,
-                                     const SkinModel& prior = SkinModel::generic(),
+    std::optional<Detection> process(const cv::Mat& bgr, const SkinModel& prior = SkinModel::generic(),
                                      bool segment = true, const cv::Mat1b& static_scene = {});
 
     void reset();
@@ -77,7 +76,7 @@ public:
 private:
     DetectionParams p_;
     cv::Mat1b previous_, grey_, changed_;
-    cv::Mat1b history_;  // frames since each pixel last changed, counting down to 0
+    cv::Mat1b history_;      // frames since each pixel last changed, counting down to 0
     int motion_frames_ = 0;  // consecutive frames with motion
 };
 
@@ -96,11 +95,9 @@ int frame_noise_threshold(const cv::Mat1b& difference);
 // colour that the hand touches is not part of the hand. Pixels of `static_scene` (frame-
 // sized, or empty) are not skin: a known static background is cut off exactly, and a
 // component it was cut off (more than 1 % of its area within 2 px) is marked `cut`.
-std::optional<Detection> segment_hand(const cv::Mat& bgr, const cv::Mat1b& moving,
-                                      const cv::Rect& box, const SkinModel& prior,
-                                      const DetectionParams& params,
-                                      const cv::Mat1b& recent_motion = {},
-                                      bool history_mature = true,
+std::optional<Detection> segment_hand(const cv::Mat& bgr, const cv::Mat1b& moving, const cv::Rect& box,
+                                      const SkinModel& prior, const DetectionParams& params,
+                                      const cv::Mat1b& recent_motion = {}, bool history_mature = true,
                                       const cv::Mat1b& static_scene = {});
 
 }  // namespace gc

@@ -23,10 +23,13 @@ constexpr float kLogitClamp = 100.0f;
 
 // SSD anchor centres in input units: a 16x16 grid with 2 anchors per cell (stride 8), then
 // an 8x8 grid with 6 per cell (stride 16), cell by cell in row-major order.
-std::vector<cv::Point2f> make_anchors() {
+std::vector<cv::Point2f> make_anchors()
+{
     std::vector<cv::Point2f> anchors;
     anchors.reserve(kAnchorCount);
-    const struct { int grid, per_cell; } layers[] = {{16, 2}, {8, 6}};
+    const struct {
+        int grid, per_cell;
+    } layers[] = {{16, 2}, {8, 6}};
     for (const auto& layer : layers)
         for (int y = 0; y < layer.grid; ++y)
             for (int x = 0; x < layer.grid; ++x)
@@ -35,22 +38,21 @@ std::vector<cv::Point2f> make_anchors() {
     return anchors;
 }
 
-float sigmoid(float logit) {
-    return 1.0f / (1.0f + std::exp(-std::clamp(logit, -kLogitClamp, kLogitClamp)));
-}
+float sigmoid(float logit) { return 1.0f / (1.0f + std::exp(-std::clamp(logit, -kLogitClamp, kLogitClamp))); }
 
 }  // namespace
 
 PalmDetector::PalmDetector(const std::filesystem::path& model_path)
-    : net_(load_onnx_model(model_path, {"regressors", "classificators"})),
-      output_names_{"regressors", "classificators"},
-      anchors_(make_anchors()),
-      letterbox_(kInputSide, kInputSide),
-      scaled_(kInputSide, kInputSide),
-      blob_(make_square_blob(kInputSide)) {}
+    : net_(load_onnx_model(model_path, {"regressors", "classificators"})), output_names_{"regressors",
+                                                                                         "classificators"},
+      anchors_(make_anchors()), letterbox_(kInputSide, kInputSide), scaled_(kInputSide, kInputSide),
+      blob_(make_square_blob(kInputSide))
+{
+}
 
 // Letterboxes the frame into the square input (centred, black bars), RGB in [-1, 1], planar.
-void PalmDetector::prepare_input(const cv::Mat& bgr) {
+void PalmDetector::prepare_input(const cv::Mat& bgr)
+{
     scale_ = float(kInputSide) / float(std::max(bgr.cols, bgr.rows));
     const int w = std::clamp(int(std::lround(bgr.cols * scale_)), 1, kInputSide);
     const int h = std::clamp(int(std::lround(bgr.rows * scale_)), 1, kInputSide);
@@ -63,12 +65,14 @@ void PalmDetector::prepare_input(const cv::Mat& bgr) {
 }
 
 // A regressed offset (input pixels) from anchor `row`'s centre, in frame pixels.
-cv::Point2f PalmDetector::to_frame(int row, float dx, float dy) const {
+cv::Point2f PalmDetector::to_frame(int row, float dx, float dy) const
+{
     return (anchors_[row] * float(kInputSide) + cv::Point2f(dx, dy) - offset_) / scale_;
 }
 
 // Candidate boxes above the threshold, in frame pixels, and the rows they came from.
-void PalmDetector::decode(float min_score) {
+void PalmDetector::decode(float min_score)
+{
     const float* regressors = outputs_[0].ptr<float>();
     const float* logits = outputs_[1].ptr<float>();
     candidate_boxes_.clear();
@@ -85,7 +89,8 @@ void PalmDetector::decode(float min_score) {
     }
 }
 
-std::vector<PalmDetection> PalmDetector::detect(const cv::Mat& bgr, float min_score) {
+std::vector<PalmDetection> PalmDetector::detect(const cv::Mat& bgr, float min_score)
+{
     if (bgr.empty() || bgr.type() != CV_8UC3)
         throw std::invalid_argument("PalmDetector: expected a non-empty CV_8UC3 (BGR) frame");
     prepare_input(bgr);
@@ -104,8 +109,7 @@ std::vector<PalmDetection> PalmDetector::detect(const cv::Mat& bgr, float min_sc
         PalmDetection palm;
         palm.box = cv::Rect2f(candidate_boxes_[k]);
         palm.score = candidate_scores_[k];
-        for (int p = 0; p < kPalmPoints; ++p)
-            palm.points[p] = to_frame(row, r[4 + 2 * p], r[5 + 2 * p]);
+        for (int p = 0; p < kPalmPoints; ++p) palm.points[p] = to_frame(row, r[4 + 2 * p], r[5 + 2 * p]);
         palms.push_back(palm);
     }
     return palms;

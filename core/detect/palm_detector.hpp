@@ -18,9 +18,9 @@ enum class PalmPoint { Wrist = 0, IndexMcp, MiddleMcp, RingMcp, PinkyMcp, ThumbC
 inline constexpr int kPalmPoints = 7;
 
 struct PalmDetection {
-    cv::Rect2f box;                                // frame pixels, the palm without the fingers
-    float score = 0.0f;                            // probability of a palm, 0..1
-    std::array<cv::Point2f, kPalmPoints> points;   // frame pixels, PalmPoint order
+    cv::Rect2f box;                               // frame pixels, the palm without the fingers
+    float score = 0.0f;                           // probability of a palm, 0..1
+    std::array<cv::Point2f, kPalmPoints> points;  // frame pixels, PalmPoint order
     cv::Point2f point(PalmPoint p) const { return points[static_cast<int>(p)]; }
 };
 
@@ -43,7 +43,7 @@ private:
 
     cv::dnn::Net net_;
     std::vector<std::string> output_names_;
-    std::vector<cv::Point2f> anchors_;    // centres, in units of the input side
+    std::vector<cv::Point2f> anchors_;  // centres, in units of the input side
     // Preallocated per-call buffers: the letterboxed input, its float copy, the blob.
     cv::Mat3b letterbox_;
     cv::Mat3f scaled_;

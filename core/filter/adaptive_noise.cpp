@@ -6,10 +6,11 @@
 
 namespace gc {
 
-AdaptiveNoise::AdaptiveNoise(const AdaptiveNoiseParams& params) : p_(params) {
+AdaptiveNoise::AdaptiveNoise(const AdaptiveNoiseParams& params) : p_(params)
+{
     for (int d = 0; d < 4; ++d)
-        if (!(p_.minimum[d] > 0.0 && p_.minimum[d] <= p_.initial[d] &&
-              p_.initial[d] <= p_.maximum[d] && p_.epsilon[d] > 0.0))
+        if (!(p_.minimum[d] > 0.0 && p_.minimum[d] <= p_.initial[d] && p_.initial[d] <= p_.maximum[d] &&
+              p_.epsilon[d] > 0.0))
             throw std::invalid_argument("AdaptiveNoise: need 0 < minimum <= initial <= maximum "
                                         "and epsilon > 0 in every component");
     if (!(p_.k_min > 0.0 && p_.k_min <= 1.0 && p_.k_max >= 1.0 && p_.cover >= 0.0))
@@ -17,18 +18,20 @@ AdaptiveNoise::AdaptiveNoise(const AdaptiveNoiseParams& params) : p_(params) {
     reset();
 }
 
-void AdaptiveNoise::reset() {
+void AdaptiveNoise::reset()
+{
     sigma_ = p_.initial;
     last_ = {};
     have_last_ = false;
 }
 
-void AdaptiveNoise::update(const NoiseVector& displacement) {
+void AdaptiveNoise::update(const NoiseVector& displacement)
+{
     for (int d = 0; d < 4; ++d) {
         const double now = std::abs(displacement[d]);
         if (have_last_) {
-            const double k = std::clamp((now + p_.epsilon[d]) / (std::abs(last_[d]) + p_.epsilon[d]),
-                                        p_.k_min, p_.k_max);
+            const double k =
+                std::clamp((now + p_.epsilon[d]) / (std::abs(last_[d]) + p_.epsilon[d]), p_.k_min, p_.k_max);
             sigma_[d] *= k;
         }
         sigma_[d] = std::clamp(std::max(sigma_[d], p_.cover * now), p_.minimum[d], p_.maximum[d]);

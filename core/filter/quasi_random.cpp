@@ -18,7 +18,8 @@ constexpr double kTailZ = 4.2;
 double normal_cdf(double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); }
 
 // z at p = k / kTableSize for k = 0..kTableSize, by bisection on the exact CDF (built once).
-const std::vector<double>& quantile_table() {
+const std::vector<double>& quantile_table()
+{
     static const std::vector<double> table = [] {
         std::vector<double> t(kTableSize + 1);
         for (int k = 0; k <= kTableSize; ++k) {
@@ -36,7 +37,8 @@ const std::vector<double>& quantile_table() {
 }
 
 // Linear interpolation in `table` (quantile_table()); p is clamped to (0, 1).
-inline double interpolate_quantile(const double* table, double p) {
+inline double interpolate_quantile(const double* table, double p)
+{
     if (!(p > 0.0)) return -kTailZ;  // also catches NaN
     if (p >= 1.0) return kTailZ;
     const double f = p * kTableSize;
@@ -55,7 +57,8 @@ namespace {
 // either unsigned or a std::integral_constant: with the base a constant the divisions
 // compile to multiplications, and this runs for every particle and dimension of a frame.
 template <typename Base>
-double mirrored_digits(std::uint64_t index, Base base) {
+double mirrored_digits(std::uint64_t index, Base base)
+{
     const double inv = 1.0 / static_cast<unsigned>(base);
     double scale = inv, result = 0.0;
     while (index > 0) {
@@ -72,34 +75,46 @@ using ConstantBase = std::integral_constant<unsigned, B>;
 // Calls f(base) with the base as a std::integral_constant when it is one of the sampler's
 // (kPrimes), else as a plain unsigned.
 template <typename F>
-decltype(auto) with_constant_base(unsigned base, F&& f) {
+decltype(auto) with_constant_base(unsigned base, F&& f)
+{
     switch (base) {
-        case 2: return f(ConstantBase<2>{});
-        case 3: return f(ConstantBase<3>{});
-        case 5: return f(ConstantBase<5>{});
-        case 7: return f(ConstantBase<7>{});
-        case 11: return f(ConstantBase<11>{});
-        case 13: return f(ConstantBase<13>{});
-        case 17: return f(ConstantBase<17>{});
-        case 19: return f(ConstantBase<19>{});
-        default: return f(base);
+    case 2:
+        return f(ConstantBase<2>{});
+    case 3:
+        return f(ConstantBase<3>{});
+    case 5:
+        return f(ConstantBase<5>{});
+    case 7:
+        return f(ConstantBase<7>{});
+    case 11:
+        return f(ConstantBase<11>{});
+    case 13:
+        return f(ConstantBase<13>{});
+    case 17:
+        return f(ConstantBase<17>{});
+    case 19:
+        return f(ConstantBase<19>{});
+    default:
+        return f(base);
     }
 }
 
 }  // namespace
 
-double radical_inverse(std::uint64_t index, unsigned base) {
+double radical_inverse(std::uint64_t index, unsigned base)
+{
     return with_constant_base(base, [index](auto b) { return mirrored_digits(index, b); });
 }
 
-QuasiNormalSampler::QuasiNormalSampler(int dims, std::uint64_t seed) : dims_(dims), rng_(seed) {
+QuasiNormalSampler::QuasiNormalSampler(int dims, std::uint64_t seed) : dims_(dims), rng_(seed)
+{
     if (dims < 1 || dims > kMaxDims)
-        throw std::invalid_argument("QuasiNormalSampler: dims must be in [1, " +
-                                    std::to_string(kMaxDims) + "]");
+        throw std::invalid_argument("QuasiNormalSampler: dims must be in [1, " + std::to_string(kMaxDims) + "]");
     quantile_table();  // build outside the first frame
 }
 
-void QuasiNormalSampler::next_frame(std::span<double> out) {
+void QuasiNormalSampler::next_frame(std::span<double> out)
+{
     if (out.size() % static_cast<std::size_t>(dims_) != 0)
         throw std::invalid_argument("QuasiNormalSampler: output size not a multiple of dims");
     std::uniform_real_distribution<double> unit(0.0, 1.0);

@@ -7,7 +7,8 @@
 
 namespace gc {
 
-double normalise_log_weights(std::span<double> log_weights) {
+double normalise_log_weights(std::span<double> log_weights)
+{
     if (log_weights.empty()) throw std::invalid_argument("normalise_log_weights: no weights");
     double top = -std::numeric_limits<double>::infinity();
     for (double l : log_weights) {
@@ -26,12 +27,11 @@ double normalise_log_weights(std::span<double> log_weights) {
     return top + std::log(sum / static_cast<double>(log_weights.size()));
 }
 
-void systematic_resample(std::span<const double> weights, double u0,
-                         std::span<std::uint32_t> ancestors) {
+void systematic_resample(std::span<const double> weights, double u0, std::span<std::uint32_t> ancestors)
+{
     if (weights.empty() || ancestors.empty())
         throw std::invalid_argument("systematic_resample: empty weights or output");
-    if (!(u0 >= 0.0 && u0 < 1.0))
-        throw std::invalid_argument("systematic_resample: offset must be in [0, 1)");
+    if (!(u0 >= 0.0 && u0 < 1.0)) throw std::invalid_argument("systematic_resample: offset must be in [0, 1)");
     const std::size_t n = ancestors.size();
     const std::size_t last = weights.size() - 1;
     const double step = 1.0 / static_cast<double>(n);
@@ -46,7 +46,8 @@ void systematic_resample(std::span<const double> weights, double u0,
     }
 }
 
-double effective_sample_size(std::span<const double> weights) {
+double effective_sample_size(std::span<const double> weights)
+{
     double s2 = 0.0;
     for (double w : weights) s2 += w * w;
     return s2 > 0.0 ? 1.0 / s2 : 0.0;

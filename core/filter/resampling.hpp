@@ -18,8 +18,7 @@ double normalise_log_weights(std::span<double> log_weights);
 // strata (u0 + k) / N of the cumulative weights. `weights` must be normalised; `ancestors`
 // receives out.size() indices into weights, in non-decreasing order. Throws
 // std::invalid_argument on empty spans or u0 outside [0, 1).
-void systematic_resample(std::span<const double> weights, double u0,
-                         std::span<std::uint32_t> ancestors);
+void systematic_resample(std::span<const double> weights, double u0, std::span<std::uint32_t> ancestors);
 
 // 1 / sum w_i^2 of normalised weights: N for equal weights, 1 when one particle holds all.
 double effective_sample_size(std::span<const double> weights);

@@ -11,8 +11,9 @@
 
 namespace gc {
 
-FitResult refine_fit(const cv::Mat1b& membership, const HandTemplate& shape,
-                     const HandState& start, const FitParams& params, const cv::Mat& bgr) {
+FitResult refine_fit(const cv::Mat1b& membership, const HandTemplate& shape, const HandState& start,
+                     const FitParams& params, const cv::Mat& bgr)
+{
     check_squash(start, "refine_fit");
     FitResult result;
     result.state = start;
@@ -33,11 +34,9 @@ FitResult refine_fit(const cv::Mat1b& membership, const HandTemplate& shape,
             const cv::Point2d p = place(s, u);
             const cv::Point2d nrm = place_normal(s, un);
             double d = 0.0;
-            if (!find_skin_edge_precise(membership, p, nrm, params.half_window, params.step, d))
-                continue;
+            if (!find_skin_edge_precise(membership, p, nrm, params.half_window, params.step, d)) continue;
             if (!bgr.empty()) d = colour_edge_offset(bgr, p, nrm, d);
-            const double w = shape.outline_weights[i] /
-                             (1.0 + (d / params.robust_scale) * (d / params.robust_scale));
+            const double w = shape.outline_weights[i] / (1.0 + (d / params.robust_scale) * (d / params.robust_scale));
             found_weight += shape.outline_weights[i];
             if (std::abs(d) <= kAgreementPx) agreeing_weight += shape.outline_weights[i];
             // n . (D A u + t) = n . q with q = p + d n and D = diag(squash, 1): linear in
@@ -71,8 +70,8 @@ FitResult refine_fit(const cv::Mat1b& membership, const HandTemplate& shape,
         if (!(scale > 0.5 * start.scale && scale < 2.0 * start.scale)) return result;
         s.scale = scale;
         // Keep the rotation continuous with the start (atan2 wraps at +-pi).
-        s.rotation = start.rotation + std::remainder(std::atan2(sol[1], sol[0]) - start.rotation,
-                                                     2.0 * std::numbers::pi);
+        s.rotation =
+            start.rotation + std::remainder(std::atan2(sol[1], sol[0]) - start.rotation, 2.0 * std::numbers::pi);
         s.x = sol[2];
         s.y = sol[3];
         if (unknowns == 5)

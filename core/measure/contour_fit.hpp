@@ -35,13 +35,12 @@ struct FitResult {
     // Fraction (outline weights) of the normals whose edge lies within kAgreementPx of the
     // contour at the last iteration: how much of the template's outline the image shows.
     double agreement = 0.0;
-    bool converged = false;       // false: too few edges, the input state is returned
+    bool converged = false;  // false: too few edges, the input state is returned
 };
 
 // With `bgr` (the frame the membership map was computed from), each edge found is moved
 // to where the colour is halfway between skin and background (colour_edge_offset).
-FitResult refine_fit(const cv::Mat1b& membership, const HandTemplate& shape,
-                     const HandState& start, const FitParams& params = {},
-                     const cv::Mat& bgr = {});
+FitResult refine_fit(const cv::Mat1b& membership, const HandTemplate& shape, const HandState& start,
+                     const FitParams& params = {}, const cv::Mat& bgr = {});
 
 }  // namespace gc

@@ -8,9 +8,10 @@
 
 namespace gc {
 
-ContourMeasurement::ContourMeasurement(const ObservationParams& params) : p_(params) {
-    if (p_.half_window < 2 || p_.half_window > 64 || !(p_.sigma > 0.0) ||
-        !(p_.effective_normals > 0.0) || p_.min_grey_step < 0 || p_.min_grey_step > 255)
+ContourMeasurement::ContourMeasurement(const ObservationParams& params) : p_(params)
+{
+    if (p_.half_window < 2 || p_.half_window > 64 || !(p_.sigma > 0.0) || !(p_.effective_normals > 0.0) ||
+        p_.min_grey_step < 0 || p_.min_grey_step > 255)
         throw std::invalid_argument("ContourMeasurement: need 2 <= half_window <= 64, "
                                     "sigma > 0, effective_normals > 0 and "
                                     "0 <= min_grey_step <= 255");
@@ -19,7 +20,8 @@ ContourMeasurement::ContourMeasurement(const ObservationParams& params) : p_(par
     cap2_ = static_cast<float>(mu2);
 }
 
-double ContourMeasurement::normal_likelihood(double misfit) const {
+double ContourMeasurement::normal_likelihood(double misfit) const
+{
     const double mu2 = double(p_.half_window) * p_.half_window;
     return std::exp(-mu2 * misfit / (2.0 * p_.sigma * p_.sigma));
 }
@@ -29,7 +31,8 @@ namespace {
 // Calls visit(i, px, py, nx, ny) for each measurement normal placed by `state` (contour
 // point and unit outward normal in image pixels) until it returns false.
 template <typename Visit>
-void for_each_normal(const HandTemplate& shape, const HandState& state, Visit&& visit) {
+void for_each_normal(const HandTemplate& shape, const HandState& state, Visit&& visit)
+{
     check_squash(state, "ContourMeasurement");
     const float c = static_cast<float>(std::cos(state.rotation));
     const float s = static_cast<float>(std::sin(state.rotation));
@@ -42,8 +45,7 @@ void for_each_normal(const HandTemplate& shape, const HandState& state, Visit&& 
         for (std::size_t i = 0; i < m; ++i) {
             const cv::Point2f& u = shape.points[i];
             const cv::Point2f& n = shape.normals[i];
-            if (!visit(i, tx + cs * u.x - ss * u.y, ty + ss * u.x + cs * u.y, c * n.x - s * n.y,
-                       s * n.x + c * n.y))
+            if (!visit(i, tx + cs * u.x - ss * u.y, ty + ss * u.x + cs * u.y, c * n.x - s * n.y, s * n.x + c * n.y))
                 return;
         }
         return;
@@ -64,28 +66,28 @@ void for_each_normal(const HandTemplate& shape, const HandState& state, Visit&& 
         }
         for (std::size_t j = 0; j < count; ++j) {
             const cv::Point2f& u = shape.points[first + j];
-            if (!visit(first + j, tx + a * (cs * u.x - ss * u.y), ty + ss * u.x + cs * u.y, nxs[j],
-                       nys[j]))
-                return;
+            if (!visit(first + j, tx + a * (cs * u.x - ss * u.y), ty + ss * u.x + cs * u.y, nxs[j], nys[j])) return;
         }
     }
 }
 
-bool is_skin_at(const cv::Mat1b& map, float x, float y) {
+bool is_skin_at(const cv::Mat1b& map, float x, float y)
+{
     const int ix = cvRound(x), iy = cvRound(y);
     return ix >= 0 && iy >= 0 && ix < map.cols && iy < map.rows && map(iy, ix) >= kSkinEdgeLevel;
 }
 
 }  // namespace
 
-double ContourMeasurement::misfit(const cv::Mat1b& membership, const HandTemplate& shape,
-                                  const HandState& state, double give_up) const {
+double ContourMeasurement::misfit(const cv::Mat1b& membership, const HandTemplate& shape, const HandState& state,
+                                  double give_up) const
+{
     return misfit(membership, cv::Mat1b(), shape, state, give_up);
 }
 
-double ContourMeasurement::misfit(const cv::Mat1b& membership, const cv::Mat1b& grey,
-                                  const HandTemplate& shape, const HandState& state,
-                                  double give_up) const {
+double ContourMeasurement::misfit(const cv::Mat1b& membership, const cv::Mat1b& grey, const HandTemplate& shape,
+                                  const HandState& state, double give_up) const
+{
     const float limit = static_cast<float>(std::min(give_up, 2.0)) * cap2_;
     const bool use_grey = p_.min_grey_step > 0 && !grey.empty() && grey.size() == membership.size();
     float total = 0.0f;
@@ -94,8 +96,7 @@ double ContourMeasurement::misfit(const cv::Mat1b& membership, const cv::Mat1b& 
         bool skin_beyond = false;
         float d2 = cap2_;
         if (find_skin_edge_fast(membership, px, py, nx, ny, p_.half_window, d, &skin_beyond) ||
-            (use_grey && skin_beyond &&
-             find_grey_step_fast(grey, px, py, nx, ny, p_.half_window, p_.min_grey_step, d)))
+            (use_grey && skin_beyond && find_grey_step_fast(grey, px, py, nx, ny, p_.half_window, p_.min_grey_step, d)))
             d2 = std::min(d * d, cap2_);
         total += shape.weights[i] * d2;
         return total <= limit;
@@ -103,8 +104,9 @@ double ContourMeasurement::misfit(const cv::Mat1b& membership, const cv::Mat1b& 
     return std::clamp(total / cap2_, 0.0f, 1.0f);
 }
 
-double ContourMeasurement::judged_misfit(const cv::Mat1b& membership, const HandTemplate& shape,
-                                         const HandState& state, double& judged) const {
+double ContourMeasurement::judged_misfit(const cv::Mat1b& membership, const HandTemplate& shape, const HandState& state,
+                                         double& judged) const
+{
     double total = 0.0, weight = 0.0;
     for_each_normal(shape, state, [&](std::size_t i, float px, float py, float nx, float ny) {
         float d = 0.0f;

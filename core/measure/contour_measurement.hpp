@@ -43,22 +43,22 @@ public:
     // No allocation: safe to call for every particle. The sum stops early once it exceeds
     // `give_up` (then some value > give_up is returned): a hypothesis that much worse than
     // the best one so far has a negligible weight anyway.
-    double misfit(const cv::Mat1b& membership, const HandTemplate& shape,
-                  const HandState& state, double give_up = 2.0) const;
+    double misfit(const cv::Mat1b& membership, const HandTemplate& shape, const HandState& state,
+                  double give_up = 2.0) const;
     // The same with the grey map of the frame (CV_8UC1, the membership map's size, valid
     // wherever the membership is; kSceneGreyLevel where the learnt static scene shows, see
     // find_grey_step_fast): normals from skin into skin are measured on it. An empty or
     // differently sized `grey` is not used.
-    double misfit(const cv::Mat1b& membership, const cv::Mat1b& grey, const HandTemplate& shape,
-                  const HandState& state, double give_up = 2.0) const;
+    double misfit(const cv::Mat1b& membership, const cv::Mat1b& grey, const HandTemplate& shape, const HandState& state,
+                  double give_up = 2.0) const;
 
     // q(X) over the normals that can judge the hypothesis: a normal whose contour point and
     // everything outward along it are skin (no fall in the window) is skin against skin,
     // the hand in front of a face or a skin-coloured object, and says nothing about where
     // the hand's edge is. Weights renormalised over the judging normals; `judged` gets
     // their share of the weight (0 when none judges, then the misfit is 1).
-    double judged_misfit(const cv::Mat1b& membership, const HandTemplate& shape,
-                         const HandState& state, double& judged) const;
+    double judged_misfit(const cv::Mat1b& membership, const HandTemplate& shape, const HandState& state,
+                         double& judged) const;
 
     // The misfit margin over the best hypothesis beyond which a weight is below e^-12 of
     // the best one: a safe give_up bound for weighting.
@@ -77,13 +77,15 @@ private:
 
 // Throws std::invalid_argument, naming `who`, unless the state's squash is finite and > 0:
 // the measurement and the fit divide by it.
-inline void check_squash(const HandState& s, const char* who) {
+inline void check_squash(const HandState& s, const char* who)
+{
     if (!(std::isfinite(s.squash) && s.squash > 0.0))
         throw std::invalid_argument(std::string(who) + ": the state's squash must be finite and > 0");
 }
 
 // Where a state puts a template point: diag(squash, 1) s R(r) u + t (image axes, y down).
-inline cv::Point2d place(const HandState& s, const cv::Point2f& u) {
+inline cv::Point2d place(const HandState& s, const cv::Point2f& u)
+{
     const double c = std::cos(s.rotation) * s.scale, sn = std::sin(s.rotation) * s.scale;
     // (squash * c) first: at squash 1 the sums round exactly as a similarity's.
     return {s.x + (s.squash * c) * u.x - (s.squash * sn) * u.y, s.y + sn * u.x + c * u.y};
@@ -91,7 +93,8 @@ inline cv::Point2d place(const HandState& s, const cv::Point2f& u) {
 
 // Where a state turns a template normal: the inverse transpose of place()'s linear part,
 // normalised (a squash tilts normals towards the horizontal).
-inline cv::Point2d place_normal(const HandState& s, const cv::Point2f& n) {
+inline cv::Point2d place_normal(const HandState& s, const cv::Point2f& n)
+{
     const double c = std::cos(s.rotation), sn = std::sin(s.rotation);
     if (s.squash == 1.0) return {c * n.x - sn * n.y, sn * n.x + c * n.y};
     const double nx = (c * n.x - sn * n.y) / s.squash, ny = sn * n.x + c * n.y;

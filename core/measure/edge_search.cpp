@@ -9,7 +9,8 @@ namespace gc {
 namespace {
 
 // The bilinear blend of four neighbouring values at fractions (fx, fy) from v00.
-inline double blend(double v00, double v10, double v01, double v11, double fx, double fy) {
+inline double blend(double v00, double v10, double v01, double v11, double fx, double fy)
+{
     const double top = v00 * (1.0 - fx) + v10 * fx;
     const double bottom = v01 * (1.0 - fx) + v11 * fx;
     return top * (1.0 - fy) + bottom * fy;
@@ -17,7 +18,8 @@ inline double blend(double v00, double v10, double v01, double v11, double fx, d
 
 // Bilinear sample of a BGR image, clamped to its border, read through row pointers: this
 // runs for every step of every colour edge of every refinement.
-cv::Vec3d sample_colour(const cv::Mat& bgr, double x, double y) {
+cv::Vec3d sample_colour(const cv::Mat& bgr, double x, double y)
+{
     x = std::clamp(x, 0.0, bgr.cols - 1.0);
     y = std::clamp(y, 0.0, bgr.rows - 1.0);
     const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
@@ -33,8 +35,8 @@ cv::Vec3d sample_colour(const cv::Mat& bgr, double x, double y) {
 
 }  // namespace
 
-double colour_edge_offset(const cv::Mat& bgr, cv::Point2d p, cv::Point2d n, double offset,
-                          double reach) {
+double colour_edge_offset(const cv::Mat& bgr, cv::Point2d p, cv::Point2d n, double offset, double reach)
+{
     // Below this squared colour distance (about 20 grey levels) inside and outside are too
     // alike for their mixing ratio to be measured through sensor noise.
     constexpr double kMinContrast2 = 400.0;
@@ -48,14 +50,14 @@ double colour_edge_offset(const cv::Mat& bgr, cv::Point2d p, cv::Point2d n, doub
     double prev = -1.0;
     for (double t = offset - reach; t <= offset + reach + 1e-9; t += kStep) {
         const double mix = (at(t) - inside).dot(span) / contrast2;  // 0 skin .. 1 background
-        if (prev >= 0.0 && prev < 0.5 && mix >= 0.5)
-            return t - kStep + kStep * (0.5 - prev) / (mix - prev);
+        if (prev >= 0.0 && prev < 0.5 && mix >= 0.5) return t - kStep + kStep * (0.5 - prev) / (mix - prev);
         prev = std::max(mix, 0.0);
     }
     return offset;
 }
 
-double sample_bilinear(const cv::Mat1b& map, double x, double y) {
+double sample_bilinear(const cv::Mat1b& map, double x, double y)
+{
     // Inside, where all four pixels exist (most samples), without a bounds test per pixel
     // (and, x and y being non-negative, truncation is the floor).
     if (x >= 0.0 && y >= 0.0 && x < map.cols - 1.0 && y < map.rows - 1.0) {
@@ -72,8 +74,9 @@ double sample_bilinear(const cv::Mat1b& map, double x, double y) {
     return blend(at(x0, y0), at(x0 + 1, y0), at(x0, y0 + 1), at(x0 + 1, y0 + 1), x - x0, y - y0);
 }
 
-bool find_skin_edge_precise(const cv::Mat1b& map, cv::Point2d p, cv::Point2d n, double half,
-                            double step, double& offset) {
+bool find_skin_edge_precise(const cv::Mat1b& map, cv::Point2d p, cv::Point2d n, double half, double step,
+                            double& offset)
+{
     if (!(step > 0.0) || !(half > 0.0)) return false;
     const int count = static_cast<int>(std::floor(2.0 * half / step));
     double prev = -1.0;

@@ -23,8 +23,9 @@ inline constexpr std::uint8_t kSceneGreyLevel = 0;
 // returns true; false when no high-to-low crossing lies in the window. Then, if given,
 // `skin_beyond` tells whether the window's outer end is skin: with no fall before it, the
 // normal runs from skin into skin (the hand in front of a face).
-inline bool find_skin_edge_fast(const cv::Mat1b& map, float px, float py, float nx, float ny,
-                                int half, float& offset, bool* skin_beyond = nullptr) {
+inline bool find_skin_edge_fast(const cv::Mat1b& map, float px, float py, float nx, float ny, int half, float& offset,
+                                bool* skin_beyond = nullptr)
+{
     const int w = map.cols, h = map.rows;
     const std::uint8_t* data = map.data;
     const std::size_t step = map.step[0];
@@ -34,12 +35,11 @@ inline bool find_skin_edge_fast(const cv::Mat1b& map, float px, float py, float 
         const int y = cvRound(py + k * ny);
         int v = 0;
         // Unsigned comparison folds the < 0 test in: off-image counts as background.
-        if (static_cast<unsigned>(x) < static_cast<unsigned>(w) &&
-            static_cast<unsigned>(y) < static_cast<unsigned>(h))
+        if (static_cast<unsigned>(x) < static_cast<unsigned>(w) && static_cast<unsigned>(y) < static_cast<unsigned>(h))
             v = data[y * step + x];
         if (prev >= kSkinEdgeLevel && v < kSkinEdgeLevel) {
-            offset = static_cast<float>(k - 1) +
-                     static_cast<float>(prev - kSkinEdgeLevel) / static_cast<float>(prev - v);
+            offset =
+                static_cast<float>(k - 1) + static_cast<float>(prev - kSkinEdgeLevel) / static_cast<float>(prev - v);
             return true;
         }
         prev = v;
@@ -57,8 +57,9 @@ inline bool find_skin_edge_fast(const cv::Mat1b& map, float px, float py, float 
 // whose inner sample g(t - 1) is the scene is passed over. The hand is never the scene, so the
 // scene's border is the hand's outline only where the scene lies outside it; a contour
 // lying inside the scene would otherwise find an edge at every border of it.
-inline bool find_grey_step_fast(const cv::Mat1b& grey, float px, float py, float nx, float ny,
-                                int half, int min_step, float& offset) {
+inline bool find_grey_step_fast(const cv::Mat1b& grey, float px, float py, float nx, float ny, int half, int min_step,
+                                float& offset)
+{
     const int w = grey.cols, h = grey.rows;
     const std::uint8_t* data = grey.data;
     const std::size_t step = grey.step[0];
@@ -91,8 +92,8 @@ inline bool find_grey_step_fast(const cv::Mat1b& grey, float px, float py, float
 
 // Bilinear search at a finer step, for the few contours that are refined each frame.
 // Same contract as find_skin_edge_fast with a real-valued half length and step.
-bool find_skin_edge_precise(const cv::Mat1b& map, cv::Point2d p, cv::Point2d n, double half,
-                            double step, double& offset);
+bool find_skin_edge_precise(const cv::Mat1b& map, cv::Point2d p, cv::Point2d n, double half, double step,
+                            double& offset);
 
 // Moves a skin edge found at `offset` along p + t * n to where the colour of `bgr` (CV_8UC3)
 // is halfway between the skin `reach` pixels inside it and the background `reach` pixels
@@ -101,8 +102,7 @@ bool find_skin_edge_precise(const cv::Mat1b& map, cv::Point2d p, cv::Point2d n, 
 // background's colour (a light grey wall pulls it inward, a dark one much less). Returns
 // `offset` unchanged where the two colours are too alike to tell or no crossing is found
 // within reach of it.
-double colour_edge_offset(const cv::Mat& bgr, cv::Point2d p, cv::Point2d n, double offset,
-                          double reach = 3.0);
+double colour_edge_offset(const cv::Mat& bgr, cv::Point2d p, cv::Point2d n, double offset, double reach = 3.0);
 
 // Bilinear sample of a CV_8U map, 0 outside.
 double sample_bilinear(const cv::Mat1b& map, double x, double y);

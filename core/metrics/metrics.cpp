@@ -18,18 +18,14 @@ constexpr double kMaxCoordinate = 1.0e6;
 // Sub-pixel precision of the polygon filler (fractional bits).
 constexpr int kShift = 4;
 
-std::string size_text(const cv::Size& s)
-{
-    return std::to_string(s.width) + "x" + std::to_string(s.height);
-}
+std::string size_text(const cv::Size& s) { return std::to_string(s.width) + "x" + std::to_string(s.height); }
 
 void require_same_size(const cv::Mat1b& a, const cv::Mat1b& b, const char* what)
 {
-    if (a.empty() || b.empty())
-        throw std::invalid_argument(std::string(what) + ": empty mask");
+    if (a.empty() || b.empty()) throw std::invalid_argument(std::string(what) + ": empty mask");
     if (a.size() != b.size())
-        throw std::invalid_argument(std::string(what) + ": mask sizes differ (" +
-                                    size_text(a.size()) + " vs " + size_text(b.size()) + ")");
+        throw std::invalid_argument(std::string(what) + ": mask sizes differ (" + size_text(a.size()) + " vs " +
+                                    size_text(b.size()) + ")");
 }
 
 struct PairCounts {
@@ -79,8 +75,7 @@ cv::Mat1b contour_mask(const std::vector<cv::Point2f>& contour, cv::Size size)
         const double y = std::clamp(double(p.y), -kMaxCoordinate, kMaxCoordinate);
         fixed.emplace_back(cvRound(x * scale), cvRound(y * scale));
     }
-    cv::fillPoly(mask, std::vector<std::vector<cv::Point>>{fixed}, cv::Scalar(255), cv::LINE_8,
-                 kShift);
+    cv::fillPoly(mask, std::vector<std::vector<cv::Point>>{fixed}, cv::Scalar(255), cv::LINE_8, kShift);
     return mask;
 }
 

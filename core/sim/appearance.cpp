@@ -17,10 +17,7 @@ std::uint64_t mix_seed(std::uint64_t seed, std::uint64_t stream)
     return z ^ (z >> 31);
 }
 
-double uniform(Rng& rng, double lo, double hi)
-{
-    return std::uniform_real_distribution<double>(lo, hi)(rng);
-}
+double uniform(Rng& rng, double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
 
 cv::Vec3f pick_skin_tone(Rng& rng)
 {
@@ -63,10 +60,19 @@ cv::Vec3f non_skin_colour(Rng& rng, double value_lo, double value_hi, double sat
     const double hp = hue / 60.0;
     const double x = c * (1.0 - std::abs(std::fmod(hp, 2.0) - 1.0));
     double r = 0, g = 0, b = 0;
-    if (hp < 2.0) { r = x; g = c; }
-    else if (hp < 3.0) { g = c; b = x; }
-    else if (hp < 4.0) { g = x; b = c; }
-    else { r = x; b = c; }
+    if (hp < 2.0) {
+        r = x;
+        g = c;
+    } else if (hp < 3.0) {
+        g = c;
+        b = x;
+    } else if (hp < 4.0) {
+        g = x;
+        b = c;
+    } else {
+        r = x;
+        b = c;
+    }
     const double m = v - c;
     return {float(b + m), float(g + m), float(r + m)};
 }

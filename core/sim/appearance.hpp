@@ -37,7 +37,6 @@ cv::Mat1f smooth_noise(cv::Size size, double cell, cv::RNG& rng);
 
 // Multiplies every channel of `image` by (1 + amplitude * pattern) inside `mask` (all of
 // it when the mask is empty): brightness only, chromaticity unchanged.
-void modulate(cv::Mat3b& image, const cv::Mat1f& pattern, double amplitude,
-              const cv::Mat1b& mask = cv::Mat1b());
+void modulate(cv::Mat3b& image, const cv::Mat1f& pattern, double amplitude, const cv::Mat1b& mask = cv::Mat1b());
 
 }  // namespace gc::sim

@@ -47,8 +47,10 @@ cv::Mat motion_kernel(cv::Point2d motion)
     auto fixed = [](cv::Point2d p) { return cv::Point(cvRound(p.x * 16.0), cvRound(p.y * 16.0)); };
     cv::line(k, fixed(c - 0.5 * motion), fixed(c + 0.5 * motion), cv::Scalar(1.0), 1, cv::LINE_AA, kShift);
     const double sum = cv::sum(k)[0];
-    if (sum <= 0.0) k(half, half) = 1.0f;
-    else k /= sum;
+    if (sum <= 0.0)
+        k(half, half) = 1.0f;
+    else
+        k /= sum;
     return k;
 }
 

@@ -32,9 +32,9 @@ cv::Point fixed(cv::Point2d p) { return {cvRound(p.x * kScale), cvRound(p.y * kS
 
 }  // namespace
 
-bool project_polygon(const EyeCamera& cam, const cv::Vec3d& origin, const cv::Vec3d& e1,
-                     const cv::Vec3d& e2, const std::vector<cv::Point2d>& poly,
-                     std::vector<cv::Point>& out, cv::Point offset, double min_depth_mm)
+bool project_polygon(const EyeCamera& cam, const cv::Vec3d& origin, const cv::Vec3d& e1, const cv::Vec3d& e2,
+                     const std::vector<cv::Point2d>& poly, std::vector<cv::Point>& out, cv::Point offset,
+                     double min_depth_mm)
 {
     out.clear();
     for (const auto& q : poly) {
@@ -77,20 +77,19 @@ void draw_tube(cv::Mat& bgr, const EyeCamera& cam, const Tube& tube, const cv::V
         const double s0 = -1.0 + 2.0 * k / kStrips, s1 = -1.0 + 2.0 * (k + 1) / kStrips;
         const double sm = 0.5 * (s0 + s1);
         const double gain = 0.55 + 0.4 * std::sqrt(1.0 - sm * sm) + 0.12 * light_side * sm;
-        const std::vector<cv::Point> strip{fixed(a + n * (ra * s0)), fixed(a + n * (ra * s1)),
-                                           fixed(b + n * (rb * s1)), fixed(b + n * (rb * s0))};
+        const std::vector<cv::Point> strip{fixed(a + n * (ra * s0)), fixed(a + n * (ra * s1)), fixed(b + n * (rb * s1)),
+                                           fixed(b + n * (rb * s0))};
         cv::fillConvexPoly(bgr, strip, to_scalar(colour, gain), cv::LINE_AA, kDrawShift);
     }
     for (double t : folds) {
         const cv::Point2d c = a + d * t;
         const double r = ra + (rb - ra) * t;
-        cv::line(bgr, fixed(c - n * (0.9 * r)), fixed(c + n * (0.9 * r) + d * (0.03)),
-                 to_scalar(colour, 0.6), std::max(1, int(r / 12)), cv::LINE_AA, kDrawShift);
+        cv::line(bgr, fixed(c - n * (0.9 * r)), fixed(c + n * (0.9 * r) + d * (0.03)), to_scalar(colour, 0.6),
+                 std::max(1, int(r / 12)), cv::LINE_AA, kDrawShift);
     }
 }
 
-Billboard build_person(const cv::Vec3d& face_centre_mm, const cv::Vec3f& skin, Rng& rng,
-                       double scale, bool shaded)
+Billboard build_person(const cv::Vec3d& face_centre_mm, const cv::Vec3f& skin, Rng& rng, double scale, bool shaded)
 {
     Billboard b;
     b.centre_mm = face_centre_mm;
@@ -106,23 +105,23 @@ Billboard build_person(const cv::Vec3d& face_centre_mm, const cv::Vec3f& skin, R
     auto add = [&](std::vector<cv::Point2d> p, cv::Scalar c, bool skin_layer = false) {
         b.layers.push_back({std::move(p), c, skin_layer});
     };
-    add(ellipse_points({0, 330}, 230, 190), shirt);            // shoulders
-    add(rect_points(-52, 60, 52, 200), shade, true);            // neck
-    add(ellipse_points({0, -30}, 86, 112), hair);               // back of the hair
-    add(ellipse_points({-72, 12}, 13, 24), shade, true);        // ears
+    add(ellipse_points({0, 330}, 230, 190), shirt);       // shoulders
+    add(rect_points(-52, 60, 52, 200), shade, true);      // neck
+    add(ellipse_points({0, -30}, 86, 112), hair);         // back of the hair
+    add(ellipse_points({-72, 12}, 13, 24), shade, true);  // ears
     add(ellipse_points({72, 12}, 13, 24), shade, true);
     add(ellipse_points({0, 10}, 72, 100), shaded ? shade : face, true);
     if (shaded) {  // the lit side of the face
         const double side = uniform(rng, -1.0, 1.0);
         add(ellipse_points({side * 16, 8}, 58, 94), face, true);
     }
-    add(ellipse_points({0, -78}, 70, 30), hair);                // fringe
+    add(ellipse_points({0, -78}, 70, 30), hair);  // fringe
     for (double s : {-1.0, 1.0}) {
         add(ellipse_points({s * 28, -4}, 12, 5.5), white);
         add(ellipse_points({s * 28, -4}, 4.5, 4.5), iris);
         add(rect_points(s * 28 - 15, -22, s * 28 + 15, -17), hair);  // brows
     }
-    add({{-3, 0}, {3, 0}, {9, 34}, {-9, 34}}, shade, true);      // nose
+    add({{-3, 0}, {3, 0}, {9, 34}, {-9, 34}}, shade, true);  // nose
     add(ellipse_points({0, 55}, 22, 7), lips);
     if (scale != 1.0)
         for (auto& layer : b.layers)
@@ -130,8 +129,7 @@ Billboard build_person(const cv::Vec3d& face_centre_mm, const cv::Vec3f& skin, R
     return b;
 }
 
-void draw_billboard(cv::Mat& bgr, const EyeCamera& cam, const Billboard& person,
-                    cv::Mat1b* skin_mask)
+void draw_billboard(cv::Mat& bgr, const EyeCamera& cam, const Billboard& person, cv::Mat1b* skin_mask)
 {
     std::vector<cv::Point> pts;
     for (const auto& layer : person.layers)

@@ -16,9 +16,9 @@ constexpr int kDrawShift = 4;
 
 // Projects plane polygon points origin + a * e1 + b * e2 (head frame) into fixed-point
 // pixels, minus `offset`. False when any point is within `min_depth_mm` of the camera plane.
-bool project_polygon(const EyeCamera& cam, const cv::Vec3d& origin, const cv::Vec3d& e1,
-                     const cv::Vec3d& e2, const std::vector<cv::Point2d>& poly,
-                     std::vector<cv::Point>& out, cv::Point offset = {}, double min_depth_mm = 50.0);
+bool project_polygon(const EyeCamera& cam, const cv::Vec3d& origin, const cv::Vec3d& e1, const cv::Vec3d& e2,
+                     const std::vector<cv::Point2d>& poly, std::vector<cv::Point>& out, cv::Point offset = {},
+                     double min_depth_mm = 50.0);
 
 // A tube from `a` to `b` (head frame) with radii ra and rb: a sleeve.
 struct Tube {
@@ -44,11 +44,10 @@ struct Billboard {
 };
 
 // `scale` sizes the person (1: a face 200 mm high); `shaded` lights the face from one side.
-Billboard build_person(const cv::Vec3d& face_centre_mm, const cv::Vec3f& skin_bgr, Rng& rng,
-                       double scale = 1.0, bool shaded = false);
+Billboard build_person(const cv::Vec3d& face_centre_mm, const cv::Vec3f& skin_bgr, Rng& rng, double scale = 1.0,
+                       bool shaded = false);
 // With `skin_mask` (of bgr's size), also draws where the person's skin shows (255) into it
 // and clears it where the person hides what is behind.
-void draw_billboard(cv::Mat& bgr, const EyeCamera& cam, const Billboard& person,
-                    cv::Mat1b* skin_mask = nullptr);
+void draw_billboard(cv::Mat& bgr, const EyeCamera& cam, const Billboard& person, cv::Mat1b* skin_mask = nullptr);
 
 }  // namespace gc::sim

@@ -30,8 +30,7 @@ void wooden(Item& it, cv::Size s, const cv::Vec3f& c, double stripes, Rng& rng, 
     grain(it.colour, std::max(2.0, s.height / stripes), 0.08, rng, cr);
 }
 
-Item make_item(Material m, const Layout& L, const cv::Vec3f& skin, double size_factor, Rng& rng,
-               cv::RNG& cr)
+Item make_item(Material m, const Layout& L, const cv::Vec3f& skin, double size_factor, Rng& rng, cv::RNG& cr)
 {
     auto sized = [&](double lo, double hi) { return L.px(uniform(rng, lo, hi) * size_factor); };
     Item it;
@@ -46,7 +45,8 @@ Item make_item(Material m, const Layout& L, const cv::Vec3f& skin, double size_f
         it.colour(cv::Rect(0, s.height * 2 / 5, s.width - side, std::max(1, s.height / 8))).setTo(to_scalar(c, 1.12));
         for (int i = irand(rng, 0, 3); i > 0; --i) {
             const int w = std::max(1, s.width / 6), h = std::max(1, s.height / 10);
-            it.colour(cv::Rect(irand(rng, 0, s.width - side - w), irand(rng, 0, s.height - h), w, h)).setTo(to_scalar(c, 0.65));
+            it.colour(cv::Rect(irand(rng, 0, s.width - side - w), irand(rng, 0, s.height - h), w, h))
+                .setTo(to_scalar(c, 0.65));
         }
         modulate(it.colour, smooth_noise(s, std::max(2, L.px(40)), cr), 0.05);
         break;
@@ -155,8 +155,8 @@ void draw_poster(cv::Mat3b& img, const Layout& L, Rng& rng, cv::RNG& cr, const c
         const int w = int(r.width * uniform(rng, 0.2, 0.7)), h = int(r.height * uniform(rng, 0.1, 0.4));
         const cv::Rect b(r.x + irand(rng, 0, r.width - w), r.y + irand(rng, 0, r.height - h), w, h);
         if (uniform(rng, 0, 1) < 0.4)
-            cv::ellipse(img, (b.tl() + b.br()) / 2, b.size() / 2, 0, 0, 360,
-                        to_scalar(non_skin_colour(rng, 0.2, 0.9)), cv::FILLED, cv::LINE_AA);
+            cv::ellipse(img, (b.tl() + b.br()) / 2, b.size() / 2, 0, 0, 360, to_scalar(non_skin_colour(rng, 0.2, 0.9)),
+                        cv::FILLED, cv::LINE_AA);
         else
             fill(img, b, non_skin_colour(rng, 0.2, 0.9));
     }
@@ -182,8 +182,8 @@ void draw_whiteboard(cv::Mat3b& img, const Layout& L, Rng& rng, const cv::Rect& 
             line.push_back(p);
             p += cv::Point(irand(rng, -L.px(120), L.px(120)), irand(rng, -L.px(60), L.px(60)));
         }
-        cv::polylines(img, line, false, to_scalar(non_skin_colour(rng, 0.2, 0.6, 0.9)),
-                      std::max(1, L.px(5)), cv::LINE_AA);
+        cv::polylines(img, line, false, to_scalar(non_skin_colour(rng, 0.2, 0.6, 0.9)), std::max(1, L.px(5)),
+                      cv::LINE_AA);
     }
 }
 
@@ -210,8 +210,8 @@ void draw_plant(cv::Mat3b& img, const Layout& L, Rng& rng, const cv::Rect& area)
         const double v = uniform(rng, 0.2, 0.6) * 255.0;
         const cv::Scalar green(v * uniform(rng, 0.2, 0.5), v, v * uniform(rng, 0.25, 0.55));
         const cv::Point c = base + cv::Point(irand(rng, -L.px(250), L.px(250)), -irand(rng, L.px(20), L.px(500)));
-        cv::ellipse(img, c, cv::Size(L.px(uniform(rng, 30, 70)), L.px(uniform(rng, 12, 25))),
-                    uniform(rng, 0, 180), 0, 360, green, cv::FILLED, cv::LINE_AA);
+        cv::ellipse(img, c, cv::Size(L.px(uniform(rng, 30, 70)), L.px(uniform(rng, 12, 25))), uniform(rng, 0, 180), 0,
+                    360, green, cv::FILLED, cv::LINE_AA);
     }
 }
 
@@ -235,8 +235,8 @@ void draw_clock(cv::Mat3b& img, const Layout& L, Rng& rng, const cv::Rect& area)
     const cv::Scalar hand = to_scalar(non_skin_colour(rng, 0.03, 0.1, 0.05));
     for (double len : {0.5, 0.8}) {
         const double a = uniform(rng, 0, 2 * kPi);
-        cv::line(img, c, c + cv::Point(int(len * rad * 0.9 * std::cos(a)), int(len * rad * 0.9 * std::sin(a))),
-                 hand, std::max(1, L.px(10)), cv::LINE_AA);
+        cv::line(img, c, c + cv::Point(int(len * rad * 0.9 * std::cos(a)), int(len * rad * 0.9 * std::sin(a))), hand,
+                 std::max(1, L.px(10)), cv::LINE_AA);
     }
 }
 
@@ -276,7 +276,8 @@ void draw_rack(cv::Mat3b& img, const Layout& L, Rng& rng, const cv::Rect& area)
         fill(img, {r.x + L.px(15), y, r.width - L.px(30), L.px(80)}, non_skin_colour(rng, 0.1, 0.4, 0.15));
         for (int i = irand(rng, 1, 4); i > 0; --i) {
             const double v = uniform(rng, 0.6, 1.0) * 255.0;
-            const cv::Scalar led = uniform(rng, 0, 1) < 0.5 ? cv::Scalar(v * 0.3, v, v * 0.3) : cv::Scalar(v, v * 0.6, v * 0.2);
+            const cv::Scalar led =
+                uniform(rng, 0, 1) < 0.5 ? cv::Scalar(v * 0.3, v, v * 0.3) : cv::Scalar(v, v * 0.6, v * 0.2);
             cv::circle(img, {r.x + L.px(40) + i * L.px(30), y + L.px(40)}, std::max(1, L.px(6)), led, cv::FILLED);
         }
     }
@@ -290,8 +291,8 @@ void draw_cable(cv::Mat3b& img, const Layout& L, Rng& rng, const cv::Rect& area)
         line.push_back(p);
         p += cv::Point(irand(rng, -L.px(300), L.px(300)), irand(rng, L.px(50), L.px(300)));
     }
-    cv::polylines(img, line, false, to_scalar(non_skin_colour(rng, 0.03, 0.12, 0.1)),
-                  std::max(1, L.px(10)), cv::LINE_AA);
+    cv::polylines(img, line, false, to_scalar(non_skin_colour(rng, 0.03, 0.12, 0.1)), std::max(1, L.px(10)),
+                  cv::LINE_AA);
 }
 
 void grain(cv::Mat3b& img, double period_px, double amplitude, Rng& rng, cv::RNG& cr)
@@ -308,8 +309,8 @@ void grain(cv::Mat3b& img, double period_px, double amplitude, Rng& rng, cv::RNG
 
 // Lays skin-like items until they cover `target` of the view and of the rest of the wall.
 // The items are drawn after the furnishings, so their coverage is exact.
-double place_skin_like(cv::Mat3b& img, const Layout& L, Preset preset, const cv::Vec3f& skin,
-                       const cv::Rect& view, double target, Rng& rng, cv::RNG& cr)
+double place_skin_like(cv::Mat3b& img, const Layout& L, Preset preset, const cv::Vec3f& skin, const cv::Rect& view,
+                       double target, Rng& rng, cv::RNG& cr)
 {
     cv::Mat1b label(img.size(), std::uint8_t{0});
     const double view_area = double(view.area());
@@ -326,8 +327,8 @@ double place_skin_like(cv::Mat3b& img, const Layout& L, Preset preset, const cv:
         const double remaining = inside ? target_in - in : target_out - out;
         const double typical = double(L.px(300)) * L.px(250);
         const double size_factor = std::clamp(std::sqrt(remaining / typical), 0.15, 1.0);
-        const Item it = make_item(pick_material(preset, rng), L, skin,
-                                  preset == Preset::Clean ? 1.0 : size_factor, rng, cr);
+        const Item it =
+            make_item(pick_material(preset, rng), L, skin, preset == Preset::Clean ? 1.0 : size_factor, rng, cr);
         const cv::Rect area = inside ? view : wall;
         const cv::Rect r = random_rect(rng, area, it.colour.cols, it.colour.rows);
         const cv::Rect clipped = r & wall;

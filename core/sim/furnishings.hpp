@@ -40,7 +40,7 @@ void grain(cv::Mat3b& img, double period_px, double amplitude, Rng& rng, cv::RNG
 
 // Lays skin-like items (the materials of `preset`: only small tags for clean) until they
 // cover `target` of `view` and of the rest of the wall; returns the share of `view` covered.
-double place_skin_like(cv::Mat3b& img, const Layout& L, Preset preset, const cv::Vec3f& skin,
-                       const cv::Rect& view, double target, Rng& rng, cv::RNG& cr);
+double place_skin_like(cv::Mat3b& img, const Layout& L, Preset preset, const cv::Vec3f& skin, const cv::Rect& view,
+                       double target, Rng& rng, cv::RNG& cr);
 
 }  // namespace gc::sim

@@ -72,8 +72,7 @@ void crease(cv::Mat1f& shade, const HandModel& m, const Poly& line, double width
     const std::vector<cv::Point> pts = to_texels(line, m);
     const int thickness = std::max(1, int(std::lround(width_mm / m.texel_mm)));
     cv::Mat1f layer(shade.size(), 0.f);
-    cv::polylines(layer, std::vector<std::vector<cv::Point>>{pts}, false, cv::Scalar(1.0),
-                  thickness, cv::LINE_AA, 4);
+    cv::polylines(layer, std::vector<std::vector<cv::Point>>{pts}, false, cv::Scalar(1.0), thickness, cv::LINE_AA, 4);
     cv::GaussianBlur(layer, layer, cv::Size(0, 0), 0.6 / m.texel_mm);
     shade -= depth * layer;
 }
@@ -93,7 +92,7 @@ Poly arc(cv::Point2d c, double a, double b, double angle_deg, double from_deg, d
 // The hand's outline in the anatomical layout (the palm's long axis along u), turned so that
 // the fingertip lies on +u, mirrored for the other hand; `j` is the seeded size factor.
 struct Outline {
-    HandModel model;             // parts, finger length, palm axis, wrist
+    HandModel model;  // parts, finger length, palm axis, wrist
     std::size_t first_curled = 0;
     double turn_cos = 1.0, turn_sin = 0.0, v_sign = 1.0;
 
@@ -113,11 +112,12 @@ Outline hand_outline(const HandShape& h, double j, bool mirrored)
     const double tip_r = h.index_tip_radius * j;
     const Poly palm = superellipse(h.palm_half_length * j, h.palm_half_width * j, h.palm_exponent, 64);
     const double edge = h.palm_half_length - 7.0, joint = h.wrist_half_width + 4.0;
-    const Poly wrist{{-edge * j, joint * j}, {-h.wrist_length * j, h.wrist_half_width * j},
-                     {-h.wrist_length * j, -h.wrist_half_width * j}, {-edge * j, -joint * j}};
+    const Poly wrist{{-edge * j, joint * j},
+                     {-h.wrist_length * j, h.wrist_half_width * j},
+                     {-h.wrist_length * j, -h.wrist_half_width * j},
+                     {-edge * j, -joint * j}};
     const Poly index = capsule(h.index_base * j, h.index_base_radius * j, tip_centre, tip_r, 24);
-    const Poly thumb = capsule(h.thumb_base * j, h.thumb_base_radius * j, h.thumb_tip * j,
-                               h.thumb_tip_radius * j, 24);
+    const Poly thumb = capsule(h.thumb_base * j, h.thumb_base_radius * j, h.thumb_tip * j, h.thumb_tip_radius * j, 24);
 
     // The fingertip: the point of the finger's end cap farthest from the palm centroid, so
     // that it is also the hand's extreme point along the pointing direction.
@@ -137,15 +137,14 @@ Outline hand_outline(const HandShape& h, double j, bool mirrored)
     m.parts = {o.place(palm), o.place(wrist), o.place(index), o.place(thumb)};
     o.first_curled = m.parts.size();
     for (int i = 0; i < 3; ++i)
-        m.parts.push_back(o.place(ellipse(h.curled_centre[i] * j, h.curled_length[i] * j,
-                                          h.curled_width[i] * j, h.curled_angle_deg[i], 32)));
+        m.parts.push_back(o.place(
+            ellipse(h.curled_centre[i] * j, h.curled_length[i] * j, h.curled_width[i] * j, h.curled_angle_deg[i], 32)));
     return o;
 }
 
 // Brightness over the hand's texels: a smooth gradient across it, parts slightly apart in
 // tone, creases, darkening towards the silhouette (the surface turns away from the light).
-cv::Mat1f skin_shading(const Outline& o, const HandShape& h, double j, double gradient,
-                       const cv::Mat1f& dist, Rng& rng)
+cv::Mat1f skin_shading(const Outline& o, const HandShape& h, double j, double gradient, const cv::Mat1f& dist, Rng& rng)
 {
     const HandModel& m = o.model;
     const cv::Size size = dist.size();
@@ -181,14 +180,13 @@ cv::Mat1f skin_shading(const Outline& o, const HandShape& h, double j, double gr
     crease(shade, m, o.place(arc({-20 * sx, 22 * sy}, 28 * sx, 40 * sy, 0, 260, 350)), 0.9, 0.14f);
     for (double k : {0.42, 0.72}) {
         const double u = h.index_base.x * j + k * (h.index_tip.x - h.index_base.x) * j;
-        crease(shade, m, o.place(Poly{{u, (h.index_base.y - 8.5) * j}, {u + 1.0, (h.index_base.y + 8.5) * j}}),
-               0.8, 0.18f);
+        crease(shade, m, o.place(Poly{{u, (h.index_base.y - 8.5) * j}, {u + 1.0, (h.index_base.y + 8.5) * j}}), 0.8,
+               0.18f);
     }
 
     const float rim_texels = float(5.0 / kTexelMm);
     for (int y = 0; y < size.height; ++y)
-        for (int x = 0; x < size.width; ++x)
-            shade(y, x) *= 0.80f + 0.20f * std::min(1.0f, dist(y, x) / rim_texels);
+        for (int x = 0; x < size.width; ++x) shade(y, x) *= 0.80f + 0.20f * std::min(1.0f, dist(y, x) / rim_texels);
     return shade;
 }
 
@@ -210,8 +208,10 @@ HandModel build_hand_model(const cv::Vec3f& skin_bgr, bool mirrored, Rng& rng, c
     double u0 = 1e9, u1 = -1e9, v0 = 1e9, v1 = -1e9;
     for (const auto& part : m.parts)
         for (const auto& q : part) {
-            u0 = std::min(u0, q.x); u1 = std::max(u1, q.x);
-            v0 = std::min(v0, q.y); v1 = std::max(v1, q.y);
+            u0 = std::min(u0, q.x);
+            u1 = std::max(u1, q.x);
+            v0 = std::min(v0, q.y);
+            v1 = std::max(v1, q.y);
         }
     constexpr double kMargin = 4.0;
     m.texel_mm = kTexelMm;
@@ -220,8 +220,7 @@ HandModel build_hand_model(const cv::Vec3f& skin_bgr, bool mirrored, Rng& rng, c
                         int(std::ceil((v1 - v0 + 2 * kMargin) / kTexelMm)));
 
     cv::Mat1b inside(size, std::uint8_t{0});
-    for (const auto& part : m.parts)
-        cv::fillConvexPoly(inside, to_texels(part, m), cv::Scalar(255), cv::LINE_8, 4);
+    for (const auto& part : m.parts) cv::fillConvexPoly(inside, to_texels(part, m), cv::Scalar(255), cv::LINE_8, 4);
     cv::Mat1f dist;
     cv::distanceTransform(inside, dist, cv::DIST_L2, 3);
 

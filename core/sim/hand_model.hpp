@@ -17,9 +17,9 @@ namespace gc::sim {
 // The hand's proportions in model millimetres (before the seeded +/-5 % size): the defaults
 // are the one hand of the presets without variety.
 struct HandShape {
-    double palm_half_length = 45.0;  // along u
-    double palm_half_width = 40.0;   // along v
-    double palm_exponent = 4.0;      // of the superellipse outline: 2 an ellipse, more squarer
+    double palm_half_length = 45.0;      // along u
+    double palm_half_width = 40.0;       // along v
+    double palm_exponent = 4.0;          // of the superellipse outline: 2 an ellipse, more squarer
     cv::Point2d index_base{32.0, 24.0};  // centre of the index finger's root
     double index_base_radius = 9.5;
     cv::Point2d index_tip{108.0, 24.0};  // centre of its end cap
@@ -42,20 +42,20 @@ struct HandShape {
 struct HandSkin {
     cv::Vec3f palm;
     cv::Vec3f back;
-    double rim_mm = 4.0;        // width of the blend from the palm's tone to the back's
-    double gradient = 0.07;     // brightness change across the hand (per 80 mm)
-    double blotches = 0.03;     // amplitude of the brightness blotches
+    double rim_mm = 4.0;     // width of the blend from the palm's tone to the back's
+    double gradient = 0.07;  // brightness change across the hand (per 80 mm)
+    double blotches = 0.03;  // amplitude of the brightness blotches
 };
 
 struct HandModel {
     std::vector<std::vector<cv::Point2d>> parts;  // convex polygons, model millimetres
-    double finger_length_mm = 0.0;  // palm centroid to fingertip; the tip is (length, 0)
-    cv::Point2d palm_axis{-1.0, 0.0};  // unit, from the palm centroid towards the wrist
-    double wrist_mm = 0.0;             // where the skin of the wrist ends along palm_axis
+    double finger_length_mm = 0.0;                // palm centroid to fingertip; the tip is (length, 0)
+    cv::Point2d palm_axis{-1.0, 0.0};             // unit, from the palm centroid towards the wrist
+    double wrist_mm = 0.0;                        // where the skin of the wrist ends along palm_axis
 
-    cv::Mat3b texture;                 // skin albedo under full light
+    cv::Mat3b texture;  // skin albedo under full light
     double texel_mm = 0.0;
-    cv::Point2d texture_origin;        // model (u, v) of texel (0, 0); rows run towards -v
+    cv::Point2d texture_origin;  // model (u, v) of texel (0, 0); rows run towards -v
 
     // Texel (i, j, 1) -> model (u, v, 1).
     cv::Matx33d texel_to_model() const;
@@ -63,7 +63,7 @@ struct HandModel {
 
 // `mirrored` gives the other hand (thumb on the -v side, seen from the palm). Without `skin`,
 // one tone `skin_bgr` with the presets' shading; with it, that skin (skin_bgr unused).
-HandModel build_hand_model(const cv::Vec3f& skin_bgr, bool mirrored, Rng& rng,
-                           const HandShape& shape = {}, const HandSkin* skin = nullptr);
+HandModel build_hand_model(const cv::Vec3f& skin_bgr, bool mirrored, Rng& rng, const HandShape& shape = {},
+                           const HandSkin* skin = nullptr);
 
 }  // namespace gc::sim

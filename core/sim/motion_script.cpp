@@ -28,15 +28,14 @@ constexpr double kRamp = 1.5;  // the motion fades in over this time after the w
 double MotionScript::Channel::value(double tau) const
 {
     double v = 0.0;
-    for (std::size_t k = 0; k < amplitude.size(); ++k)
-        v += amplitude[k] * std::sin(omega[k] * tau + phase[k]);
+    for (std::size_t k = 0; k < amplitude.size(); ++k) v += amplitude[k] * std::sin(omega[k] * tau + phase[k]);
     return v;
 }
 
-MotionScript::MotionScript(const SceneConfig& c, double half_fov_x, double half_fov_y,
-                           double finger_length_mm, Rng& rng)
-    : motion_(c.motion), distance_(c.hand_distance_mm), half_fov_x_(half_fov_x),
-      half_fov_y_(half_fov_y), baseline_(c.baseline_mm), finger_(finger_length_mm)
+MotionScript::MotionScript(const SceneConfig& c, double half_fov_x, double half_fov_y, double finger_length_mm,
+                           Rng& rng)
+    : motion_(c.motion), distance_(c.hand_distance_mm), half_fov_x_(half_fov_x), half_fov_y_(half_fov_y),
+      baseline_(c.baseline_mm), finger_(finger_length_mm)
 {
     const double D = distance_;
     rest_.palm_mm = {uniform(rng, -0.06, 0.06) * D, uniform(rng, -0.02, 0.06) * D, D};
@@ -48,13 +47,26 @@ MotionScript::MotionScript(const SceneConfig& c, double half_fov_x, double half_
     // Total amplitude per channel: x, y, z in units of the distance, angles in degrees.
     std::array<double, kChannels> amp{};
     switch (c.motion) {
-    case Motion::Static: break;
-    case Motion::Translate: amp = {0.24 * D, 0.14 * D, 0, 0, 0, 0}; break;
-    case Motion::Rotate: amp = {0, 0, 0, 55, 0, 0}; break;
-    case Motion::Scale: amp = {0, 0, 0.32 * D, 0, 0, 0}; break;
-    case Motion::Yaw: amp = {0, 0, 0, 0, 50, 0}; break;
-    case Motion::Mixed: amp = {0.16 * D, 0.09 * D, 0.22 * D, 35, 25, 8}; break;
-    case Motion::LeaveReturn: amp = {0.12 * D, 0.07 * D, 0.1 * D, 20, 10, 0}; break;
+    case Motion::Static:
+        break;
+    case Motion::Translate:
+        amp = {0.24 * D, 0.14 * D, 0, 0, 0, 0};
+        break;
+    case Motion::Rotate:
+        amp = {0, 0, 0, 55, 0, 0};
+        break;
+    case Motion::Scale:
+        amp = {0, 0, 0.32 * D, 0, 0, 0};
+        break;
+    case Motion::Yaw:
+        amp = {0, 0, 0, 0, 50, 0};
+        break;
+    case Motion::Mixed:
+        amp = {0.16 * D, 0.09 * D, 0.22 * D, 35, 25, 8};
+        break;
+    case Motion::LeaveReturn:
+        amp = {0.12 * D, 0.07 * D, 0.1 * D, 20, 10, 0};
+        break;
     }
     for (int i = 0; i < kChannels; ++i) {
         std::array<double, 3> w{uniform(rng, 0.3, 1.0), uniform(rng, 0.3, 1.0), uniform(rng, 0.3, 1.0)};

@@ -13,8 +13,7 @@ namespace gc::sim {
 class MotionScript {
 public:
     // `half_fov_x`, `half_fov_y`: tangents of the half fields of view, to keep the hand in view.
-    MotionScript(const SceneConfig& config, double half_fov_x, double half_fov_y,
-                 double finger_length_mm, Rng& rng);
+    MotionScript(const SceneConfig& config, double half_fov_x, double half_fov_y, double finger_length_mm, Rng& rng);
 
     HandPose at(double t) const;
 

@@ -43,8 +43,7 @@ std::string_view name_of(const Table& table, Value v)
 }
 
 template <class Value, std::size_t N>
-std::optional<Value> value_of(const std::array<std::pair<Value, std::string_view>, N>& table,
-                              std::string_view name)
+std::optional<Value> value_of(const std::array<std::pair<Value, std::string_view>, N>& table, std::string_view name)
 {
     std::string spelt(name);
     std::replace(spelt.begin(), spelt.end(), '_', '-');

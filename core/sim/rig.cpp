@@ -32,8 +32,7 @@ cv::Point2d EyeCamera::project_camera(const cv::Vec3d& p) const
     return {K(0, 0) * p[0] / p[2] + K(0, 2), K(1, 1) * p[1] / p[2] + K(1, 2)};
 }
 
-cv::Matx33d EyeCamera::plane_homography(const cv::Vec3d& origin, const cv::Vec3d& e1,
-                                        const cv::Vec3d& e2) const
+cv::Matx33d EyeCamera::plane_homography(const cv::Vec3d& origin, const cv::Vec3d& e1, const cv::Vec3d& e2) const
 {
     const cv::Matx33d& R = head_to_camera.R;
     const cv::Vec3d c1 = R * e1;
@@ -49,8 +48,7 @@ cv::Vec3d EyeCamera::ray_in_head(double x, double y) const
     return head_to_camera.R.t() * d;
 }
 
-EyeCamera eye_camera(const cv::Matx33d& K, const HeadGeometry& geometry, const HeadPose& head,
-                     Eye eye)
+EyeCamera eye_camera(const cv::Matx33d& K, const HeadGeometry& geometry, const HeadPose& head, Eye eye)
 {
     return {zoomed_intrinsics(K, head.zoom), camera_to_head(geometry, head, eye).inverse()};
 }

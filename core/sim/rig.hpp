@@ -29,15 +29,13 @@ struct EyeCamera {
     cv::Point2d project(const cv::Vec3d& head_mm) const { return project_camera(to_camera(head_mm)); }
     // Maps plane coordinates (a, b, 1) of the plane origin + a * e1 + b * e2 (head frame)
     // to homogeneous image pixels.
-    cv::Matx33d plane_homography(const cv::Vec3d& origin, const cv::Vec3d& e1,
-                                 const cv::Vec3d& e2) const;
+    cv::Matx33d plane_homography(const cv::Vec3d& origin, const cv::Vec3d& e1, const cv::Vec3d& e2) const;
     // Direction, in the head frame, of the ray through pixel (x, y).
     cv::Vec3d ray_in_head(double x, double y) const;
 };
 
 // One eye at one head pose; K is the widest setting's, narrowed by the pose's zoom.
-EyeCamera eye_camera(const cv::Matx33d& K, const HeadGeometry& geometry, const HeadPose& head,
-                     Eye eye);
+EyeCamera eye_camera(const cv::Matx33d& K, const HeadGeometry& geometry, const HeadPose& head, Eye eye);
 
 // X_right = R X_left + T at the zero head pose, zero distortion.
 StereoCalibration rig_calibration(const SceneConfig& config);

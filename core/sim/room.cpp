@@ -21,31 +21,36 @@ constexpr double kPi = std::numbers::pi;
 double target_skin_area(Preset preset)
 {
     switch (preset) {
-    case Preset::Clean: return 0.0003;
-    case Preset::Light: return 0.0374;
-    case Preset::Heavy: return 0.0935;
-    case Preset::FacePass: return 0.0374;
-    case Preset::Varied: return 0.0;  // drawn per seed
+    case Preset::Clean:
+        return 0.0003;
+    case Preset::Light:
+        return 0.0374;
+    case Preset::Heavy:
+        return 0.0935;
+    case Preset::FacePass:
+        return 0.0374;
+    case Preset::Varied:
+        return 0.0;  // drawn per seed
     }
     return 0.0;
 }
 
-Wall build_wall(Preset preset, const cv::Vec3f& skin, const cv::Rect2d& view_mm,
-                double distance_mm, double texel_mm, Rng& rng)
+Wall build_wall(Preset preset, const cv::Vec3f& skin, const cv::Rect2d& view_mm, double distance_mm, double texel_mm,
+                Rng& rng)
 {
     cv::RNG cr(std::uniform_int_distribution<std::uint64_t>()(rng));
     Wall wall;
     wall.distance_mm = distance_mm;
     wall.texel_mm = texel_mm;
     // The wall reaches well beyond the rest view, so the head can pan and tilt over it.
-    const cv::Rect2d extent(view_mm.x - 1.3 * view_mm.width, view_mm.y - 0.8 * view_mm.height,
-                            3.6 * view_mm.width, 2.6 * view_mm.height);
+    const cv::Rect2d extent(view_mm.x - 1.3 * view_mm.width, view_mm.y - 0.8 * view_mm.height, 3.6 * view_mm.width,
+                            2.6 * view_mm.height);
     wall.origin_mm = extent.tl();
-    const Layout L{texel_mm, cv::Size(int(std::ceil(extent.width / texel_mm)),
-                                      int(std::ceil(extent.height / texel_mm)))};
+    const Layout L{texel_mm,
+                   cv::Size(int(std::ceil(extent.width / texel_mm)), int(std::ceil(extent.height / texel_mm)))};
     const cv::Rect view(int(std::floor((view_mm.x - extent.x) / texel_mm)),
-                        int(std::floor((view_mm.y - extent.y) / texel_mm)),
-                        int(std::ceil(view_mm.width / texel_mm)), int(std::ceil(view_mm.height / texel_mm)));
+                        int(std::floor((view_mm.y - extent.y) / texel_mm)), int(std::ceil(view_mm.width / texel_mm)),
+                        int(std::ceil(view_mm.height / texel_mm)));
     const cv::Rect all(0, 0, L.size.width, L.size.height);
     wall.image.create(L.size);
     const double wall_m2 = extent.area() * 1e-6;
@@ -68,33 +73,45 @@ Wall build_wall(Preset preset, const cv::Vec3f& skin, const cv::Rect2d& view_mm,
         modulate(wall.image, folds, 0.35);
     } else {
         const bool heavy = preset == Preset::Heavy;
-        wall.image.setTo(to_scalar(heavy ? non_skin_colour(rng, 0.55, 0.8, 0.12)
-                                         : non_skin_colour(rng, 0.72, 0.9, 0.12)));
+        wall.image.setTo(
+            to_scalar(heavy ? non_skin_colour(rng, 0.55, 0.8, 0.12) : non_skin_colour(rng, 0.72, 0.9, 0.12)));
         texture_rect(wall.image, all, L.px(300), 0.04, cr);
         // Furnishings over the whole wall, with the density of the preset.
         const int count = int(std::lround(wall_m2 * (heavy ? 2.2 : 0.8)));
         for (int i = 0; i < count; ++i) {
             const double u = uniform(rng, 0, 1);
             if (heavy) {
-                if (u < 0.30) draw_bookshelf(wall.image, L, rng, cr, all);
-                else if (u < 0.45) draw_poster(wall.image, L, rng, cr, all);
-                else if (u < 0.58) draw_rack(wall.image, L, rng, all);
-                else if (u < 0.70) draw_monitor(wall.image, L, rng, all);
-                else if (u < 0.78) draw_whiteboard(wall.image, L, rng, all);
-                else if (u < 0.86) draw_plant(wall.image, L, rng, all);
-                else draw_cable(wall.image, L, rng, all);
+                if (u < 0.30)
+                    draw_bookshelf(wall.image, L, rng, cr, all);
+                else if (u < 0.45)
+                    draw_poster(wall.image, L, rng, cr, all);
+                else if (u < 0.58)
+                    draw_rack(wall.image, L, rng, all);
+                else if (u < 0.70)
+                    draw_monitor(wall.image, L, rng, all);
+                else if (u < 0.78)
+                    draw_whiteboard(wall.image, L, rng, all);
+                else if (u < 0.86)
+                    draw_plant(wall.image, L, rng, all);
+                else
+                    draw_cable(wall.image, L, rng, all);
             } else {
-                if (u < 0.40) draw_poster(wall.image, L, rng, cr, all);
-                else if (u < 0.52) draw_whiteboard(wall.image, L, rng, all);
-                else if (u < 0.64) draw_monitor(wall.image, L, rng, all);
-                else if (u < 0.76) draw_plant(wall.image, L, rng, all);
-                else if (u < 0.86) draw_clock(wall.image, L, rng, all);
-                else draw_door(wall.image, L, rng, all);
+                if (u < 0.40)
+                    draw_poster(wall.image, L, rng, cr, all);
+                else if (u < 0.52)
+                    draw_whiteboard(wall.image, L, rng, all);
+                else if (u < 0.64)
+                    draw_monitor(wall.image, L, rng, all);
+                else if (u < 0.76)
+                    draw_plant(wall.image, L, rng, all);
+                else if (u < 0.86)
+                    draw_clock(wall.image, L, rng, all);
+                else
+                    draw_door(wall.image, L, rng, all);
             }
         }
     }
-    wall.skin_like_area = place_skin_like(wall.image, L, preset, skin, view,
-                                          target_skin_area(preset), rng, cr);
+    wall.skin_like_area = place_skin_like(wall.image, L, preset, skin, view, target_skin_area(preset), rng, cr);
     return wall;
 }
 

@@ -22,7 +22,7 @@ struct Wall {
 double target_skin_area(Preset preset);
 
 // `view_mm`: the wall rectangle both eyes see at the rest pose (head-frame x, y).
-Wall build_wall(Preset preset, const cv::Vec3f& skin_bgr, const cv::Rect2d& view_mm,
-                double distance_mm, double texel_mm, Rng& rng);
+Wall build_wall(Preset preset, const cv::Vec3f& skin_bgr, const cv::Rect2d& view_mm, double distance_mm,
+                double texel_mm, Rng& rng);
 
 }  // namespace gc::sim

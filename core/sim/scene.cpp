@@ -32,7 +32,13 @@ constexpr int kMinVisiblePixels = 150;
 
 // Independent random streams of one seed.
 enum Stream : std::uint64_t {
-    kHandStream = 1, kRoomStream, kMotionStream, kPersonStream, kNoiseStream, kFrameStream, kLooksStream
+    kHandStream = 1,
+    kRoomStream,
+    kMotionStream,
+    kPersonStream,
+    kNoiseStream,
+    kFrameStream,
+    kLooksStream
 };
 
 // Direction towards the key light (head frame): above, left, in front.
@@ -59,8 +65,7 @@ void validate(const SceneConfig& c)
             "SceneConfig: focal_px " + fmt(c.focal_px) + " must be 0 (default) or a positive length");
     require(std::isfinite(c.baseline_mm) && c.baseline_mm > 0.0 && c.baseline_mm <= 1000.0,
             "SceneConfig: baseline_mm " + fmt(c.baseline_mm) + " outside (0, 1000]");
-    require(std::isfinite(c.hand_distance_mm) && c.hand_distance_mm >= 300.0 &&
-                c.hand_distance_mm <= 2500.0,
+    require(std::isfinite(c.hand_distance_mm) && c.hand_distance_mm >= 300.0 && c.hand_distance_mm <= 2500.0,
             "SceneConfig: hand_distance_mm " + fmt(c.hand_distance_mm) + " outside [300, 2500]");
     require(std::isfinite(c.noise_sigma) && c.noise_sigma >= 0.0 && c.noise_sigma <= 50.0,
             "SceneConfig: noise_sigma " + fmt(c.noise_sigma) + " outside [0, 50]");
@@ -70,8 +75,7 @@ void validate(const HeadPose& h)
 {
     const double v[] = {h.pan_deg, h.tilt_deg, h.verge_left_deg, h.verge_right_deg};
     for (double x : v)
-        require(std::isfinite(x) && std::abs(x) <= 90.0,
-                "HeadPose: angles must be finite and within +/-90 degrees");
+        require(std::isfinite(x) && std::abs(x) <= 90.0, "HeadPose: angles must be finite and within +/-90 degrees");
     require(std::isfinite(h.zoom) && h.zoom >= 1.0 && h.zoom <= 100.0, "HeadPose: zoom must be within [1, 100]");
 }
 
@@ -97,8 +101,8 @@ HandFrame hand_frame(const HandPose& p)
     const cv::Matx33d R = rotation_about_y(p.yaw_deg) * rotation_about_x(p.pitch_deg);
     // At yaw = pitch = 0 the plane faces the cameras; roll turns it in the image plane
     // (counter-clockwise on screen, y down).
-    return {p.palm_mm, R * cv::Vec3d(std::cos(r), -std::sin(r), 0.0),
-            R * cv::Vec3d(-std::sin(r), -std::cos(r), 0.0), R * cv::Vec3d(0.0, 0.0, -1.0)};
+    return {p.palm_mm, R * cv::Vec3d(std::cos(r), -std::sin(r), 0.0), R * cv::Vec3d(-std::sin(r), -std::cos(r), 0.0),
+            R * cv::Vec3d(0.0, 0.0, -1.0)};
 }
 
 // Coverage of each pixel's 3 x 3 neighbourhood by the mask: 255 inside, about half on the
@@ -134,7 +138,7 @@ struct Scene::Impl {
     std::optional<Looks> looks;  // the wide variety's draws; none without variety
     cv::Matx33d K;
     HeadGeometry geometry;
-    double distance_mm = 0.0;    // of the hand at rest
+    double distance_mm = 0.0;  // of the hand at rest
     cv::Vec3f skin;
     HandModel hand;
     Wall wall;
@@ -142,7 +146,7 @@ struct Scene::Impl {
     std::vector<Billboard> people;  // farthest first
     cv::Vec3f sleeve, upper_sleeve;
     std::vector<double> folds;
-    cv::Vec3d light = kLight;    // towards the key light
+    cv::Vec3d light = kLight;  // towards the key light
     double ambient = 0.35, diffuse = 0.65;
     cv::Mat noise_pool;  // CV_16SC3, (height + margin) x (width + margin)
     cv::Mat vignetting;  // wide: CV_16UC3 gains
@@ -153,15 +157,14 @@ struct Scene::Impl {
     void place_face_pass(double half_x, double half_y);
     void place_people(double half_x, double half_y);
     void draw_arm(cv::Mat& bgr, const EyeCamera& cam, const HandPose& pose, const HandFrame& f) const;
-    void draw_hand(cv::Mat& bgr, const EyeCamera& cam, const HandFrame& f, cv::Point2d smear,
-                   EyeTruth* truth) const;
+    void draw_hand(cv::Mat& bgr, const EyeCamera& cam, const HandFrame& f, cv::Point2d smear, EyeTruth* truth) const;
     cv::Point2d hand_smear(const EyeCamera& cam, int frame) const;
     HandTruth hand_truth(const HandPose& pose) const;
     void apply_lighting(cv::Mat& bgr, int frame, Eye eye) const;
     void apply_noise(cv::Mat& bgr, int frame, Eye eye) const;
     void apply_camera(cv::Mat& bgr, int frame, Eye eye) const;
-    void render(const HandPose& pose, cv::Point2d smear, int frame, Eye eye, const HeadPose& head,
-                cv::Mat& bgr, EyeTruth* truth) const;
+    void render(const HandPose& pose, cv::Point2d smear, int frame, Eye eye, const HeadPose& head, cv::Mat& bgr,
+                EyeTruth* truth) const;
 };
 
 Scene::Impl::Impl(const SceneConfig& c) : config(c)
@@ -178,8 +181,8 @@ Scene::Impl::Impl(const SceneConfig& c) : config(c)
 
     // The rest view of both eyes on the wall.
     const double D = kWallDistanceMm;
-    const cv::Rect2d view(-0.5 * c.baseline_mm - D * half_x, -D * half_y,
-                          c.baseline_mm + 2.0 * D * half_x, 2.0 * D * half_y);
+    const cv::Rect2d view(-0.5 * c.baseline_mm - D * half_x, -D * half_y, c.baseline_mm + 2.0 * D * half_x,
+                          2.0 * D * half_y);
     const double texel = std::clamp(D / K(0, 0), 2.0, 12.0);
     Rng room_rng(mix_seed(c.seed, kRoomStream));
     wall = build_wall(c.preset, skin, view, D, texel, room_rng);
@@ -251,8 +254,7 @@ void Scene::Impl::place_face_pass(double half_x, double half_y)
     cv::Vec2d wave(0.0, 0.0);
     int samples = 0;
     for (double t = 0.0; t <= MotionScript::kWaveSeconds; t += 0.05, ++samples)
-        wave += cv::Vec2d(script->at(t).palm_mm[0], script->at(t).palm_mm[1]) *
-                (1.0 / script->at(t).palm_mm[2]);
+        wave += cv::Vec2d(script->at(t).palm_mm[0], script->at(t).palm_mm[1]) * (1.0 / script->at(t).palm_mm[2]);
     wave *= 1.0 / samples;
     const double reach = (hand.finger_length_mm + 15.0) / distance_mm + 110.0 * scale / depth;
     const double angle = uniform(pass_rng, -0.45, 0.45);  // radians off the horizontal
@@ -261,14 +263,14 @@ void Scene::Impl::place_face_pass(double half_x, double half_y)
     const double after = c.motion == Motion::LeaveReturn ? 11.0 : 0.0;  // back in view
     const double start = MotionScript::kWaveSeconds + after + uniform(person_rng, 0.2, 1.2);
     script->set_pass(start, 4.0, target);
-    people.push_back(build_person(cv::Vec3d(target[0] * depth, target[1] * depth, depth), tone, person_rng,
-                                  scale, looks.has_value()));
+    people.push_back(build_person(cv::Vec3d(target[0] * depth, target[1] * depth, depth), tone, person_rng, scale,
+                                  looks.has_value()));
     if (looks && uniform(pass_rng, 0, 1) < 0.3) {  // someone else further back
         const double far = depth + uniform(pass_rng, 300.0, 900.0);
         const cv::Vec2d at(uniform(pass_rng, -0.8, 0.8) * half_x, uniform(pass_rng, -0.5, 0.2) * half_y);
-        people.insert(people.begin(), build_person(cv::Vec3d(at[0] * far, at[1] * far, far),
-                                                   pick_wide_skin(pass_rng).palm, pass_rng,
-                                                   uniform(pass_rng, 0.85, 1.2), true));
+        people.insert(people.begin(),
+                      build_person(cv::Vec3d(at[0] * far, at[1] * far, far), pick_wide_skin(pass_rng).palm, pass_rng,
+                                   uniform(pass_rng, 0.85, 1.2), true));
     }
 }
 
@@ -290,8 +292,7 @@ void Scene::Impl::place_people(double half_x, double half_y)
     for (auto& [depth, person] : placed) people.push_back(std::move(person));
 }
 
-void Scene::Impl::draw_arm(cv::Mat& bgr, const EyeCamera& cam, const HandPose& pose,
-                           const HandFrame& f) const
+void Scene::Impl::draw_arm(cv::Mat& bgr, const EyeCamera& cam, const HandPose& pose, const HandFrame& f) const
 {
     const cv::Vec3d back = hand.palm_axis.x * f.u + hand.palm_axis.y * f.v;  // towards the elbow
     const cv::Vec3d elbow = f.origin + pose.forearm_mm * back;
@@ -323,8 +324,8 @@ void Scene::Impl::draw_hand(cv::Mat& bgr, const EyeCamera& cam, const HandFrame&
     }
     // A moving hand smears beyond its outline while the shutter is open.
     const int reach = smear == cv::Point2d() ? 0 : int(std::ceil(0.5 * std::hypot(smear.x, smear.y))) + 1;
-    const cv::Rect roi = in_front ? ((box + cv::Size(2 * reach, 2 * reach) - cv::Point(reach, reach)) & frame)
-                                  : cv::Rect();
+    const cv::Rect roi =
+        in_front ? ((box + cv::Size(2 * reach, 2 * reach) - cv::Point(reach, reach)) & frame) : cv::Rect();
     if (truth) {
         truth->mask.create(bgr.size());
         truth->mask.setTo(0);
@@ -364,8 +365,7 @@ void Scene::Impl::draw_hand(cv::Mat& bgr, const EyeCamera& cam, const HandFrame&
         for (int x = 0; x < roi.width; ++x) {
             if (!m[x]) continue;
             const float k = lit * float(a[x]) / 255.0f, keep = 1.0f - float(a[x]) / 255.0f;
-            for (int c = 0; c < 3; ++c)
-                dst[x][c] = cv::saturate_cast<std::uint8_t>(k * src[x][c] + keep * dst[x][c]);
+            for (int c = 0; c < 3; ++c) dst[x][c] = cv::saturate_cast<std::uint8_t>(k * src[x][c] + keep * dst[x][c]);
         }
     }
 
@@ -395,8 +395,7 @@ void Scene::Impl::apply_lighting(cv::Mat& bgr, int frame, Eye eye) const
     // A per-channel table: one lookup per sample instead of floating-point arithmetic.
     thread_local cv::Mat lut(1, 256, CV_8UC3);
     for (int v = 0; v < 256; ++v)
-        for (int c = 0; c < 3; ++c)
-            lut.at<cv::Vec3b>(0, v)[c] = cv::saturate_cast<std::uint8_t>(v * gain[c]);
+        for (int c = 0; c < 3; ++c) lut.at<cv::Vec3b>(0, v)[c] = cv::saturate_cast<std::uint8_t>(v * gain[c]);
     cv::LUT(bgr, lut, bgr);
 }
 
@@ -433,8 +432,8 @@ cv::Point2d Scene::Impl::hand_smear(const EyeCamera& cam, int frame) const
     if (palm0[2] <= kMinHandDepthMm || tip0[2] <= kMinHandDepthMm || palm1[2] <= kMinHandDepthMm ||
         tip1[2] <= kMinHandDepthMm)
         return {};
-    const cv::Point2d d = 0.5 * (cam.project_camera(palm1) - cam.project_camera(palm0) +
-                                 cam.project_camera(tip1) - cam.project_camera(tip0));
+    const cv::Point2d d = 0.5 * (cam.project_camera(palm1) - cam.project_camera(palm0) + cam.project_camera(tip1) -
+                                 cam.project_camera(tip0));
     return std::hypot(d.x, d.y) < 0.75 ? cv::Point2d() : d;
 }
 
@@ -482,8 +481,8 @@ void Scene::render(int frame, Eye eye, const HeadPose& head, cv::Mat& bgr, EyeTr
     s.render(pose, smear, frame, eye, head, bgr, truth);
 }
 
-void Scene::render_pose(const HandPose& pose, int frame, Eye eye, const HeadPose& head,
-                        cv::Mat& bgr, EyeTruth* truth) const
+void Scene::render_pose(const HandPose& pose, int frame, Eye eye, const HeadPose& head, cv::Mat& bgr,
+                        EyeTruth* truth) const
 {
     checked(impl_).render(pose, {}, frame, eye, head, bgr, truth);
 }
@@ -499,13 +498,11 @@ void Scene::Impl::render(const HandPose& pose, cv::Point2d smear, int frame, Eye
     const cv::Size size(config.width, config.height);
 
     // Every corner ray must meet the wall in front of the head.
-    for (const cv::Point2d corner : {cv::Point2d(0, 0), cv::Point2d(size.width - 1, 0),
-                                     cv::Point2d(0, size.height - 1),
+    for (const cv::Point2d corner : {cv::Point2d(0, 0), cv::Point2d(size.width - 1, 0), cv::Point2d(0, size.height - 1),
                                      cv::Point2d(size.width - 1, size.height - 1)}) {
         const cv::Vec3d ray = cam.ray_in_head(corner.x, corner.y);
-        require(ray[2] > 0.1 * cv::norm(ray),
-                "Scene::render: head pose (pan " + fmt(head.pan_deg) + ", tilt " + fmt(head.tilt_deg) +
-                    ") looks past the simulated room's wall");
+        require(ray[2] > 0.1 * cv::norm(ray), "Scene::render: head pose (pan " + fmt(head.pan_deg) + ", tilt " +
+                                                  fmt(head.tilt_deg) + ") looks past the simulated room's wall");
     }
 
     bgr.create(size, CV_8UC3);

@@ -51,39 +51,39 @@ std::string_view to_string(Variety v);
 struct SceneConfig {
     Preset preset = Preset::Clean;
     Motion motion = Motion::Mixed;
-    std::uint64_t seed = 1;        // background layout, skin tone, noise: same seed, same scene
+    std::uint64_t seed = 1;           // background layout, skin tone, noise: same seed, same scene
     Variety variety = Variety::None;  // the varied preset is wide whatever this says
     int width = 640;
     int height = 480;
     double fps = 30.0;
-    double focal_px = 0.0;         // 0: a 60 degree horizontal field of view
+    double focal_px = 0.0;  // 0: a 60 degree horizontal field of view
     double baseline_mm = 120.0;
     double hand_distance_mm = 1000.0;  // of the palm from the head at rest
-    double noise_sigma = 2.0;      // sensor noise, grey levels (wide: scaled by 0.5-4 per seed)
-    bool lighting_change = false;  // a slow global change of brightness and colour temperature
+    double noise_sigma = 2.0;          // sensor noise, grey levels (wide: scaled by 0.5-4 per seed)
+    bool lighting_change = false;      // a slow global change of brightness and colour temperature
 };
 
 // The hand in the head frame (see stereo/head_geometry.hpp), millimetres.
 struct HandPose {
     cv::Vec3d palm_mm{0.0, 0.0, 1000.0};  // palm centre
-    double roll_deg = 0.0;   // in the hand plane: 0 = finger points to +x (right), 90 = up
-    double yaw_deg = 0.0;    // hand plane about the vertical; 0 = palm faces the cameras
-    double pitch_deg = 0.0;  // hand plane about the horizontal
-    double forearm_mm = 260.0;  // palm centre to elbow, opposite to the finger
+    double roll_deg = 0.0;                // in the hand plane: 0 = finger points to +x (right), 90 = up
+    double yaw_deg = 0.0;                 // hand plane about the vertical; 0 = palm faces the cameras
+    double pitch_deg = 0.0;               // hand plane about the horizontal
+    double forearm_mm = 260.0;            // palm centre to elbow, opposite to the finger
 };
 
 // Ground truth of the hand in 3D for one frame (head frame, millimetres).
 struct HandTruth {
     cv::Vec3d fingertip_mm;
-    cv::Vec3d palm_mm;          // centroid of the palm
+    cv::Vec3d palm_mm;  // centroid of the palm
     cv::Vec3d elbow_mm;
-    cv::Vec3d direction;        // unit, palm -> fingertip
+    cv::Vec3d direction;  // unit, palm -> fingertip
 };
 
 // Ground truth of one eye for one frame (image pixels).
 struct EyeTruth {
-    cv::Mat1b mask;             // 255 on the hand (palm, fingers, thumb; not the forearm)
-    bool visible = false;       // enough of the hand in view to be trackable
+    cv::Mat1b mask;        // 255 on the hand (palm, fingers, thumb; not the forearm)
+    bool visible = false;  // enough of the hand in view to be trackable
     cv::Point2d palm_px;
     cv::Point2d fingertip_px;
     double pointing_deg = 0.0;  // palm -> fingertip, 0 = +x, counter-clockwise, y up
@@ -105,11 +105,10 @@ public:
     HandTruth hand_truth(const HandPose& pose) const;
 
     // Renders one eye as CV_8UC3 BGR of config size into `bgr` (reusing its buffer).
-    void render(int frame, Eye eye, const HeadPose& head, cv::Mat& bgr,
-                EyeTruth* truth = nullptr) const;
+    void render(int frame, Eye eye, const HeadPose& head, cv::Mat& bgr, EyeTruth* truth = nullptr) const;
     // The same with an explicit hand pose (for 3D experiments).
-    void render_pose(const HandPose& hand, int frame, Eye eye, const HeadPose& head,
-                     cv::Mat& bgr, EyeTruth* truth = nullptr) const;
+    void render_pose(const HandPose& hand, int frame, Eye eye, const HeadPose& head, cv::Mat& bgr,
+                     EyeTruth* truth = nullptr) const;
 
     // The exact calibration of the simulated rig (no distortion), with head geometry.
     StereoCalibration calibration() const;

@@ -51,9 +51,9 @@ void brick(cv::Mat3b& img, const Layout& L, const cv::Vec3f& skin, Rng& rng, cv:
 {
     const int w = L.px(215), h = L.px(65), joint = std::max(1, L.px(10));
     const bool painted = uniform(rng, 0, 1) < 0.25;
-    const cv::Vec3f base = painted ? surface_colour(rng, skin, 0.4)
-                                   : cv::Vec3f(float(uniform(rng, 40, 80)), float(uniform(rng, 60, 100)),
-                                               float(uniform(rng, 120, 190)));
+    const cv::Vec3f base =
+        painted ? surface_colour(rng, skin, 0.4)
+                : cv::Vec3f(float(uniform(rng, 40, 80)), float(uniform(rng, 60, 100)), float(uniform(rng, 120, 190)));
     img.setTo(to_scalar(non_skin_colour(rng, 0.5, 0.75, 0.05)));  // mortar
     for (int row = 0, y = 0; y < img.rows; ++row, y += h + joint)
         for (int x = (row % 2) ? -(w + joint) / 2 : 0; x < img.cols; x += w + joint)
@@ -85,9 +85,11 @@ void wallpaper(cv::Mat3b& img, const Layout& L, const cv::Vec3f& skin, Rng& rng,
     const bool stripes = uniform(rng, 0, 1) < 0.5;
     for (int y = 0; y < img.rows; y += stripes ? img.rows : period)
         for (int x = 0; x < img.cols; x += period) {
-            if (stripes) fill(img, {x, 0, period / 2, img.rows}, b);
-            else cv::circle(img, {x + ((y / period) % 2) * period / 2, y}, std::max(1, period / 4), to_scalar(b),
-                            cv::FILLED, cv::LINE_AA);
+            if (stripes)
+                fill(img, {x, 0, period / 2, img.rows}, b);
+            else
+                cv::circle(img, {x + ((y / period) % 2) * period / 2, y}, std::max(1, period / 4), to_scalar(b),
+                           cv::FILLED, cv::LINE_AA);
         }
     modulate(img, smooth_noise(img.size(), L.px(300), cr), 0.04);
 }
@@ -115,13 +117,14 @@ void draw_face_picture(cv::Mat3b& img, const Layout& L, Rng& rng, cv::RNG& cr, c
     const cv::Point c(r.width / 2, int(r.height * uniform(rng, 0.4, 0.5)));
     const cv::Size head(int(r.width * uniform(rng, 0.22, 0.34)), int(r.height * uniform(rng, 0.28, 0.38)));
     const double side = uniform(rng, -1, 1);
-    cv::ellipse(photo, c + cv::Point(0, head.height * 2), cv::Size(head.width * 2, head.height),
-                0, 0, 360, to_scalar(non_skin_colour(rng, 0.1, 0.8, 0.6)), cv::FILLED, cv::LINE_AA);
-    cv::ellipse(photo, c - cv::Point(0, head.height / 6), cv::Size(head.width * 11 / 10, head.height * 11 / 10),
-                0, 0, 360, to_scalar(non_skin_colour(rng, 0.03, 0.2, 0.3)), cv::FILLED, cv::LINE_AA);
+    cv::ellipse(photo, c + cv::Point(0, head.height * 2), cv::Size(head.width * 2, head.height), 0, 0, 360,
+                to_scalar(non_skin_colour(rng, 0.1, 0.8, 0.6)), cv::FILLED, cv::LINE_AA);
+    cv::ellipse(photo, c - cv::Point(0, head.height / 6), cv::Size(head.width * 11 / 10, head.height * 11 / 10), 0, 0,
+                360, to_scalar(non_skin_colour(rng, 0.03, 0.2, 0.3)), cv::FILLED, cv::LINE_AA);
     cv::ellipse(photo, c, head, 0, 0, 360, to_scalar(skin, 0.8), cv::FILLED, cv::LINE_AA);
-    cv::ellipse(photo, c + cv::Point(int(side * head.width * 0.2), 0), cv::Size(head.width * 4 / 5, head.height * 9 / 10),
-                0, 0, 360, to_scalar(skin), cv::FILLED, cv::LINE_AA);
+    cv::ellipse(photo, c + cv::Point(int(side * head.width * 0.2), 0),
+                cv::Size(head.width * 4 / 5, head.height * 9 / 10), 0, 0, 360, to_scalar(skin), cv::FILLED,
+                cv::LINE_AA);
     const cv::Scalar dark = to_scalar(non_skin_colour(rng, 0.03, 0.15, 0.2));
     for (int s : {-1, 1}) {
         const cv::Point eye = c + cv::Point(s * head.width * 2 / 5, -head.height / 8);
@@ -129,8 +132,9 @@ void draw_face_picture(cv::Mat3b& img, const Layout& L, Rng& rng, cv::RNG& cr, c
                     to_scalar(non_skin_colour(rng, 0.8, 0.95, 0.05)), cv::FILLED, cv::LINE_AA);
         cv::circle(photo, eye, std::max(1, head.height / 16), dark, cv::FILLED, cv::LINE_AA);
     }
-    cv::ellipse(photo, c + cv::Point(0, head.height / 2), cv::Size(std::max(1, head.width / 3), std::max(1, head.height / 12)),
-                0, 0, 360, cv::Scalar(skin[0] * 0.7, skin[1] * 0.6, skin[2] * 0.9), cv::FILLED, cv::LINE_AA);
+    cv::ellipse(photo, c + cv::Point(0, head.height / 2),
+                cv::Size(std::max(1, head.width / 3), std::max(1, head.height / 12)), 0, 0, 360,
+                cv::Scalar(skin[0] * 0.7, skin[1] * 0.6, skin[2] * 0.9), cv::FILLED, cv::LINE_AA);
     modulate(photo, smooth_noise(photo.size(), std::max(2, head.width / 2), cr), 0.08);
     cv::GaussianBlur(photo, photo, cv::Size(0, 0), std::max(0.5, head.width / 40.0));
 }
@@ -152,8 +156,8 @@ void draw_hand_picture(cv::Mat3b& img, const Layout& L, Rng& rng, cv::RNG& cr, c
 
     // Model (u, v) -> picture pixels: turned, scaled, centred.
     const double a = uniform(rng, 0, 2 * kPi);
-    const cv::Matx23d model_to_photo(scale * std::cos(a), -scale * std::sin(a), 0.5 * side,
-                                     scale * std::sin(a), scale * std::cos(a), 0.5 * side);
+    const cv::Matx23d model_to_photo(scale * std::cos(a), -scale * std::sin(a), 0.5 * side, scale * std::sin(a),
+                                     scale * std::cos(a), 0.5 * side);
     const cv::Matx33d t = hand.texel_to_model();
     const cv::Matx23d texel_to_photo = model_to_photo * t;
     cv::Mat3b warped;
@@ -176,12 +180,18 @@ void draw_hand_picture(cv::Mat3b& img, const Layout& L, Rng& rng, cv::RNG& cr, c
 void draw_surface(cv::Mat3b& img, const Layout& L, const cv::Vec3f& skin, Rng& rng, cv::RNG& cr)
 {
     const double u = uniform(rng, 0, 1);
-    if (u < 0.3) paint(img, L, skin, rng, cr);
-    else if (u < 0.48) wood_panelling(img, L, skin, rng, cr);
-    else if (u < 0.63) brick(img, L, skin, rng, cr);
-    else if (u < 0.75) fabric(img, L, skin, rng, cr);
-    else if (u < 0.88) wallpaper(img, L, skin, rng, cr);
-    else concrete(img, L, rng, cr);
+    if (u < 0.3)
+        paint(img, L, skin, rng, cr);
+    else if (u < 0.48)
+        wood_panelling(img, L, skin, rng, cr);
+    else if (u < 0.63)
+        brick(img, L, skin, rng, cr);
+    else if (u < 0.75)
+        fabric(img, L, skin, rng, cr);
+    else if (u < 0.88)
+        wallpaper(img, L, skin, rng, cr);
+    else
+        concrete(img, L, rng, cr);
 }
 
 void draw_furnishings(cv::Mat3b& img, const Layout& L, Rng& rng, cv::RNG& cr)
@@ -191,15 +201,33 @@ void draw_furnishings(cv::Mat3b& img, const Layout& L, Rng& rng, cv::RNG& cr)
     const int count = int(std::lround(m2 * uniform(rng, 0.0, 2.0)));
     for (int i = 0; i < count; ++i) {
         switch (irand(rng, 0, 8)) {
-        case 0: draw_bookshelf(img, L, rng, cr, all); break;
-        case 1: draw_poster(img, L, rng, cr, all); break;
-        case 2: draw_rack(img, L, rng, all); break;
-        case 3: draw_monitor(img, L, rng, all); break;
-        case 4: draw_whiteboard(img, L, rng, all); break;
-        case 5: draw_plant(img, L, rng, all); break;
-        case 6: draw_clock(img, L, rng, all); break;
-        case 7: draw_door(img, L, rng, all); break;
-        default: draw_cable(img, L, rng, all); break;
+        case 0:
+            draw_bookshelf(img, L, rng, cr, all);
+            break;
+        case 1:
+            draw_poster(img, L, rng, cr, all);
+            break;
+        case 2:
+            draw_rack(img, L, rng, all);
+            break;
+        case 3:
+            draw_monitor(img, L, rng, all);
+            break;
+        case 4:
+            draw_whiteboard(img, L, rng, all);
+            break;
+        case 5:
+            draw_plant(img, L, rng, all);
+            break;
+        case 6:
+            draw_clock(img, L, rng, all);
+            break;
+        case 7:
+            draw_door(img, L, rng, all);
+            break;
+        default:
+            draw_cable(img, L, rng, all);
+            break;
         }
     }
 }
@@ -223,8 +251,8 @@ void light_wall(cv::Mat3b& img, Rng& rng)
 
 }  // namespace
 
-double draw_varied_wall(cv::Mat3b& img, const Layout& L, const cv::Rect& view, const cv::Vec3f& skin,
-                        Rng& rng, cv::RNG& cr)
+double draw_varied_wall(cv::Mat3b& img, const Layout& L, const cv::Rect& view, const cv::Vec3f& skin, Rng& rng,
+                        cv::RNG& cr)
 {
     draw_surface(img, L, skin, rng, cr);
     draw_furnishings(img, L, rng, cr);
@@ -232,8 +260,10 @@ double draw_varied_wall(cv::Mat3b& img, const Layout& L, const cv::Rect& view, c
     const cv::Rect all(0, 0, img.cols, img.rows);
     for (int i = irand(rng, 0, 6); i > 0; --i) {
         const cv::Rect& area = uniform(rng, 0, 1) < 0.5 ? view : all;
-        if (uniform(rng, 0, 1) < 0.5) draw_face_picture(img, L, rng, cr, area, skin);
-        else draw_hand_picture(img, L, rng, cr, area, skin);
+        if (uniform(rng, 0, 1) < 0.5)
+            draw_face_picture(img, L, rng, cr, area, skin);
+        else
+            draw_hand_picture(img, L, rng, cr, area, skin);
     }
     const double share = place_skin_like(img, L, Preset::Heavy, skin, view, uniform(rng, 0.0, 0.15), rng, cr);
     light_wall(img, rng);

@@ -13,7 +13,7 @@ namespace gc::sim {
 // Draws over all of `img` (wall texels of layout L); `view` is the rest view's rectangle.
 // Returns the share of `view` covered by the skin-like objects laid out on purpose (the
 // surface and the pictures may add more).
-double draw_varied_wall(cv::Mat3b& img, const Layout& L, const cv::Rect& view, const cv::Vec3f& skin,
-                        Rng& rng, cv::RNG& cr);
+double draw_varied_wall(cv::Mat3b& img, const Layout& L, const cv::Rect& view, const cv::Vec3f& skin, Rng& rng,
+                        cv::RNG& cr);
 
 }  // namespace gc::sim

@@ -135,8 +135,8 @@ Looks draw_looks(double noise_sigma, Rng& rng)
     l.shape = pick_hand_shape(rng);
     l.skin = pick_wide_skin(rng);
     l.bare_forearm = uniform(rng, 0, 1) < 0.35;
-    const cv::Vec3f shirt = uniform(rng, 0, 1) < 0.15 ? skin_like_colour(rng, l.skin.palm, 250, 600)
-                                                     : non_skin_colour(rng, 0.1, 0.9, 0.7);
+    const cv::Vec3f shirt =
+        uniform(rng, 0, 1) < 0.15 ? skin_like_colour(rng, l.skin.palm, 250, 600) : non_skin_colour(rng, 0.1, 0.9, 0.7);
     l.upper_arm = shirt * 0.9f;
     l.forearm = l.bare_forearm ? 0.5f * (l.skin.back + l.skin.palm) : shirt;
     l.distance_factor = uniform(rng, 0.8, 1.4);

@@ -24,7 +24,7 @@ struct CameraLooks {
     std::array<double, 2> drift_amplitude{}, drift_omega{}, drift_phase{};  // slow exposure changes
     cv::Vec3d white_balance{1.0, 1.0, 1.0};
     std::array<double, 2> eye_gain{1.0, 1.0};  // the two cameras never quite agree
-    double vignetting = 0.0;        // brightness lost in the image corners
+    double vignetting = 0.0;                   // brightness lost in the image corners
 
     // Gain of frame time `t` (seconds) for `eye`, before the white balance.
     double gain(double t, Eye eye) const;
@@ -34,12 +34,12 @@ struct Looks {
     HandShape shape;
     HandSkin skin;
     bool bare_forearm = false;
-    cv::Vec3f forearm;              // the sleeve's colour, or the bare forearm's skin
+    cv::Vec3f forearm;  // the sleeve's colour, or the bare forearm's skin
     cv::Vec3f upper_arm;
-    double distance_factor = 1.0;   // of the hand from the head, on SceneConfig::hand_distance_mm
+    double distance_factor = 1.0;     // of the hand from the head, on SceneConfig::hand_distance_mm
     cv::Vec3d light{0.0, 0.0, -1.0};  // unit, towards the key light (head frame)
     double ambient = 0.35;
-    double hand_light = 1.0;        // the hand in the light (> 1) or in shade (< 1)
+    double hand_light = 1.0;  // the hand in the light (> 1) or in shade (< 1)
     CameraLooks camera;
 };
 

@@ -18,7 +18,8 @@ constexpr double kBinWidth = 1.0 / (SkinModel::kBins - 1);
 // A width of 0.35 sigma keeps the ramp a few table bins wide for typical skin spreads.
 constexpr double kMembershipWidth = 0.35;
 
-void check_bgr(const cv::Mat& bgr, const char* what) {
+void check_bgr(const cv::Mat& bgr, const char* what)
+{
     if (bgr.empty()) throw std::invalid_argument(std::string(what) + ": empty image");
     if (bgr.type() != CV_8UC3)
         throw std::invalid_argument(std::string(what) + ": expected CV_8UC3 (BGR), got " +
@@ -26,7 +27,8 @@ void check_bgr(const cv::Mat& bgr, const char* what) {
                                     std::to_string(bgr.depth()));
 }
 
-void check_mask(const cv::Mat& bgr, const cv::Mat& mask, const char* what) {
+void check_mask(const cv::Mat& bgr, const cv::Mat& mask, const char* what)
+{
     if (mask.empty() || mask.type() != CV_8UC1)
         throw std::invalid_argument(std::string(what) + ": mask must be a non-empty CV_8UC1");
     if (mask.size() != bgr.size())
@@ -35,32 +37,34 @@ void check_mask(const cv::Mat& bgr, const cv::Mat& mask, const char* what) {
 
 }  // namespace
 
-const std::array<std::uint32_t, 766>& rg_reciprocals() {
+const std::array<std::uint32_t, 766>& rg_reciprocals()
+{
     static const auto table = [] {
         std::array<std::uint32_t, 766> t{};
-        for (int s = 1; s < 766; ++s)
-            t[s] = static_cast<std::uint32_t>(std::lround(255.0 * 65536.0 / s));
+        for (int s = 1; s < 766; ++s) t[s] = static_cast<std::uint32_t>(std::lround(255.0 * 65536.0 / s));
         return t;
     }();
     return table;
 }
 
 SkinModel::SkinModel(const cv::Vec2d& mean, const cv::Matx22d& covariance, int dark_threshold)
-    : mean_(mean), cov_(covariance), dark_(dark_threshold) {
+    : mean_(mean), cov_(covariance), dark_(dark_threshold)
+{
     if (!(mean[0] >= 0.0 && mean[1] >= 0.0 && mean[0] + mean[1] <= 1.0))
         throw std::invalid_argument("SkinModel: mean (r, g) outside the normalised-colour triangle");
     if (dark_threshold < 0 || dark_threshold >= 765)
         throw std::invalid_argument("SkinModel: dark threshold must be in [0, 765)");
     const double det = cov_(0, 0) * cov_(1, 1) - cov_(0, 1) * cov_(1, 0);
-    if (!(cov_(0, 0) > 0.0 && cov_(1, 1) > 0.0 && det > 1e-14) ||
-        std::abs(cov_(0, 1) - cov_(1, 0)) > 1e-12 || !std::isfinite(det))
+    if (!(cov_(0, 0) > 0.0 && cov_(1, 1) > 0.0 && det > 1e-14) || std::abs(cov_(0, 1) - cov_(1, 0)) > 1e-12 ||
+        !std::isfinite(det))
         throw std::invalid_argument("SkinModel: covariance is not symmetric positive definite");
     inv_cov_ = cov_.inv();
     norm_ = 1.0 / (2.0 * std::numbers::pi * std::sqrt(det));
     rebuild();
 }
 
-SkinModel SkinModel::generic() {
+SkinModel SkinModel::generic()
+{
     // Skin tones from pale to dark cluster near r = 0.45, g = 0.31 in normalised colour,
     // spread mostly along r (0.40-0.48 from fair to dark under white light): broad, but
     // with grey (r = g = 1/3) at 3.9 sigma, so that sensor noise on a grey sleeve (a
@@ -70,8 +74,8 @@ SkinModel SkinModel::generic() {
     return SkinModel({0.45, 0.31}, {sr * sr, rho * sr * sg, rho * sr * sg, sg * sg});
 }
 
-SkinModel SkinModel::fit(const cv::Mat& bgr, const cv::Mat& mask, int dark_threshold,
-                         int min_pixels) {
+SkinModel SkinModel::fit(const cv::Mat& bgr, const cv::Mat& mask, int dark_threshold, int min_pixels)
+{
     check_bgr(bgr, "SkinModel::fit");
     check_mask(bgr, mask, "SkinModel::fit");
     if (dark_threshold < 0 || dark_threshold >= 765)
@@ -86,8 +90,14 @@ SkinModel SkinModel::fit(const cv::Mat& bgr, const cv::Mat& mask, int dark_thres
             const int sum = p[x][0] + p[x][1] + p[x][2];
             if (sum < dark_threshold || sum == 0) continue;
             const double r = p[x][2] / double(sum), g = p[x][1] / double(sum);
-            n += 1; sr += r; sg += g; srr += r * r; sgg += g * g; srg += r * g;
-            si += sum; sii += double(sum) * sum;
+            n += 1;
+            sr += r;
+            sg += g;
+            srr += r * r;
+            sgg += g * g;
+            srg += r * g;
+            si += sum;
+            sii += double(sum) * sum;
         }
     }
     if (n < std::max(min_pixels, 2))
@@ -109,7 +119,8 @@ SkinModel SkinModel::fit(const cv::Mat& bgr, const cv::Mat& mask, int dark_thres
     return model;
 }
 
-void SkinModel::set_brightness_band(double mean, double sd) {
+void SkinModel::set_brightness_band(double mean, double sd)
+{
     if (!(mean > 0.0 && mean <= 765.0 && sd > 0.0 && std::isfinite(sd)))
         throw std::invalid_argument("SkinModel: brightness band needs 0 < mean <= 765, sd > 0");
     brightness_mean_ = mean;
@@ -118,7 +129,8 @@ void SkinModel::set_brightness_band(double mean, double sd) {
     rebuild_brightness();
 }
 
-void SkinModel::rebuild_brightness() {
+void SkinModel::rebuild_brightness()
+{
     auto& t = tables_->brightness;
     const double width = std::max(brightness_sd_, kBrightnessFloor * brightness_mean_ / kBrightnessSigma);
     for (int i = 0; i < 766; ++i) {
@@ -128,34 +140,31 @@ void SkinModel::rebuild_brightness() {
         }
         // The same logistic as the colour membership: 128 at the band's edge.
         const double d = std::abs(i - brightness_mean_) / width * (kBoundarySigma / kBrightnessSigma);
-        t[i] = static_cast<std::uint8_t>(
-            std::lround(255.0 / (1.0 + std::exp((d - kBoundarySigma) / kMembershipWidth))));
+        t[i] =
+            static_cast<std::uint8_t>(std::lround(255.0 / (1.0 + std::exp((d - kBoundarySigma) / kMembershipWidth))));
     }
     table_brightness_ = brightness_mean_;
 }
 
-double SkinModel::mahalanobis2(double r, double g) const {
+double SkinModel::mahalanobis2(double r, double g) const
+{
     const double dr = r - mean_[0], dg = g - mean_[1];
-    return dr * (inv_cov_(0, 0) * dr + inv_cov_(0, 1) * dg) +
-           dg * (inv_cov_(1, 0) * dr + inv_cov_(1, 1) * dg);
+    return dr * (inv_cov_(0, 0) * dr + inv_cov_(0, 1) * dg) + dg * (inv_cov_(1, 0) * dr + inv_cov_(1, 1) * dg);
 }
 
-double SkinModel::density(double r, double g) const {
-    return norm_ * std::exp(-0.5 * mahalanobis2(r, g));
-}
+double SkinModel::density(double r, double g) const { return norm_ * std::exp(-0.5 * mahalanobis2(r, g)); }
 
-double SkinModel::threshold_density() const {
-    return norm_ * std::exp(-0.5 * kBoundarySigma * kBoundarySigma);
-}
+double SkinModel::threshold_density() const { return norm_ * std::exp(-0.5 * kBoundarySigma * kBoundarySigma); }
 
-bool SkinModel::is_skin(const cv::Vec3b& bgr) const {
+bool SkinModel::is_skin(const cv::Vec3b& bgr) const
+{
     const int sum = bgr[0] + bgr[1] + bgr[2];
     if (sum < dark_ || sum == 0) return false;
-    return mahalanobis2(bgr[2] / double(sum), bgr[1] / double(sum)) <=
-           kBoundarySigma * kBoundarySigma;
+    return mahalanobis2(bgr[2] / double(sum), bgr[1] / double(sum)) <= kBoundarySigma * kBoundarySigma;
 }
 
-void SkinModel::rebuild() {
+void SkinModel::rebuild()
+{
     // Copy-on-write: copies of a model share tables until one of them adapts.
     if (!tables_) {
         tables_ = std::make_shared<Tables>();
@@ -165,16 +174,16 @@ void SkinModel::rebuild() {
     }
     // Values depend on d^2 only: tabulate that 1-D function once, then fill the 2-D tables
     // with one quadratic form per bin (cheap enough to redo after every mean update).
-    constexpr int kD2Steps = 64;        // per unit of d^2
-    constexpr double kD2Max = 40.0;     // beyond: every table value is 0
+    constexpr int kD2Steps = 64;     // per unit of d^2
+    constexpr double kD2Max = 40.0;  // beyond: every table value is 0
     static const auto profile = [] {
         std::array<std::array<std::uint8_t, 2>, int(kD2Max * kD2Steps) + 1> t{};
         for (std::size_t i = 0; i < t.size(); ++i) {
             const double d2 = double(i) / kD2Steps;
             const double d = std::sqrt(d2);
             t[i][0] = static_cast<std::uint8_t>(std::lround(255.0 * std::exp(-0.5 * d2)));
-            t[i][1] = static_cast<std::uint8_t>(std::lround(
-                255.0 / (1.0 + std::exp((d - kBoundarySigma) / kMembershipWidth))));
+            t[i][1] = static_cast<std::uint8_t>(
+                std::lround(255.0 / (1.0 + std::exp((d - kBoundarySigma) / kMembershipWidth))));
         }
         return t;
     }();
@@ -203,8 +212,9 @@ void SkinModel::rebuild() {
 namespace {
 
 template <bool WithBand>
-void lookup_rows(const cv::Mat& bgr, const cv::Rect& r, const std::uint8_t* lut, const std::uint8_t* band,
-                 int dark, cv::Mat1b& out) {
+void lookup_rows(const cv::Mat& bgr, const cv::Rect& r, const std::uint8_t* lut, const std::uint8_t* band, int dark,
+                 cv::Mat1b& out)
+{
     const auto& rec = rg_reciprocals();
     for (int y = r.y; y < r.y + r.height; ++y) {
         const auto* p = bgr.ptr<std::uint8_t>(y) + 3 * r.x;
@@ -230,7 +240,8 @@ void lookup_rows(const cv::Mat& bgr, const cv::Rect& r, const std::uint8_t* lut,
 }  // namespace
 
 void SkinModel::apply(const cv::Mat& bgr, const cv::Rect& roi, const Table& table, cv::Mat1b& out,
-                      const std::uint8_t* band) const {
+                      const std::uint8_t* band) const
+{
     const cv::Rect r = roi & cv::Rect(0, 0, bgr.cols, bgr.rows);
     if (out.size() != bgr.size()) out.create(bgr.size());
     const int dark = std::max(dark_, 1);
@@ -240,39 +251,42 @@ void SkinModel::apply(const cv::Mat& bgr, const cv::Rect& roi, const Table& tabl
         lookup_rows<false>(bgr, r, table.data(), nullptr, dark, out);
 }
 
-void SkinModel::probability(const cv::Mat& bgr, cv::Mat1b& out) const {
+void SkinModel::probability(const cv::Mat& bgr, cv::Mat1b& out) const
+{
     check_bgr(bgr, "SkinModel::probability");
     apply(bgr, cv::Rect(0, 0, bgr.cols, bgr.rows), tables_->probability, out);
 }
 
-void SkinModel::probability(const cv::Mat& bgr, const cv::Rect& roi, cv::Mat1b& out) const {
+void SkinModel::probability(const cv::Mat& bgr, const cv::Rect& roi, cv::Mat1b& out) const
+{
     check_bgr(bgr, "SkinModel::probability");
     apply(bgr, roi, tables_->probability, out);
 }
 
-void SkinModel::membership(const cv::Mat& bgr, const cv::Rect& roi, cv::Mat1b& out) const {
+void SkinModel::membership(const cv::Mat& bgr, const cv::Rect& roi, cv::Mat1b& out) const
+{
     check_bgr(bgr, "SkinModel::membership");
-    apply(bgr, roi, tables_->membership, out,
-          has_brightness_band() ? tables_->brightness.data() : nullptr);
+    apply(bgr, roi, tables_->membership, out, has_brightness_band() ? tables_->brightness.data() : nullptr);
 }
 
-cv::Mat1b SkinModel::segment(const cv::Mat& bgr) const {
+cv::Mat1b SkinModel::segment(const cv::Mat& bgr) const
+{
     cv::Mat1b out;
     segment(bgr, out);
     return out;
 }
 
-void SkinModel::segment(const cv::Mat& bgr, cv::Mat1b& out) const {
+void SkinModel::segment(const cv::Mat& bgr, cv::Mat1b& out) const
+{
     check_bgr(bgr, "SkinModel::segment");
     apply(bgr, cv::Rect(0, 0, bgr.cols, bgr.rows), tables_->inside, out);
 }
 
-bool SkinModel::update_mean(const cv::Mat& bgr, const cv::Mat& mask, double rate,
-                            double gate_sigma, int min_pixels) {
+bool SkinModel::update_mean(const cv::Mat& bgr, const cv::Mat& mask, double rate, double gate_sigma, int min_pixels)
+{
     check_bgr(bgr, "SkinModel::update_mean");
     check_mask(bgr, mask, "SkinModel::update_mean");
-    if (!(rate > 0.0 && rate <= 1.0))
-        throw std::invalid_argument("SkinModel::update_mean: rate must be in (0, 1]");
+    if (!(rate > 0.0 && rate <= 1.0)) throw std::invalid_argument("SkinModel::update_mean: rate must be in (0, 1]");
     const double gate2 = gate_sigma * gate_sigma;
     // Only the bounding box of the mask is visited: the contour covers a small part.
     const cv::Rect box = cv::boundingRect(mask);
@@ -286,7 +300,10 @@ bool SkinModel::update_mean(const cv::Mat& bgr, const cv::Mat& mask, double rate
             if (sum < dark_ || sum == 0) continue;
             const double r = p[x][2] / double(sum), g = p[x][1] / double(sum);
             if (mahalanobis2(r, g) > gate2) continue;
-            n += 1; sr += r; sg += g; si += sum;
+            n += 1;
+            sr += r;
+            sg += g;
+            si += sum;
         }
     }
     if (n < std::max(min_pixels, 1)) return false;
@@ -299,9 +316,7 @@ bool SkinModel::update_mean(const cv::Mat& bgr, const cv::Mat& mask, double rate
         }
     }
     // Rebuild only once the mean has moved by a visible fraction of a table bin.
-    if (std::abs(mean_[0] - table_mean_[0]) + std::abs(mean_[1] - table_mean_[1]) >
-        0.25 * kBinWidth)
-        rebuild();
+    if (std::abs(mean_[0] - table_mean_[0]) + std::abs(mean_[1] - table_mean_[1]) > 0.25 * kBinWidth) rebuild();
     return true;
 }
 

@@ -20,8 +20,7 @@ public:
 
     // A model from its parameters. Throws std::invalid_argument unless `covariance` is
     // symmetric positive definite, the mean lies in the rg triangle and 0 <= dark < 765.
-    SkinModel(const cv::Vec2d& mean, const cv::Matx22d& covariance,
-              int dark_threshold = kDefaultDarkThreshold);
+    SkinModel(const cv::Vec2d& mean, const cv::Matx22d& covariance, int dark_threshold = kDefaultDarkThreshold);
 
     // A broad prior of human skin under indoor light, used before any hand was seen.
     static SkinModel generic();
@@ -29,8 +28,8 @@ public:
     // Fits mean and covariance to the non-dark pixels of `bgr` (CV_8UC3) where `mask` is
     // non-zero. Throws std::invalid_argument on a wrong type or size, or fewer than
     // `min_pixels` usable pixels, or degenerate (zero-variance) colours.
-    static SkinModel fit(const cv::Mat& bgr, const cv::Mat& mask,
-                         int dark_threshold = kDefaultDarkThreshold, int min_pixels = 20);
+    static SkinModel fit(const cv::Mat& bgr, const cv::Mat& mask, int dark_threshold = kDefaultDarkThreshold,
+                         int min_pixels = 20);
 
     // The brightness band (R + G + B) of the fitted pixels: normalised colour cannot tell
     // the hand from a face or an object of the same skin tone, brightness often can.
@@ -46,9 +45,9 @@ public:
     int dark_threshold() const { return dark_; }
 
     double mahalanobis2(double r, double g) const;
-    double density(double r, double g) const;   // the normal pdf N(m, Sigma)
-    double threshold_density() const;           // the pdf at the 3-sigma boundary
-    bool is_skin(const cv::Vec3b& bgr) const;   // exact test, not table-quantised
+    double density(double r, double g) const;  // the normal pdf N(m, Sigma)
+    double threshold_density() const;          // the pdf at the 3-sigma boundary
+    bool is_skin(const cv::Vec3b& bgr) const;  // exact test, not table-quantised
 
     // Skin probability map: density / peak density in 0..255 (255 at the mean), 0 for dark
     // pixels. `out` is (re)allocated to the frame size. The ROI overload writes only `roi`
@@ -71,8 +70,8 @@ public:
     // (0..1] towards the mean colour of the non-dark pixels under `mask` that lie within
     // `gate_sigma` of the current model (so background inside a slightly wrong contour does
     // not drag it). Returns false and changes nothing when fewer than `min_pixels` qualify.
-    bool update_mean(const cv::Mat& bgr, const cv::Mat& mask, double rate = 0.1,
-                     double gate_sigma = 4.0, int min_pixels = 20);
+    bool update_mean(const cv::Mat& bgr, const cv::Mat& mask, double rate = 0.1, double gate_sigma = 4.0,
+                     int min_pixels = 20);
 
     static constexpr int kBins = 256;  // table resolution per normalised channel
     // The band's half width in brightness standard deviations, and its floor as a fraction
@@ -104,7 +103,7 @@ private:
     double brightness_sd_ = 0.0;  // 0: no band
     double table_brightness_ = -1.0;
     cv::Vec2d table_mean_{-1.0, -1.0};  // the mean the tables were last built for
-    std::shared_ptr<Tables> tables_;   // shared between copies until one adapts
+    std::shared_ptr<Tables> tables_;    // shared between copies until one adapts
 };
 
 // 16.16 fixed-point reciprocals 255 / (R + G + B): the quantised normalised colour of a

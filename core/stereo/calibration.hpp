@@ -18,11 +18,11 @@ struct StereoCalibration {
     cv::Mat D1;                           // left distortion, 1xN CV_64F (N = 4, 5, 8, 12, 14), may be empty
     cv::Matx33d M2 = cv::Matx33d::eye();  // right intrinsics
     cv::Mat D2;
-    cv::Matx33d R = cv::Matx33d::eye();   // at the head's zero pose
+    cv::Matx33d R = cv::Matx33d::eye();  // at the head's zero pose
     cv::Vec3d T{-120.0, 0.0, 0.0};
     bool has_head_geometry = false;
     HeadGeometry head;
-    std::string source = "default";       // the file it came from, for messages
+    std::string source = "default";  // the file it came from, for messages
 };
 
 // Raised with a message that names the file and the key at fault.

@@ -46,15 +46,9 @@ constexpr double kMaxDistortionCoefficient = 100.0;
     throw CalibrationError(msg.str());
 }
 
-std::string shape_string(int rows, int cols)
-{
-    return std::to_string(rows) + "x" + std::to_string(cols);
-}
+std::string shape_string(int rows, int cols) { return std::to_string(rows) + "x" + std::to_string(cols); }
 
-bool all_finite(const cv::Mat& m)
-{
-    return cv::checkRange(m, true, nullptr, -1e12, 1e12);
-}
+bool all_finite(const cv::Mat& m) { return cv::checkRange(m, true, nullptr, -1e12, 1e12); }
 
 const CalibrationEntry* find_entry(const CalibrationEntries& entries, std::string_view key)
 {
@@ -114,12 +108,13 @@ std::string number_text(double v)
 }
 
 // `name` = `v` must lie in [lo, hi]; the message gives the value and the range.
-void check_range(double v, double lo, double hi, const char* key, const std::string& name,
-                 const std::string& source, const std::string& why)
+void check_range(double v, double lo, double hi, const char* key, const std::string& name, const std::string& source,
+                 const std::string& why)
 {
     if (v >= lo && v <= hi) return;
-    fail(source, key, name + " = " + number_text(v) + " is implausible: expected " + number_text(lo) + " to " +
-                          number_text(hi) + " " + why);
+    fail(source, key,
+         name + " = " + number_text(v) + " is implausible: expected " + number_text(lo) + " to " + number_text(hi) +
+             " " + why);
 }
 
 void check_intrinsics(const cv::Matx33d& M, const char* key, const std::string& source, cv::Size image)
@@ -144,8 +139,7 @@ void check_distortion(const cv::Mat& D, const char* key, const std::string& sour
     if (D.empty()) return;
     const int n = static_cast<int>(D.total());
     if ((D.rows != 1 && D.cols != 1) || (n != 4 && n != 5 && n != 8 && n != 12 && n != 14))
-        fail(source, key, "wrong shape " + shape_string(D.rows, D.cols) +
-                              ", expected 1xN with N = 4, 5, 8, 12 or 14");
+        fail(source, key, "wrong shape " + shape_string(D.rows, D.cols) + ", expected 1xN with N = 4, 5, 8, 12 or 14");
     if (D.type() != CV_64F || !all_finite(D)) fail(source, key, "non-finite value");
     for (int i = 0; i < n; ++i)
         check_range(D.at<double>(i), -kMaxDistortionCoefficient, kMaxDistortionCoefficient, key,
@@ -178,8 +172,7 @@ void check_translation(const cv::Vec3d& T, const std::string& source)
 {
     for (double v : T.val)
         if (!std::isfinite(v)) fail(source, "T", "non-finite value");
-    check_range(cv::norm(T), kMinBaselineMm, kMaxBaselineMm, "T", "baseline |T|", source,
-                "mm (T is in millimetres)");
+    check_range(cv::norm(T), kMinBaselineMm, kMaxBaselineMm, "T", "baseline |T|", source, "mm (T is in millimetres)");
 }
 
 constexpr std::array<const char*, 4> kHeadKeys{"head_left_eye", "head_right_eye", "head_tilt_centre",

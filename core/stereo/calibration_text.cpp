@@ -94,8 +94,10 @@ std::optional<CalibrationScalar> parse_number(std::string_view token)
     if (body.empty() || !(is_digit(body.front()) || body.front() == '.')) return std::nullopt;
     bool integral = true;
     for (char c : body) {
-        if (c == '.' || c == 'e' || c == 'E') integral = false;
-        else if (!is_digit(c) && c != '+' && c != '-') return std::nullopt;
+        if (c == '.' || c == 'e' || c == 'E')
+            integral = false;
+        else if (!is_digit(c) && c != '+' && c != '-')
+            return std::nullopt;
     }
     double value = 0.0;
     const auto [end, ec] = std::from_chars(body.data(), body.data() + body.size(), value);
@@ -117,10 +119,14 @@ public:
     // `field` is rows, cols, dt or data (data's values come through add_value).
     void set_field(std::string_view field, std::string_view value, std::size_t line)
     {
-        if (field == "rows") set_dimension(rows_, field, value, line);
-        else if (field == "cols") set_dimension(cols_, field, value, line);
-        else if (field == "dt") set_dt(value, line);
-        else if (field == "data") mark(has_data_, field, line);
+        if (field == "rows")
+            set_dimension(rows_, field, value, line);
+        else if (field == "cols")
+            set_dimension(cols_, field, value, line);
+        else if (field == "dt")
+            set_dt(value, line);
+        else if (field == "data")
+            mark(has_data_, field, line);
         else
             fail_(line, key_, "unknown matrix field " + quoted(field) + " (expected rows, cols, dt and data)");
     }
@@ -141,10 +147,12 @@ public:
             fail_(line, key_, "incomplete matrix (rows, cols, dt and data are all required)");
         const std::int64_t expected = *rows_ * *cols_;
         if (expected > static_cast<std::int64_t>(kCalibrationMaxMatrixValues))
-            fail_(line, key_, "matrix size " + shape() + " exceeds " + std::to_string(kCalibrationMaxMatrixValues) + " values");
+            fail_(line, key_,
+                  "matrix size " + shape() + " exceeds " + std::to_string(kCalibrationMaxMatrixValues) + " values");
         if (static_cast<std::int64_t>(data_.size()) != expected)
-            fail_(line, key_, "matrix data has " + std::to_string(data_.size()) + " values, expected " +
-                                  std::to_string(expected) + " for " + shape());
+            fail_(line, key_,
+                  "matrix data has " + std::to_string(data_.size()) + " values, expected " + std::to_string(expected) +
+                      " for " + shape());
         if (*dt_ != 'f' && *dt_ != 'd' && !all_integral_)
             fail_(line, key_, std::string("matrix data holds a fraction but dt is '") + *dt_ + "' (an integer type)");
         return CalibrationMatrix{static_cast<int>(*rows_), static_cast<int>(*cols_), *dt_, std::move(data_)};
@@ -157,7 +165,8 @@ private:
         seen = true;
     }
 
-    void set_dimension(std::optional<std::int64_t>& dim, std::string_view field, std::string_view value, std::size_t line)
+    void set_dimension(std::optional<std::int64_t>& dim, std::string_view field, std::string_view value,
+                       std::size_t line)
     {
         bool seen = dim.has_value();
         mark(seen, field, line);
@@ -175,8 +184,9 @@ private:
         mark(seen, "dt", line);
         constexpr std::string_view kTypes = "ucwsifd";
         if (value.size() != 1 || kTypes.find(value.front()) == std::string_view::npos)
-            fail_(line, key_, "unsupported element type dt " + quoted(value) +
-                                  " (expected one single-channel type of u, c, w, s, i, f, d)");
+            fail_(line, key_,
+                  "unsupported element type dt " + quoted(value) +
+                      " (expected one single-channel type of u, c, w, s, i, f, d)");
         dt_ = value.front();
     }
 
@@ -266,8 +276,7 @@ private:
         }
         const std::string_view content = trim(line);
         if (data_open_) {
-            if (indent == 0)
-                fail_(line_no, current_key(), "matrix data not closed with ']' before the next key");
+            if (indent == 0) fail_(line_no, current_key(), "matrix data not closed with ']' before the next key");
             data_values(content, line_no);
             return;
         }
@@ -277,8 +286,8 @@ private:
             return;
         }
         if (!matrix_)
-            fail_(line_no, "", "indented line " + quoted(content) +
-                                   " outside a matrix (only !!opencv-matrix nodes may be nested)");
+            fail_(line_no, "",
+                  "indented line " + quoted(content) + " outside a matrix (only !!opencv-matrix nodes may be nested)");
         const auto [field, value] = split_key(content, line_no, matrix_->key());
         matrix_->set_field(field, value, line_no);
         if (field == "data") {
@@ -297,11 +306,11 @@ private:
             matrix_.emplace(std::string(key), line_no, fail_);
             return;
         }
-        if (value.empty())
-            fail_(line_no, key, "no value (nested nodes other than !!opencv-matrix are not supported)");
+        if (value.empty()) fail_(line_no, key, "no value (nested nodes other than !!opencv-matrix are not supported)");
         if (is_quoted_text(value)) {
             add_entry(entries_, std::string(key),
-                      CalibrationEntry{line_no, CalibrationText{std::string(value.substr(1, value.size() - 2))}}, fail_);
+                      CalibrationEntry{line_no, CalibrationText{std::string(value.substr(1, value.size() - 2))}},
+                      fail_);
             return;
         }
         const auto number = parse_number(value);
@@ -311,7 +320,7 @@ private:
 
     // "name: value" with a plain name; value trimmed, possibly empty.
     std::pair<std::string_view, std::string_view> split_key(std::string_view content, std::size_t line_no,
-                                                           std::string_view owner)
+                                                            std::string_view owner)
     {
         std::size_t n = 0;
         if (!content.empty() && is_name_start(content[0]))
@@ -337,8 +346,7 @@ private:
                 expect_value_ = true;
                 ++i;
             } else if (c == ']') {
-                if (expect_value_ && values_ > 0)
-                    fail_(line_no, matrix_->key(), "matrix data ends with a ','");
+                if (expect_value_ && values_ > 0) fail_(line_no, matrix_->key(), "matrix data ends with a ','");
                 data_open_ = false;
                 ++i;
             } else {
@@ -461,8 +469,9 @@ private:
         if (end == std::string_view::npos) fail_(line_, key, "truncated file: attribute value not closed");
         const std::string_view value = text_.substr(pos_, end - pos_);
         if (attr != "type_id" || value != "opencv-matrix")
-            fail_(line_, key, "unsupported attribute " + quoted(attr) + "=" + quoted(value) +
-                                  " (only type_id=\"opencv-matrix\" is read)");
+            fail_(line_, key,
+                  "unsupported attribute " + quoted(attr) + "=" + quoted(value) +
+                      " (only type_id=\"opencv-matrix\" is read)");
         advance(end + 1 - pos_);
         skip_blanks();
         expect(">", key);
@@ -500,8 +509,9 @@ private:
         const std::size_t at = line_;
         const std::string_view closing = name(key);
         if (closing != element)
-            fail_(at, key, "closing tag </" + std::string(closing.substr(0, 32)) + "> does not match <" +
-                               std::string(element) + ">");
+            fail_(at, key,
+                  "closing tag </" + std::string(closing.substr(0, 32)) + "> does not match <" + std::string(element) +
+                      ">");
         skip_blanks();
         expect(">", key);
     }
@@ -512,8 +522,9 @@ private:
         if (pos_ < text_.size() && is_name_start(text_[pos_]))
             while (pos_ < text_.size() && is_name_char(text_[pos_])) ++pos_;
         if (pos_ == start)
-            fail_(line_, key, pos_ < text_.size() ? "expected an element name, found " + quoted(text_.substr(pos_, 16))
-                                                  : std::string("truncated file: expected an element name"));
+            fail_(line_, key,
+                  pos_ < text_.size() ? "expected an element name, found " + quoted(text_.substr(pos_, 16))
+                                      : std::string("truncated file: expected an element name"));
         return text_.substr(start, pos_ - start);
     }
 

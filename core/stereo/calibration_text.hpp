@@ -23,8 +23,8 @@ struct CalibrationScalar {
 struct CalibrationMatrix {
     int rows = 0;
     int cols = 0;
-    char dt = 'd';              // OpenCV's element type letter as stored (u c w s i f d)
-    std::vector<double> data;   // row-major, rows * cols values
+    char dt = 'd';             // OpenCV's element type letter as stored (u c w s i f d)
+    std::vector<double> data;  // row-major, rows * cols values
 };
 
 // A double-quoted text value, as FileStorage writes strings (e.g. a calibration time). No

@@ -72,8 +72,8 @@ struct EyeOptics {
 
 }  // namespace
 
-ImageMotion camera_motion(const StereoCalibration& calibration, Eye eye, const HeadPose& before,
-                          const HeadPose& after, cv::Point2d image_point, double depth_mm)
+ImageMotion camera_motion(const StereoCalibration& calibration, Eye eye, const HeadPose& before, const HeadPose& after,
+                          cv::Point2d image_point, double depth_mm)
 {
     if (!finite(before) || !finite(after))
         throw std::invalid_argument("camera_motion: head pose angles must be finite, the zoom > 0");
@@ -90,8 +90,8 @@ ImageMotion camera_motion(const StereoCalibration& calibration, Eye eye, const H
     const EyeOptics optics_after{zoomed_intrinsics(K, after.zoom), D};
 
     // camera at `before` -> head frame -> camera at `after`
-    const RigidTransform moved = camera_to_head(calibration.head, after, eye).inverse() *
-                                 camera_to_head(calibration.head, before, eye);
+    const RigidTransform moved =
+        camera_to_head(calibration.head, after, eye).inverse() * camera_to_head(calibration.head, before, eye);
 
     const Pixels seen{image_point, image_point + cv::Point2d(kBaselinePx, 0.0),
                       image_point + cv::Point2d(0.0, kBaselinePx)};
@@ -119,8 +119,7 @@ ImageMotion camera_motion(const StereoCalibration& calibration, Eye eye, const H
     // Image axes (y down): a positive angle is clockwise on screen, as HandState::rotation.
     m.drotation = std::atan2(J(1, 0) - J(0, 1), J(0, 0) + J(1, 1));
     const double area = cv::determinant(J);
-    if (!(area > 0.0))
-        throw std::domain_error("camera_motion: the head's move folds the image around the point");
+    if (!(area > 0.0)) throw std::domain_error("camera_motion: the head's move folds the image around the point");
     m.scale_factor = std::sqrt(area);
     return m;
 }

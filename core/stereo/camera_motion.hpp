@@ -19,7 +19,7 @@ namespace gc {
 // (the similarity closest to the local image map: what the hand state can express).
 // Throws std::invalid_argument on a non-finite input or a depth <= 0, and std::domain_error
 // when the point ends up behind the camera (no image motion exists then).
-ImageMotion camera_motion(const StereoCalibration& calibration, Eye eye, const HeadPose& before,
-                          const HeadPose& after, cv::Point2d image_point, double depth_mm = 1000.0);
+ImageMotion camera_motion(const StereoCalibration& calibration, Eye eye, const HeadPose& before, const HeadPose& after,
+                          cv::Point2d image_point, double depth_mm = 1000.0);
 
 }  // namespace gc

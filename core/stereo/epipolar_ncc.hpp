@@ -9,10 +9,10 @@ namespace gc {
 
 // One view's search data over a region of interest of the (undistorted) image.
 struct NccView {
-    cv::Point offset;   // of the region in full-image pixels
-    cv::Mat1f grey;     // intensities of the region
-    cv::Mat1f sigma;    // standard deviation of the window centred on each pixel
-    cv::Mat1b mask;     // 255 where a window centre may match (inside the hand)
+    cv::Point offset;  // of the region in full-image pixels
+    cv::Mat1f grey;    // intensities of the region
+    cv::Mat1f sigma;   // standard deviation of the window centred on each pixel
+    cv::Mat1b mask;    // 255 where a window centre may match (inside the hand)
 
     // Recomputes grey/sigma for a window of (2 radius + 1)^2 pixels from `grey8` (CV_8U,
     // the region already cut out); reuses the buffers.

@@ -15,10 +15,7 @@ RigidTransform RigidTransform::inverse() const
     return {Rt, -(Rt * t)};
 }
 
-RigidTransform operator*(const RigidTransform& a, const RigidTransform& b)
-{
-    return {a.R * b.R, a.R * b.t + a.t};
-}
+RigidTransform operator*(const RigidTransform& a, const RigidTransform& b) { return {a.R * b.R, a.R * b.t + a.t}; }
 
 cv::Matx33d rotation_about_x(double deg)
 {

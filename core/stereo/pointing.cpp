@@ -24,13 +24,13 @@ namespace gc {
 
 namespace {
 
-constexpr int kWindowRadius = 4;          // 9x9 correlation window
-constexpr double kMinScore = 0.7;         // weakest accepted NCC peak
-constexpr double kMinSigma = 3.0;         // grey levels; flatter windows are sensor noise
-constexpr int kMaxPoints = 128;           // correspondences attempted per frame (cost bound)
-constexpr double kMinDepthMm = 250.0;     // search range along the epipolar line
+constexpr int kWindowRadius = 4;       // 9x9 correlation window
+constexpr double kMinScore = 0.7;      // weakest accepted NCC peak
+constexpr double kMinSigma = 3.0;      // grey levels; flatter windows are sensor noise
+constexpr int kMaxPoints = 128;        // correspondences attempted per frame (cost bound)
+constexpr double kMinDepthMm = 250.0;  // search range along the epipolar line
 constexpr double kMaxDepthMm = 5000.0;
-constexpr double kConsistencyPx = 1.5;    // right-to-left match must land this close
+constexpr double kConsistencyPx = 1.5;  // right-to-left match must land this close
 constexpr int kMinInliers = 12;
 constexpr double kMinPlaneToleranceMm = 6.0;
 constexpr double kPlaneToleranceDisparityPx = 1.0;  // inlier band: this much disparity error
@@ -66,7 +66,7 @@ struct EyeData {
     cv::Mat D;
     cv::Size size;
     bool distorted = false;
-    cv::Mat map_x, map_y;  // undistortion maps (full image), when distorted
+    cv::Mat map_x, map_y;                       // undistortion maps (full image), when distorted
     std::vector<cv::Point2f> raw, undistorted;  // contour + fingertip + palm
     std::vector<cv::Point> polygon;
     cv::Mat roi_bgr, grey8;
@@ -79,8 +79,7 @@ struct EyeData {
         D = distortion;
         this->size = size;
         distorted = has_distortion(distortion);
-        if (distorted)
-            cv::initUndistortRectifyMap(M, D, cv::noArray(), M, size, CV_32FC1, map_x, map_y);
+        if (distorted) cv::initUndistortRectifyMap(M, D, cv::noArray(), M, size, CV_32FC1, map_x, map_y);
     }
 
     // The lens's magnification for the next frames: the focal length scales, and the
@@ -90,8 +89,7 @@ struct EyeData {
         if (z == zoom) return;
         zoom = z;
         M = zoomed_intrinsics(widest, z);
-        if (distorted)
-            cv::initUndistortRectifyMap(M, D, cv::noArray(), M, size, CV_32FC1, map_x, map_y);
+        if (distorted) cv::initUndistortRectifyMap(M, D, cv::noArray(), M, size, CV_32FC1, map_x, map_y);
     }
 
     // Undistorts the estimate's points and prepares the NCC view of its hand region.
@@ -111,7 +109,8 @@ struct EyeData {
 
         polygon.resize(n);
         for (std::size_t i = 0; i < n; ++i)
-            polygon[i] = {static_cast<int>(std::lround(undistorted[i].x)), static_cast<int>(std::lround(undistorted[i].y))};
+            polygon[i] = {static_cast<int>(std::lround(undistorted[i].x)),
+                          static_cast<int>(std::lround(undistorted[i].y))};
         const int pad = kWindowRadius + 1;
         cv::Rect region = cv::boundingRect(polygon);
         region = cv::Rect(region.x - pad, region.y - pad, region.width + 2 * pad, region.height + 2 * pad) &
@@ -173,9 +172,8 @@ struct PointingEstimator::Impl {
             throw std::invalid_argument(std::string("pointing: ") + which + " frame is not CV_8UC3 (BGR)");
         if (bgr.size() != calibration.image_size)
             throw std::invalid_argument(std::string("pointing: ") + which + " frame is " + std::to_string(bgr.cols) +
-                                        "x" + std::to_string(bgr.rows) + " but the calibration '" +
-                                        calibration.source + "' is for " +
-                                        std::to_string(calibration.image_size.width) + "x" +
+                                        "x" + std::to_string(bgr.rows) + " but the calibration '" + calibration.source +
+                                        "' is for " + std::to_string(calibration.image_size.width) + "x" +
                                         std::to_string(calibration.image_size.height));
     }
 
@@ -185,7 +183,9 @@ struct PointingEstimator::Impl {
     {
         const cv::Size size = calibration.image_size;
         const cv::Rect2f near(-size.width, -size.height, 3.0f * size.width, 3.0f * size.height);
-        const auto ok = [&](const cv::Point2f& p) { return std::isfinite(p.x) && std::isfinite(p.y) && near.contains(p); };
+        const auto ok = [&](const cv::Point2f& p) {
+            return std::isfinite(p.x) && std::isfinite(p.y) && near.contains(p);
+        };
         return e.contour.size() >= 3 && std::all_of(e.contour.begin(), e.contour.end(), ok) && ok(e.fingertip) &&
                ok(e.palm);
     }
@@ -209,8 +209,8 @@ struct PointingEstimator::Impl {
         }
     }
 
-    Pointing3D estimate(const cv::Mat& left_bgr, const cv::Mat& right_bgr, const EyeEstimate& le,
-                        const EyeEstimate& re, const HeadPose& head)
+    Pointing3D estimate(const cv::Mat& left_bgr, const cv::Mat& right_bgr, const EyeEstimate& le, const EyeEstimate& re,
+                        const HeadPose& head)
     {
         Pointing3D out;
         if (!le.valid() || !re.valid()) return out;

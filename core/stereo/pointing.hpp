@@ -19,7 +19,7 @@ struct Pointing3D {
     // Left camera frame at capture (x right, y down, z forward), millimetres.
     cv::Vec3d fingertip_mm;
     cv::Vec3d palm_mm;
-    cv::Vec3d direction;          // unit, palm -> fingertip
+    cv::Vec3d direction;  // unit, palm -> fingertip
     double azimuth_deg = 0.0;
     double elevation_deg = 0.0;
     // The same in the head frame (stereo/head_geometry.hpp) at the capture pose.
@@ -28,7 +28,7 @@ struct Pointing3D {
     cv::Vec3d direction_head;
     double azimuth_head_deg = 0.0;
     double elevation_head_deg = 0.0;
-    int correspondences = 0;      // inliers used
+    int correspondences = 0;  // inliers used
 };
 
 void direction_angles(const cv::Vec3d& direction, double& azimuth_deg, double& elevation_deg);
@@ -42,9 +42,8 @@ public:
 
     // Both estimates must be valid; otherwise returns {valid = false}. `head` is the pose
     // at capture (vergence changes the epipolar geometry).
-    Pointing3D estimate(const cv::Mat& left_bgr, const cv::Mat& right_bgr,
-                        const EyeEstimate& left, const EyeEstimate& right,
-                        const HeadPose& head = {});
+    Pointing3D estimate(const cv::Mat& left_bgr, const cv::Mat& right_bgr, const EyeEstimate& left,
+                        const EyeEstimate& right, const HeadPose& head = {});
 
     const StereoCalibration& calibration() const;
 

@@ -28,10 +28,8 @@ void PointingDwell::start_dwell(double t_s, const Pointing3D& pointing, const cv
 std::optional<cv::Vec3d> PointingDwell::update(double t_s, const Pointing3D& pointing, const DwellParams& params)
 {
     if (!pointing.valid) {
-        if (t_s - last_pointing_s_ > params.gap_s)
-            dwell_start_s_.reset();  // a pointing that is not held picks nothing
-        if (held_ && t_s - last_pointing_s_ >= params.release_s)
-            held_.reset();
+        if (t_s - last_pointing_s_ > params.gap_s) dwell_start_s_.reset();  // a pointing that is not held picks nothing
+        if (held_ && t_s - last_pointing_s_ >= params.release_s) held_.reset();
         return held_;
     }
     last_pointing_s_ = t_s;
@@ -60,8 +58,7 @@ std::optional<ImageRegion> region_in_left_view(const cv::Vec3d& centre_mm, doubl
                                                const StereoCalibration& calibration, const HeadPose& pose)
 {
     const cv::Vec3d p = camera_to_head(calibration.head, pose, Eye::Left).inverse().apply(centre_mm);
-    if (p[2] <= 1.0)
-        return std::nullopt;
+    if (p[2] <= 1.0) return std::nullopt;
     const cv::Matx33d& K = calibration.M1;
     ImageRegion r;
     r.centre = {K(0, 0) * p[0] / p[2] + K(0, 2), K(1, 1) * p[1] / p[2] + K(1, 2)};

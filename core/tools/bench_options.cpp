@@ -39,10 +39,7 @@ options:
   -h, --help         this text
 )";
 
-std::string_view detector_name(gc::HandDetector d)
-{
-    return d == gc::HandDetector::Motion ? "motion" : "learned";
-}
+std::string_view detector_name(gc::HandDetector d) { return d == gc::HandDetector::Motion ? "motion" : "learned"; }
 
 namespace {
 
@@ -72,22 +69,25 @@ gc::sim::Preset parse_scene(std::string_view opt, std::string_view item)
 gc::HandDetector parse_detector(std::string_view opt, std::string_view item)
 {
     if (item != "learned" && item != "motion")
-        throw UsageError(std::string(opt) + ": unknown detector '" + std::string(item) +
-                         "' (learned, motion)");
+        throw UsageError(std::string(opt) + ": unknown detector '" + std::string(item) + "' (learned, motion)");
     return item == "motion" ? gc::HandDetector::Motion : gc::HandDetector::Learned;
 }
 
 // The options' texts as CLI11 read them; converted afterwards with the messages above.
 struct GivenText {
-    std::optional<std::string> particles, scenes, motion, detectors, frames, runs, seeds, peer_particles,
-        real_frames;
+    std::optional<std::string> particles, scenes, motion, detectors, frames, runs, seeds, peer_particles, real_frames;
 };
 
 void add_options(CLI::App& app, BenchOptions& o, Given& g, GivenText& t)
 {
-    for (auto [name, text] : {std::pair{"--particles", &t.particles}, {"--scenes", &t.scenes},
-                              {"--motion", &t.motion}, {"--detectors", &t.detectors}, {"--frames", &t.frames},
-                              {"--runs", &t.runs}, {"--seeds", &t.seeds}, {"--peer-particles", &t.peer_particles},
+    for (auto [name, text] : {std::pair{"--particles", &t.particles},
+                              {"--scenes", &t.scenes},
+                              {"--motion", &t.motion},
+                              {"--detectors", &t.detectors},
+                              {"--frames", &t.frames},
+                              {"--runs", &t.runs},
+                              {"--seeds", &t.seeds},
+                              {"--peer-particles", &t.peer_particles},
                               {"--real-frames", &t.real_frames}})
         app.add_option(name, *text);
     app.add_option("--real", g.real_dir);
@@ -100,32 +100,23 @@ void add_options(CLI::App& app, BenchOptions& o, Given& g, GivenText& t)
 void convert(const GivenText& t, BenchOptions& o, Given& g)
 {
     using gc::cli::parse_list;
-    if (t.detectors)
-        o.detectors = parse_list<gc::HandDetector>("--detectors", *t.detectors, parse_detector);
+    if (t.detectors) o.detectors = parse_list<gc::HandDetector>("--detectors", *t.detectors, parse_detector);
     if (t.motion) {
         const auto m = gc::sim::motion_from_string(*t.motion);
-        if (!m)
-            throw UsageError("--motion: unknown motion '" + *t.motion + "'");
+        if (!m) throw UsageError("--motion: unknown motion '" + *t.motion + "'");
         o.motion = *m;
     }
     if (t.particles)
-        g.particles = parse_list<int>("--particles", *t.particles, [](auto opt, auto item) {
-            return parse_number<int>(opt, item, 1, 100000);
-        });
-    if (t.scenes)
-        g.scenes = parse_list<gc::sim::Preset>("--scenes", *t.scenes, parse_scene);
-    if (t.frames)
-        g.frames = parse_number<int>("--frames", *t.frames, 10, 100000);
-    if (t.runs)
-        g.runs = parse_number<int>("--runs", *t.runs, 1, 1000);
+        g.particles = parse_list<int>("--particles", *t.particles,
+                                      [](auto opt, auto item) { return parse_number<int>(opt, item, 1, 100000); });
+    if (t.scenes) g.scenes = parse_list<gc::sim::Preset>("--scenes", *t.scenes, parse_scene);
+    if (t.frames) g.frames = parse_number<int>("--frames", *t.frames, 10, 100000);
+    if (t.runs) g.runs = parse_number<int>("--runs", *t.runs, 1, 1000);
     if (t.seeds)
-        g.seeds = parse_list<std::uint64_t>("--seeds", *t.seeds, [](auto opt, auto item) {
-            return parse_number<std::uint64_t>(opt, item);
-        });
-    if (t.peer_particles)
-        g.peer_particles = parse_number<int>("--peer-particles", *t.peer_particles, 1, 100000);
-    if (t.real_frames)
-        g.real_frames = parse_number<int>("--real-frames", *t.real_frames, 1, 1 << 30);
+        g.seeds = parse_list<std::uint64_t>("--seeds", *t.seeds,
+                                            [](auto opt, auto item) { return parse_number<std::uint64_t>(opt, item); });
+    if (t.peer_particles) g.peer_particles = parse_number<int>("--peer-particles", *t.peer_particles, 1, 100000);
+    if (t.real_frames) g.real_frames = parse_number<int>("--real-frames", *t.real_frames, 1, 1 << 30);
 }
 
 void apply(const Given& g, BenchOptions& o)
@@ -162,8 +153,7 @@ int parse_bench_options(int argc, char** argv, BenchOptions& o)
     CLI::App app("Measures the tracker on the synthetic scenes and the real pair", "gesturecam-bench");
     gc::cli::configure(app, kBenchUsage);
     add_options(app, o, given, text);
-    if (const int status = gc::cli::parse(app, argc, argv); status >= 0)
-        return status;
+    if (const int status = gc::cli::parse(app, argc, argv); status >= 0) return status;
     try {
         convert(text, o, given);
     } catch (const UsageError& e) {

@@ -17,8 +17,8 @@ std::string_view detector_name(gc::HandDetector d);
 
 struct BenchOptions {
     std::vector<int> particles{20, 50, 100, 200, 500, 1000, 2000, 5000};
-    std::vector<gc::sim::Preset> scenes{gc::sim::Preset::Clean, gc::sim::Preset::Light,
-                                        gc::sim::Preset::Heavy, gc::sim::Preset::FacePass};
+    std::vector<gc::sim::Preset> scenes{gc::sim::Preset::Clean, gc::sim::Preset::Light, gc::sim::Preset::Heavy,
+                                        gc::sim::Preset::FacePass};
     gc::sim::Motion motion = gc::sim::Motion::Mixed;
     // The first one is also the one set beside OpenCV's trackers.
     std::vector<gc::HandDetector> detectors{gc::HandDetector::Learned, gc::HandDetector::Motion};
@@ -27,9 +27,9 @@ struct BenchOptions {
     std::vector<std::uint64_t> seeds{1, 2, 3};
     int peer_particles = 1000;
     bool peers = true;
-    std::string real_dir;       // the real pair's folder; empty: skip it
+    std::string real_dir;         // the real pair's folder; empty: skip it
     bool real_dir_given = false;  // named on the command line (else the source tree's)
-    int real_frames = 1 << 30;  // the real pair's first frames that are tracked
+    int real_frames = 1 << 30;    // the real pair's first frames that are tracked
     bool json = false;
 };
 

@@ -16,8 +16,7 @@ std::string seeds_text(const std::vector<std::uint64_t>& seeds)
 {
     std::string text;
     for (std::uint64_t s : seeds) {
-        if (!text.empty())
-            text += ',';
+        if (!text.empty()) text += ',';
         text += std::to_string(s);
     }
     return text;
@@ -50,18 +49,16 @@ void print_header(const BenchOptions& o, const BenchResults& r, std::ostream& ou
         return;
     }
     out << "# gesturecam-bench\n\n"
-        << "machine: " << m.cores << " cores, " << m.cpu_model << ", load average "
-        << fixed(m.load_1min, 2) << " at start\n"
-        << "OpenCV " << CV_VERSION << ", one OpenCV thread; 640x480, " << o.frames
-        << " frames per sequence, motion " << gc::sim::to_string(o.motion) << ", seeds "
-        << seeds_text(o.seeds) << ", median of " << o.runs << " run(s)\n"
-        << "baseline per frame: copy " << fixed(r.baseline.copy_ms, 3)
-        << " ms, BGR->RGB conversion " << fixed(r.baseline.convert_ms, 3) << " ms\n\n";
+        << "machine: " << m.cores << " cores, " << m.cpu_model << ", load average " << fixed(m.load_1min, 2)
+        << " at start\n"
+        << "OpenCV " << CV_VERSION << ", one OpenCV thread; 640x480, " << o.frames << " frames per sequence, motion "
+        << gc::sim::to_string(o.motion) << ", seeds " << seeds_text(o.seeds) << ", median of " << o.runs << " run(s)\n"
+        << "baseline per frame: copy " << fixed(r.baseline.copy_ms, 3) << " ms, BGR->RGB conversion "
+        << fixed(r.baseline.convert_ms, 3) << " ms\n\n";
 }
 
 // One row of Tables 4.1/4.2: one detector, scene and particle count.
-void print_accuracy_row(const BenchOptions& o, const BenchResults& r, int di, int si,
-                        int particles, std::ostream& out)
+void print_accuracy_row(const BenchOptions& o, const BenchResults& r, int di, int si, int particles, std::ostream& out)
 {
     const std::string_view scene_name = gc::sim::to_string(o.scenes[si]);
     const double skin_pct = r.skin_pct[si];
@@ -87,10 +84,9 @@ void print_accuracy_row(const BenchOptions& o, const BenchResults& r, int di, in
             << '\n';
         return;
     }
-    out << "| " << scene_name << " | " << fixed(skin_pct, 2) << " | " << particles << " | "
-        << fixed(a.snr.snr_db(), 2) << " | " << fixed(iou, 3) << " | " << fixed(tracked, 3) << " | "
-        << fixed(lost, 1) << " | " << fixed(ms, 2) << " | " << fixed(ms / r.baseline.convert_ms, 1)
-        << " |\n";
+    out << "| " << scene_name << " | " << fixed(skin_pct, 2) << " | " << particles << " | " << fixed(a.snr.snr_db(), 2)
+        << " | " << fixed(iou, 3) << " | " << fixed(tracked, 3) << " | " << fixed(lost, 1) << " | " << fixed(ms, 2)
+        << " | " << fixed(ms / r.baseline.convert_ms, 1) << " |\n";
 }
 
 // Tables 4.1/4.2 by particle count, one table per detector.
@@ -107,17 +103,15 @@ void print_accuracy(const BenchOptions& o, const BenchResults& r, std::ostream& 
                    "ms/frame/eye | x conversion |\n"
                 << "|---|---|---|---|---|---|---|---|---|\n";
         for (int si = 0; si < static_cast<int>(o.scenes.size()); ++si)
-            for (int particles : o.particles)
-                print_accuracy_row(o, r, di, si, particles, out);
+            for (int particles : o.particles) print_accuracy_row(o, r, di, si, particles, out);
     }
 }
 
 void print_peers(const BenchOptions& o, const BenchResults& r, std::ostream& out)
 {
     if (!o.json && !r.peers.empty())
-        out << "\n## OpenCV trackers on the same frames (box IoU vs the true box; ours at "
-            << o.peer_particles << " particles, " << detector_name(o.detectors.front())
-            << " detector)\n\n"
+        out << "\n## OpenCV trackers on the same frames (box IoU vs the true box; ours at " << o.peer_particles
+            << " particles, " << detector_name(o.detectors.front()) << " detector)\n\n"
             << "| scene | tracker | box IoU | ms/frame | frames scored |\n|---|---|---|---|---|\n";
     for (const PeerRow& p : r.peers) {
         if (o.json)
@@ -133,8 +127,8 @@ void print_peers(const BenchOptions& o, const BenchResults& r, std::ostream& out
                        .str()
                 << '\n';
         else
-            out << "| " << p.scene << " | " << p.tracker << " | " << fixed(p.iou, 3) << " | "
-                << fixed(p.ms, 2) << " | " << p.frames << " |\n";
+            out << "| " << p.scene << " | " << p.tracker << " | " << fixed(p.iou, 3) << " | " << fixed(p.ms, 2) << " | "
+                << p.frames << " |\n";
     }
 }
 
@@ -168,11 +162,10 @@ void print_stereo(const BenchOptions& o, const BenchResults& r, std::ostream& ou
                 << '\n';
             continue;
         }
-        out << "| " << detector_name(s.detector) << " | " << fixed(s.estimate_ms, 2) << " | "
-            << s.valid << "/" << s.frames << " | " << fixed(s.direction_error_deg, 1) << " | "
-            << fixed(s.palm_error_mm, 0) << " | " << fixed(s.fps, 1) << " | " << fixed(s.cpu_ms, 2)
-            << " | " << fixed(s.rendering_fps, 1) << " | " << fixed(s.rendering_cpu_ms, 2) << " | "
-            << fixed(s.models_share, 3) << " |\n";
+        out << "| " << detector_name(s.detector) << " | " << fixed(s.estimate_ms, 2) << " | " << s.valid << "/"
+            << s.frames << " | " << fixed(s.direction_error_deg, 1) << " | " << fixed(s.palm_error_mm, 0) << " | "
+            << fixed(s.fps, 1) << " | " << fixed(s.cpu_ms, 2) << " | " << fixed(s.rendering_fps, 1) << " | "
+            << fixed(s.rendering_cpu_ms, 2) << " | " << fixed(s.models_share, 3) << " |\n";
     }
 }
 

@@ -18,13 +18,13 @@ namespace gc::tools {
 
 struct BenchResults {
     MachineInfo machine;
-    Baseline baseline;                                // medians over every sequence
+    Baseline baseline;  // medians over every sequence
     // By (detector index, scene index, particles), the indices into o.detectors, o.scenes.
     std::map<std::tuple<int, int, int>, AccuracyRow> accuracy;
-    std::vector<double> skin_pct;                     // per scene, mean over seeds
-    std::vector<PeerRow> peers;                       // ours with o.detectors.front()
-    std::vector<StereoFigures> stereo;                // one per detector
-    std::vector<RealPairRow> real;                    // one per detector, or none
+    std::vector<double> skin_pct;       // per scene, mean over seeds
+    std::vector<PeerRow> peers;         // ours with o.detectors.front()
+    std::vector<StereoFigures> stereo;  // one per detector
+    std::vector<RealPairRow> real;      // one per detector, or none
 };
 
 void print_report(const BenchOptions& o, const BenchResults& r, std::ostream& out);

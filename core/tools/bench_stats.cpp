@@ -29,22 +29,18 @@ double process_cpu_ms() { return clock_ms(CLOCK_PROCESS_CPUTIME_ID); }
 
 double median(std::vector<double> v)
 {
-    if (v.empty())
-        return std::nan("");
+    if (v.empty()) return std::nan("");
     const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
     std::nth_element(v.begin(), mid, v.end());
-    if (v.size() % 2 == 1)
-        return *mid;
+    if (v.size() % 2 == 1) return *mid;
     return 0.5 * (*mid + *std::max_element(v.begin(), mid));
 }
 
 double mean(const std::vector<double>& v)
 {
-    if (v.empty())
-        return std::nan("");
+    if (v.empty()) return std::nan("");
     double s = 0.0;
-    for (double x : v)
-        s += x;
+    for (double x : v) s += x;
     return s / static_cast<double>(v.size());
 }
 
@@ -56,8 +52,7 @@ double angle_deg(const cv::Vec3d& a, const cv::Vec3d& b)
 
 std::string fixed(double v, int decimals)
 {
-    if (!std::isfinite(v))
-        return "n/a";
+    if (!std::isfinite(v)) return "n/a";
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
     return buf;

@@ -29,8 +29,8 @@ std::string number_text(T v)
 }
 
 template <typename T>
-T parse_number(std::string_view option, std::string_view text,
-               T min = std::numeric_limits<T>::lowest(), T max = std::numeric_limits<T>::max())
+T parse_number(std::string_view option, std::string_view text, T min = std::numeric_limits<T>::lowest(),
+               T max = std::numeric_limits<T>::max())
 {
     T v{};
     const char* end = text.data() + text.size();
@@ -39,8 +39,7 @@ T parse_number(std::string_view option, std::string_view text,
     if (text.empty() || ec == std::errc::invalid_argument || ptr != end)
         throw UsageError(quoted() + " is not a number");
     if (ec == std::errc::result_out_of_range || v < min || v > max || v != v)
-        throw UsageError(quoted() + " is out of range [" + number_text(min) + ", " +
-                         number_text(max) + "]");
+        throw UsageError(quoted() + " is out of range [" + number_text(min) + ", " + number_text(max) + "]");
     return v;
 }
 
@@ -52,11 +51,9 @@ std::vector<T> parse_list(std::string_view option, std::string_view text, F pars
     while (true) {
         const std::size_t comma = text.find(',');
         const std::string_view item = text.substr(0, comma);
-        if (item.empty())
-            throw UsageError(std::string(option) + " has an empty item in its list");
+        if (item.empty()) throw UsageError(std::string(option) + " has an empty item in its list");
         out.push_back(parse_item(option, item));
-        if (comma == std::string_view::npos)
-            break;
+        if (comma == std::string_view::npos) break;
         text.remove_prefix(comma + 1);
     }
     return out;

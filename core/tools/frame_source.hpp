@@ -34,9 +34,15 @@ inline void to_bgr8(const cv::Mat& in, cv::Mat& depth8, cv::Mat& out)
         src = &depth8;
     }
     switch (src->channels()) {
-    case 1: cv::cvtColor(*src, out, cv::COLOR_GRAY2BGR); break;
-    case 3: out = *src; break;
-    case 4: cv::cvtColor(*src, out, cv::COLOR_BGRA2BGR); break;
+    case 1:
+        cv::cvtColor(*src, out, cv::COLOR_GRAY2BGR);
+        break;
+    case 3:
+        out = *src;
+        break;
+    case 4:
+        cv::cvtColor(*src, out, cv::COLOR_BGRA2BGR);
+        break;
     default:
         throw InputError("unsupported channel count " + std::to_string(src->channels()));
     }
@@ -58,8 +64,7 @@ public:
             return;
         }
         std::error_code ec;
-        if (!std::filesystem::exists(path_, ec))
-            throw InputError(describe() + ": no such file");
+        if (!std::filesystem::exists(path_, ec)) throw InputError(describe() + ": no such file");
         if (std::filesystem::is_directory(path_, ec))
             throw InputError(describe() + ": is a directory, expected a video file or an "
                                           "image-sequence pattern such as dir/%05d.png");
@@ -68,14 +73,12 @@ public:
         if (std::filesystem::is_regular_file(path_, ec))
             if (const std::optional<cv::Size> declared = image_file_size(path_))
                 check_frame_size(*declared, describe());
-        if (!capture_.open(path_, cv::CAP_ANY))
-            throw InputError(describe() + ": cannot be opened as a video");
+        if (!capture_.open(path_, cv::CAP_ANY)) throw InputError(describe() + ": cannot be opened as a video");
         check_frame_size(cv::Size(static_cast<int>(capture_.get(cv::CAP_PROP_FRAME_WIDTH)),
                                   static_cast<int>(capture_.get(cv::CAP_PROP_FRAME_HEIGHT))),
                          describe());
         const double count = capture_.get(cv::CAP_PROP_FRAME_COUNT);
-        if (count > 0.0)
-            frame_count_ = static_cast<std::int64_t>(count);
+        if (count > 0.0) frame_count_ = static_cast<std::int64_t>(count);
         // Video containers report their frame times; the image reader behind a single file does not.
         has_timestamps_ = capture_.getBackendName() != "CV_IMAGES" && capture_.get(cv::CAP_PROP_FPS) > 0.0;
     }
@@ -85,8 +88,7 @@ public:
     FrameStatus read(cv::Mat& bgr)
     {
         const FrameStatus status = sequence_ ? read_file(raw_) : read_video(raw_);
-        if (status != FrameStatus::Frame)
-            return status;
+        if (status != FrameStatus::Frame) return status;
         try {
             check_frame_size(raw_.size(), "frame " + std::to_string(next_index_));
             to_bgr8(raw_, depth8_, bgr);
@@ -105,10 +107,8 @@ public:
     std::string frame_text(std::int64_t index) const
     {
         std::string text = "frame " + std::to_string(index);
-        if (const std::optional<std::int64_t> count = frame_count())
-            text += " of " + std::to_string(*count);
-        if (sequence_)
-            text += " ('" + sequence_->path(index) + "')";
+        if (const std::optional<std::int64_t> count = frame_count()) text += " of " + std::to_string(*count);
+        if (sequence_) text += " ('" + sequence_->path(index) + "')";
         return text;
     }
 
@@ -121,8 +121,7 @@ public:
     // Presentation time of the frame read last, from the container; -1 when unknown.
     std::int64_t timestamp_ns() const
     {
-        if (!has_timestamps_)
-            return -1;
+        if (!has_timestamps_) return -1;
         const double ms = capture_.get(cv::CAP_PROP_POS_MSEC);
         return ms >= 0.0 ? static_cast<std::int64_t>(ms * 1e6 + 0.5) : -1;
     }
@@ -132,8 +131,7 @@ public:
 private:
     FrameStatus read_file(cv::Mat& raw)
     {
-        if (next_index_ >= sequence_->length())
-            return FrameStatus::End;
+        if (next_index_ >= sequence_->length()) return FrameStatus::End;
         raw = read_image_file(sequence_->path(next_index_), cv::IMREAD_UNCHANGED,
                               describe() + " " + frame_text(next_index_));
         return raw.empty() ? skip() : FrameStatus::Frame;
@@ -143,8 +141,7 @@ private:
     // stream (cv::VideoCapture::read() answers false for both).
     FrameStatus read_video(cv::Mat& raw)
     {
-        if (capture_.read(raw) && !raw.empty())
-            return FrameStatus::Frame;
+        if (capture_.read(raw) && !raw.empty()) return FrameStatus::Frame;
         return frame_count_ && next_index_ < *frame_count_ ? skip() : FrameStatus::End;
     }
 

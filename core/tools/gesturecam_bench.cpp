@@ -19,8 +19,7 @@ using namespace gc::tools;
 
 // Every detector and particle count and, unless --no-peers, the peers, on one scene over
 // every seed.
-void measure_scene(const BenchOptions& o, std::size_t si, BenchResults& r,
-                   std::vector<Baseline>& baselines)
+void measure_scene(const BenchOptions& o, std::size_t si, BenchResults& r, std::vector<Baseline>& baselines)
 {
     const std::string scene_name(gc::sim::to_string(o.scenes[si]));
     std::map<std::string, PeerScore> peer_scores;
@@ -47,8 +46,7 @@ void measure_scene(const BenchOptions& o, std::size_t si, BenchResults& r,
                 row.cpu_ms.push_back(cost.cpu_ms);
             }
         }
-        if (!o.peers)
-            continue;
+        if (!o.peers) continue;
         gc::TrackerParams params;
         params.particles = o.peer_particles;
         params.seed = seed;
@@ -68,8 +66,7 @@ int run_bench(const BenchOptions& o)
     BenchResults r;
     r.machine = machine_info();
     std::vector<Baseline> baselines;
-    for (std::size_t si = 0; si < o.scenes.size(); ++si)
-        measure_scene(o, si, r, baselines);
+    for (std::size_t si = 0; si < o.scenes.size(); ++si) measure_scene(o, si, r, baselines);
 
     for (gc::HandDetector detector : o.detectors) {
         std::cerr << "gesturecam-bench: stereo, " << detector_name(detector) << '\n';
@@ -91,8 +88,7 @@ int run_bench(const BenchOptions& o)
 int main(int argc, char** argv)
 {
     BenchOptions options;
-    if (const int status = parse_bench_options(argc, argv, options); status >= 0)
-        return status;
+    if (const int status = parse_bench_options(argc, argv, options); status >= 0) return status;
     try {
         return run_bench(options);
     } catch (const std::exception& e) {

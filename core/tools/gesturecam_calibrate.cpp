@@ -84,13 +84,10 @@ int parse(int argc, char** argv, Options& o)
     app.add_option("--square", square);
     app.add_option("--out", o.out);
     app.add_flag("--verbose", o.verbose);
-    if (const int status = gc::cli::parse(app, argc, argv); status >= 0)
-        return status;
+    if (const int status = gc::cli::parse(app, argc, argv); status >= 0) return status;
     try {
-        if (!board.empty())
-            o.board = parse_board(board);
-        if (!square.empty())
-            o.square_mm = parse_square(square);
+        if (!board.empty()) o.board = parse_board(board);
+        if (!square.empty()) o.square_mm = parse_square(square);
     } catch (const UsageError& e) {
         return gc::cli::usage_hint("gesturecam-calibrate", e.what());
     }
@@ -125,8 +122,7 @@ std::string format_index(const std::string& pattern, int index)
     check_pattern(pattern);
     std::vector<char> buf(pattern.size() + 32);
     const int n = std::snprintf(buf.data(), buf.size(), pattern.c_str(), index);
-    if (n < 0 || static_cast<std::size_t>(n) >= buf.size())
-        throw UsageError("cannot format pattern '" + pattern + "'");
+    if (n < 0 || static_cast<std::size_t>(n) >= buf.size()) throw UsageError("cannot format pattern '" + pattern + "'");
     return buf.data();
 }
 
@@ -151,17 +147,21 @@ std::vector<std::pair<std::string, std::string>> image_pairs(const Options& o)
         for (int i = 0; i <= kMaxPatternIndex; ++i) {
             const std::string l = format_index(o.left[0], i), r = format_index(o.right[0], i);
             const bool hl = std::filesystem::exists(l), hr = std::filesystem::exists(r);
-            if (hl && hr) pairs.emplace_back(l, r);
-            else if (hl != hr) std::cerr << "warning: index " << i << ": only " << (hl ? l : r) << " exists, skipped\n";
+            if (hl && hr)
+                pairs.emplace_back(l, r);
+            else if (hl != hr)
+                std::cerr << "warning: index " << i << ": only " << (hl ? l : r) << " exists, skipped\n";
         }
-        if (pairs.empty()) throw std::runtime_error("no image pair matches '" + o.left[0] + "' and '" + o.right[0] + "'");
+        if (pairs.empty())
+            throw std::runtime_error("no image pair matches '" + o.left[0] + "' and '" + o.right[0] + "'");
         return pairs;
     }
     for (const auto& s : o.left)
         if (is_pattern(s)) throw UsageError("mixing patterns and lists: use one pattern per side or lists only");
     const auto left = split_list(o.left), right = split_list(o.right);
     if (left.size() != right.size())
-        throw UsageError(std::to_string(left.size()) + " left images but " + std::to_string(right.size()) + " right images");
+        throw UsageError(std::to_string(left.size()) + " left images but " + std::to_string(right.size()) +
+                         " right images");
     for (std::size_t i = 0; i < left.size(); ++i) pairs.emplace_back(left[i], right[i]);
     return pairs;
 }
@@ -216,15 +216,16 @@ int run(const Options& o)
         const cv::Mat r = gc::tools::read_image_file(rf, cv::IMREAD_GRAYSCALE, "image '" + rf + "'");
         if (l.empty()) throw std::runtime_error("cannot read image '" + lf + "'");
         if (r.empty()) throw std::runtime_error("cannot read image '" + rf + "'");
-        if (l.size() != r.size())
-            throw std::runtime_error("'" + lf + "' and '" + rf + "' differ in size");
-        if (size.empty()) size = l.size();
+        if (l.size() != r.size()) throw std::runtime_error("'" + lf + "' and '" + rf + "' differ in size");
+        if (size.empty())
+            size = l.size();
         else if (l.size() != size)
             throw std::runtime_error("'" + lf + "' is " + std::to_string(l.cols) + "x" + std::to_string(l.rows) +
                                      " but the first image is " + std::to_string(size.width) + "x" +
                                      std::to_string(size.height));
         const bool ok = find_corners(l, o.board, cl) && find_corners(r, o.board, cr);
-        if (o.verbose || !ok) std::cerr << (ok ? "board found: " : "board not found in both, skipped: ") << lf << " " << rf << "\n";
+        if (o.verbose || !ok)
+            std::cerr << (ok ? "board found: " : "board not found in both, skipped: ") << lf << " " << rf << "\n";
         if (!ok) continue;
         object.push_back(board_points);
         left_corners.push_back(cl);
@@ -240,9 +241,9 @@ int run(const Options& o)
     std::vector<cv::Mat> rv, tv;
     const double rms1 = cv::calibrateCamera(object, left_corners, size, M1, D1, rv, tv);
     const double rms2 = cv::calibrateCamera(object, right_corners, size, M2, D2, rv, tv);
-    const double rms = cv::stereoCalibrate(object, left_corners, right_corners, M1, D1, M2, D2, size, R, T, E, F,
-                                           cv::CALIB_USE_INTRINSIC_GUESS,
-                                           cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 100, 1e-6));
+    const double rms = cv::stereoCalibrate(
+        object, left_corners, right_corners, M1, D1, M2, D2, size, R, T, E, F, cv::CALIB_USE_INTRINSIC_GUESS,
+        cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 100, 1e-6));
 
     gc::StereoCalibration c;
     c.image_size = size;
@@ -273,8 +274,7 @@ int run(const Options& o)
 int main(int argc, char** argv)
 {
     Options options;
-    if (const int status = parse(argc, argv, options); status >= 0)
-        return status;
+    if (const int status = parse(argc, argv, options); status >= 0) return status;
     try {
         return run(options);
     } catch (const UsageError& e) {

@@ -93,32 +93,23 @@ void add_options(CLI::App& app, Options& o, GivenText& t)
 void convert(const GivenText& t, Options& o)
 {
     using gc::cli::parse_number;
-    if (!t.particles.empty())
-        o.params.particles = parse_number<int>("--particles", t.particles, 1, 100000);
-    if (!t.seed.empty())
-        o.params.seed = parse_number<std::uint64_t>("--seed", t.seed);
+    if (!t.particles.empty()) o.params.particles = parse_number<int>("--particles", t.particles, 1, 100000);
+    if (!t.seed.empty()) o.params.seed = parse_number<std::uint64_t>("--seed", t.seed);
     if (!t.detector.empty()) {
         if (t.detector != "learned" && t.detector != "motion")
             throw gc::cli::UsageError("--detector must be learned or motion, not " + t.detector);
         o.params.detector = t.detector == "motion" ? gc::HandDetector::Motion : gc::HandDetector::Learned;
     }
-    if (!t.fps.empty())
-        o.fps = parse_number<double>("--fps", t.fps, 1e-3, 1e4);
+    if (!t.fps.empty()) o.fps = parse_number<double>("--fps", t.fps, 1e-3, 1e4);
     if (!t.max_frames.empty())
-        o.max_frames = parse_number<std::int64_t>("--max-frames", t.max_frames, 1,
-                                                  std::numeric_limits<std::int64_t>::max());
-    if (!t.progress.empty())
-        o.progress_s = parse_number<double>("--progress", t.progress, 0.0, 1e6);
-    if (o.right && o.right->empty())
-        throw gc::cli::UsageError("--right needs a non-empty value");
-    if (o.out && o.out->empty())
-        throw gc::cli::UsageError("--out needs a non-empty value");
+        o.max_frames =
+            parse_number<std::int64_t>("--max-frames", t.max_frames, 1, std::numeric_limits<std::int64_t>::max());
+    if (!t.progress.empty()) o.progress_s = parse_number<double>("--progress", t.progress, 0.0, 1e6);
+    if (o.right && o.right->empty()) throw gc::cli::UsageError("--right needs a non-empty value");
+    if (o.out && o.out->empty()) throw gc::cli::UsageError("--out needs a non-empty value");
 }
 
-std::string size_text(const cv::Size& s)
-{
-    return std::to_string(s.width) + "x" + std::to_string(s.height);
-}
+std::string size_text(const cv::Size& s) { return std::to_string(s.width) + "x" + std::to_string(s.height); }
 
 void warn(const std::string& text) { std::cerr << "gesturecam-track: warning: " << text << '\n'; }
 
@@ -127,8 +118,7 @@ class PairReader {
 public:
     explicit PairReader(const Options& o) : left_(o.left, "left"), skip_bad_frames_(o.skip_bad_frames)
     {
-        if (o.right)
-            right_.emplace(*o.right, "right");
+        if (o.right) right_.emplace(*o.right, "right");
     }
 
     // The next pair whose frames both decode, into `l` and `r`; false when either input has
@@ -139,16 +129,13 @@ public:
         while (true) {
             const std::int64_t index = left_.next_index();
             const gc::tools::FrameStatus left = left_.read(l);
-            if (left == gc::tools::FrameStatus::End)
-                return left_ended(index, r);
+            if (left == gc::tools::FrameStatus::End) return left_ended(index, r);
             auto right = gc::tools::FrameStatus::Frame;
-            if (right_ && (right = right_->read(r)) == gc::tools::FrameStatus::End)
-                return right_ended(index);
+            if (right_ && (right = right_->read(r)) == gc::tools::FrameStatus::End) return right_ended(index);
             if (left == gc::tools::FrameStatus::Frame && right == gc::tools::FrameStatus::Frame) {
                 if (right_ && l.size() != r.size())
                     throw gc::tools::InputError("frame " + std::to_string(index) + ": left frames are " +
-                                                size_text(l.size()) + " but right frames are " +
-                                                size_text(r.size()));
+                                                size_text(l.size()) + " but right frames are " + size_text(r.size()));
                 index_ = index;
                 ++pairs_;
                 return true;
@@ -169,8 +156,7 @@ private:
 
     bool left_ended(std::int64_t index, cv::Mat& r)
     {
-        if (pairs_ == 0)
-            throw gc::tools::InputError(left_.describe() + ": no frame could be read");
+        if (pairs_ == 0) throw gc::tools::InputError(left_.describe() + ": no frame could be read");
         if (right_ && right_->read(r) != gc::tools::FrameStatus::End)
             warn("left input ended after " + std::to_string(index) +
                  " frames but the right input has more; stopped at the shorter");
@@ -179,8 +165,7 @@ private:
 
     bool right_ended(std::int64_t index)
     {
-        if (pairs_ == 0)
-            throw gc::tools::InputError(right_->describe() + ": no frame could be read");
+        if (pairs_ == 0) throw gc::tools::InputError(right_->describe() + ": no frame could be read");
         warn("right input ended at frame " + std::to_string(index) + " before the left; stopped at the shorter");
         return false;
     }
@@ -188,8 +173,7 @@ private:
     void undecodable(const gc::tools::FrameSource& source, std::int64_t index)
     {
         const std::string what = source.describe() + ": " + source.frame_text(index) + " cannot be decoded";
-        if (!skip_bad_frames_)
-            throw gc::tools::InputError(what + " (--skip-bad-frames skips such frames)");
+        if (!skip_bad_frames_) throw gc::tools::InputError(what + " (--skip-bad-frames skips such frames)");
         ++skipped_;
         if (skipped_ <= kListedBadFrames)
             warn(what + "; skipped");
@@ -218,8 +202,7 @@ public:
     void frame_done(std::int64_t frames)
     {
         const Clock::time_point now = Clock::now();
-        if (interval_.count() <= 0.0 || now < next_)
-            return;
+        if (interval_.count() <= 0.0 || now < next_) return;
         next_ = now + interval_;
         const double elapsed = std::chrono::duration<double>(now - start_).count();
         char text[160];
@@ -277,27 +260,23 @@ void run(const Options& o)
     std::int64_t frames = 0;
     std::int64_t tracked = 0;
     std::optional<std::int64_t> total = input.frame_count();
-    if (total && *total > o.max_frames)
-        total = o.max_frames;
+    if (total && *total > o.max_frames) total = o.max_frames;
     ProgressLine progress(o.progress_s, total);
     do {
         const std::int64_t index = input.index();
         // The container's time when it has one, else the frame index at --fps.
         std::int64_t pts = input.timestamp_ns();
-        if (pts < 0 && o.fps)
-            pts = static_cast<std::int64_t>(static_cast<double>(index) * 1e9 / *o.fps + 0.5);
+        if (pts < 0 && o.fps) pts = static_cast<std::int64_t>(static_cast<double>(index) * 1e9 / *o.fps + 0.5);
 
         const gc::FrameResult& r = input.stereo() ? tracker.process_stereo(left_frame, right_frame, pts)
                                                   : tracker.process_mono(left_frame, pts);
         tracked += r.state == gc::TrackState::Tracking ? 1 : 0;
         out.write_line(json_line(r, index));
         progress.frame_done(++frames);
-    } while (input.next_index() < o.max_frames && input.next(left_frame, right_frame) &&
-             input.index() < o.max_frames);
+    } while (input.next_index() < o.max_frames && input.next(left_frame, right_frame) && input.index() < o.max_frames);
     out.close();
     std::cerr << "gesturecam-track: " << frames << " frames, " << tracked << " tracking";
-    if (input.skipped() > 0)
-        std::cerr << ", " << input.skipped() << " undecodable skipped";
+    if (input.skipped() > 0) std::cerr << ", " << input.skipped() << " undecodable skipped";
     std::cerr << '\n';
 }
 
@@ -310,8 +289,7 @@ int main(int argc, char** argv)
     CLI::App app("Tracks the pointing hand in a recorded stereo pair", "gesturecam-track");
     gc::cli::configure(app, kUsage);
     add_options(app, options, given);
-    if (const int status = gc::cli::parse(app, argc, argv); status >= 0)
-        return status;
+    if (const int status = gc::cli::parse(app, argc, argv); status >= 0) return status;
     try {
         convert(given, options);
     } catch (const gc::cli::UsageError& e) {

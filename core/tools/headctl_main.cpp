@@ -26,7 +26,8 @@ constexpr int kExitRefused = 4;
 std::atomic<bool> g_interrupted{false};
 void on_signal(int) { g_interrupted = true; }
 
-const char* kUsage = R"(usage: headctl [--uri URI] [--token-file FILE | --token TOKEN] [--timeout MS] [--json] COMMAND [ARGS]
+const char* kUsage =
+    R"(usage: headctl [--uri URI] [--token-file FILE | --token TOKEN] [--timeout MS] [--json] COMMAND [ARGS]
 Commands:
   status                         print every axis's angle and motion
   limits                         print soft limits, maximum velocity and acceleration
@@ -49,7 +50,8 @@ Exit status: 0 done, 2 usage error, 3 head unreachable, 4 head refused the comma
 
 using UsageError = gc::cli::UsageError;
 
-double number(std::string_view what, std::string_view text) {
+double number(std::string_view what, std::string_view text)
+{
     double v = 0.0;
     auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
     if (ec != std::errc{} || ptr != text.data() + text.size() || !std::isfinite(v))
@@ -57,7 +59,8 @@ double number(std::string_view what, std::string_view text) {
     return v;
 }
 
-void print_state(const HeadState& s, bool json) {
+void print_state(const HeadState& s, bool json)
+{
     if (json) {
         gc::tools::JsonObject o;
         o.add("t_us", static_cast<std::int64_t>(s.server_time_us));
@@ -75,7 +78,8 @@ void print_state(const HeadState& s, bool json) {
     std::fflush(stdout);
 }
 
-void print_limits(const HeadLimits& limits, bool json) {
+void print_limits(const HeadLimits& limits, bool json)
+{
     for (Axis a : kAllAxes) {
         const AxisLimits& l = limits[a];
         const std::string name(axis_name(a));
@@ -94,11 +98,14 @@ void print_limits(const HeadLimits& limits, bool json) {
     }
 }
 
-HeadCommand parse_move(const std::vector<std::string>& args) {
+HeadCommand parse_move(const std::vector<std::string>& args)
+{
     HeadCommand c{CommandKind::Absolute, {}};
     std::size_t i = 0;
     if (!args.empty() && (args[0] == "abs" || args[0] == "rel" || args[0] == "vel")) {
-        c.kind = args[0] == "abs" ? CommandKind::Absolute : args[0] == "rel" ? CommandKind::Relative : CommandKind::Velocity;
+        c.kind = args[0] == "abs"   ? CommandKind::Absolute
+                 : args[0] == "rel" ? CommandKind::Relative
+                                    : CommandKind::Velocity;
         ++i;
     }
     for (; i < args.size(); ++i) {
@@ -114,7 +121,8 @@ HeadCommand parse_move(const std::vector<std::string>& args) {
     return c;
 }
 
-HeadCommand parse_preset(const std::vector<std::string>& args) {
+HeadCommand parse_preset(const std::vector<std::string>& args)
+{
     if (args.size() != 2) throw UsageError("preset: expected save|recall N");
     const std::string& action = args[0];
     if (action != "save" && action != "recall")
@@ -137,7 +145,8 @@ struct CommandLine {
 
 // Parses the command line: -1 to go on, else the status to exit with. Options end at the
 // command, so "move rel pan=-5" keeps its minus sign.
-int parse_command_line(int argc, char** argv, CommandLine& c) {
+int parse_command_line(int argc, char** argv, CommandLine& c)
+{
     CLI::App app("Command-line client of a head", "headctl");
     gc::cli::configure(app, kUsage);
     app.prefix_command();
@@ -155,7 +164,8 @@ int parse_command_line(int argc, char** argv, CommandLine& c) {
 }
 
 // The head the command line names, with its token; throws UsageError or std::invalid_argument.
-std::unique_ptr<HeadBackend> open_backend(CommandLine& c) {
+std::unique_ptr<HeadBackend> open_backend(CommandLine& c)
+{
     if (!c.timeout.empty()) {
         c.timeout_ms = number("--timeout", c.timeout);
         if (c.timeout_ms <= 0 || c.timeout_ms > 600'000) throw UsageError("--timeout: must be in (0, 600000] ms");
@@ -166,7 +176,8 @@ std::unique_ptr<HeadBackend> open_backend(CommandLine& c) {
     return make_backend(uri, token);
 }
 
-void check_arguments(const CommandLine& c) {
+void check_arguments(const CommandLine& c)
+{
     const std::string& command = c.command;
     if (command.starts_with("-")) throw UsageError("unknown option " + command);
     if (command != "move" && command != "home" && command != "stop" && command != "status" && command != "limits" &&
@@ -177,12 +188,13 @@ void check_arguments(const CommandLine& c) {
     if (command == "watch" && c.args.size() > 2) throw UsageError("watch takes at most INTERVAL_MS and COUNT");
 }
 
-void watch(HeadBackend& head, const CommandLine& c, const std::function<HeadBackend::Deadline()>& deadline) {
+void watch(HeadBackend& head, const CommandLine& c, const std::function<HeadBackend::Deadline()>& deadline)
+{
     const double interval = c.args.size() >= 1 ? number("watch interval", c.args[0]) : 200.0;
     const double count = c.args.size() >= 2 ? number("watch count", c.args[1]) : 0.0;
     if (interval < 1 || interval > 60'000) throw UsageError("watch interval must be 1..60000 ms");
     if (count < 0 || count != std::floor(count)) throw UsageError("watch count must be a whole number >= 0");
-    struct sigaction sa{};
+    struct sigaction sa {};
     sa.sa_handler = on_signal;
     sigaction(SIGINT, &sa, nullptr);
     sigaction(SIGTERM, &sa, nullptr);
@@ -193,19 +205,26 @@ void watch(HeadBackend& head, const CommandLine& c, const std::function<HeadBack
 }
 
 // Runs the command against the head; returns the exit status.
-int run_command(HeadBackend& head, const CommandLine& c) {
+int run_command(HeadBackend& head, const CommandLine& c)
+{
     const auto timeout = std::chrono::microseconds(static_cast<long long>(c.timeout_ms * 1000));
     const std::function<HeadBackend::Deadline()> deadline = [&] { return std::chrono::steady_clock::now() + timeout; };
     std::optional<HeadCommand> move;
-    if (c.command == "move") move = parse_move(c.args);
-    else if (c.command == "home") move = HeadCommand{CommandKind::Home, {}};
-    else if (c.command == "preset") move = parse_preset(c.args);
-    else if (c.command == "stop") move = HeadCommand{CommandKind::Stop, {}};
+    if (c.command == "move")
+        move = parse_move(c.args);
+    else if (c.command == "home")
+        move = HeadCommand{CommandKind::Home, {}};
+    else if (c.command == "preset")
+        move = parse_preset(c.args);
+    else if (c.command == "stop")
+        move = HeadCommand{CommandKind::Stop, {}};
     head.open(deadline());
     if (move) {
         head.send(*move, deadline());
-        if (c.json) std::cout << gc::tools::JsonObject().add("ok", true).add("command", describe(*move)).str() << "\n";
-        else std::cout << "ok " << describe(*move) << "\n";
+        if (c.json)
+            std::cout << gc::tools::JsonObject().add("ok", true).add("command", describe(*move)).str() << "\n";
+        else
+            std::cout << "ok " << describe(*move) << "\n";
     } else if (c.command == "status") {
         print_state(head.query_state(deadline()), c.json);
     } else if (c.command == "limits") {
@@ -223,7 +242,8 @@ int run_command(HeadBackend& head, const CommandLine& c) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv)
+{
     CommandLine c;
     if (const int status = parse_command_line(argc, argv, c); status >= 0) return status;
     hide_secret_arguments(argc, argv);

@@ -19,7 +19,8 @@ using namespace gc::headctl;
 
 HeadServer* g_server = nullptr;
 
-void on_signal(int) {
+void on_signal(int)
+{
     if (g_server) g_server->request_stop();
 }
 
@@ -47,7 +48,8 @@ Simulated motorised head serving GCHP/1 (docs/head-protocol.md).
 On start it prints "listening ADDR:PORT" on stdout. SIGTERM or SIGINT stops it cleanly.
 )";
 
-double number(const char* option, std::string_view text) {
+double number(const char* option, std::string_view text)
+{
     double v = 0.0;
     auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
     if (ec != std::errc{} || ptr != text.data() + text.size() || !std::isfinite(v))
@@ -55,18 +57,21 @@ double number(const char* option, std::string_view text) {
     return v;
 }
 
-void parse_listen(std::string_view text, HeadServerConfig& config) {
+void parse_listen(std::string_view text, HeadServerConfig& config)
+{
     const auto colon = text.rfind(':');
     if (colon == std::string_view::npos || colon == 0) throw std::invalid_argument("--listen: expected ADDR:PORT");
     std::string_view host = text.substr(0, colon);
     if (host.size() >= 2 && host.front() == '[' && host.back() == ']') host = host.substr(1, host.size() - 2);
     const double port = number("--listen port", text.substr(colon + 1));
-    if (port < 0 || port > 65535 || port != std::floor(port)) throw std::invalid_argument("--listen: port must be 0..65535");
+    if (port < 0 || port > 65535 || port != std::floor(port))
+        throw std::invalid_argument("--listen: port must be 0..65535");
     config.host = std::string(host);
     config.port = static_cast<std::uint16_t>(port);
 }
 
-void parse_limits(std::string_view text, HeadLimits& limits) {
+void parse_limits(std::string_view text, HeadLimits& limits)
+{
     const auto eq = text.find('=');
     if (eq == std::string_view::npos) throw std::invalid_argument("--limits: expected AXIS=MIN:MAX:VMAX:AMAX");
     const auto axis = axis_from_name(text.substr(0, eq));
@@ -75,7 +80,8 @@ void parse_limits(std::string_view text, HeadLimits& limits) {
     std::string_view rest = text.substr(eq + 1);
     for (int i = 0; i < 4; ++i) {
         const auto colon = rest.find(':');
-        if ((i < 3) == (colon == std::string_view::npos)) throw std::invalid_argument("--limits: expected MIN:MAX:VMAX:AMAX");
+        if ((i < 3) == (colon == std::string_view::npos))
+            throw std::invalid_argument("--limits: expected MIN:MAX:VMAX:AMAX");
         v[i] = number("--limits", rest.substr(0, colon));
         rest = i < 3 ? rest.substr(colon + 1) : std::string_view{};
     }
@@ -88,7 +94,8 @@ struct GivenText {
     std::vector<std::string> limits;
 };
 
-void add_options(CLI::App& app, HeadServerConfig& config, GivenText& t) {
+void add_options(CLI::App& app, HeadServerConfig& config, GivenText& t)
+{
     app.add_option("--listen", t.listen);
     CLI::Option* token = app.add_option("--token", t.token);
     app.add_option("--token-file", t.token_file)->excludes(token);
@@ -103,7 +110,8 @@ void add_options(CLI::App& app, HeadServerConfig& config, GivenText& t) {
 }
 
 // Checks and converts the texts into `config`; throws std::invalid_argument.
-void apply(const GivenText& t, HeadServerConfig& config) {
+void apply(const GivenText& t, HeadServerConfig& config)
+{
     if (t.listen) parse_listen(*t.listen, config);
     if (t.token) {
         config.token = *t.token;
@@ -129,21 +137,21 @@ void apply(const GivenText& t, HeadServerConfig& config) {
 }
 
 // Serves until SIGTERM or SIGINT.
-void serve(const HeadServerConfig& config) {
+void serve(const HeadServerConfig& config)
+{
     HeadServer server(config);
     if (config.token.empty() && !is_loopback_address(config.host))
         std::cerr << "headsim: warning: listening on " << config.host
                   << " without a token: anyone who can reach this port can move the head\n";
     g_server = &server;
-    struct sigaction sa{};
+    struct sigaction sa {};
     sa.sa_handler = on_signal;
     sigemptyset(&sa.sa_mask);
     sigaction(SIGTERM, &sa, nullptr);
     sigaction(SIGINT, &sa, nullptr);
     signal(SIGPIPE, SIG_IGN);
     const bool v6 = server.host().find(':') != std::string::npos;
-    std::cout << "listening " << (v6 ? "[" + server.host() + "]" : server.host()) << ":" << server.port()
-              << std::endl;
+    std::cout << "listening " << (v6 ? "[" + server.host() + "]" : server.host()) << ":" << server.port() << std::endl;
     server.run();
     g_server = nullptr;
     std::cerr << "headsim: stopped\n";
@@ -151,7 +159,8 @@ void serve(const HeadServerConfig& config) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv)
+{
     HeadServerConfig config;
     GivenText given;
     CLI::App app("Simulated motorised head serving GCHP/1", "headsim");

@@ -23,8 +23,7 @@ public:
 // Throws InputError, prefixed with `what`, when `size` exceeds kMaxFrameSide on either side.
 inline void check_frame_size(cv::Size size, const std::string& what)
 {
-    if (size.width <= kMaxFrameSide && size.height <= kMaxFrameSide)
-        return;
+    if (size.width <= kMaxFrameSide && size.height <= kMaxFrameSide) return;
     const std::string limit = std::to_string(kMaxFrameSide);
     throw InputError(what + ": " + std::to_string(size.width) + "x" + std::to_string(size.height) +
                      " is larger than the limit of " + limit + "x" + limit + " pixels");
@@ -36,10 +35,8 @@ inline void check_frame_size(cv::Size size, const std::string& what)
 inline cv::Mat read_image_file(const std::string& path, int flags, const std::string& what)
 {
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec))
-        throw InputError(what + ": '" + path + "' is not a regular file");
-    if (const std::optional<cv::Size> declared = image_file_size(path))
-        check_frame_size(*declared, what);
+    if (!std::filesystem::is_regular_file(path, ec)) throw InputError(what + ": '" + path + "' is not a regular file");
+    if (const std::optional<cv::Size> declared = image_file_size(path)) check_frame_size(*declared, what);
     cv::Mat image = cv::imread(path, flags);
     check_frame_size(image.size(), what);
     return image;

@@ -19,8 +19,7 @@ namespace image_header_detail {
 inline std::uint32_t big_endian(std::string_view b, std::size_t at, int bytes)
 {
     std::uint32_t v = 0;
-    for (int i = 0; i < bytes; ++i)
-        v = (v << 8) | static_cast<unsigned char>(b[at + static_cast<std::size_t>(i)]);
+    for (int i = 0; i < bytes; ++i) v = (v << 8) | static_cast<unsigned char>(b[at + static_cast<std::size_t>(i)]);
     return v;
 }
 
@@ -31,8 +30,7 @@ inline std::optional<cv::Size> png_size(std::string_view b)
         return std::nullopt;
     const std::uint32_t w = big_endian(b, 16, 4), h = big_endian(b, 20, 4);
     // The PNG limit is 2^31 - 1 a side; larger is not a PNG.
-    if (w == 0 || h == 0 || w > 0x7fffffffu || h > 0x7fffffffu)
-        return std::nullopt;
+    if (w == 0 || h == 0 || w > 0x7fffffffu || h > 0x7fffffffu) return std::nullopt;
     return cv::Size(static_cast<int>(w), static_cast<int>(h));
 }
 
@@ -44,8 +42,7 @@ inline std::optional<cv::Size> jpeg_size(std::string_view b)
         return std::nullopt;
     std::size_t at = 2;
     while (at + 4 <= b.size()) {
-        if (static_cast<unsigned char>(b[at]) != 0xFF)
-            return std::nullopt;
+        if (static_cast<unsigned char>(b[at]) != 0xFF) return std::nullopt;
         const unsigned marker = static_cast<unsigned char>(b[at + 1]);
         if (marker == 0xFF) {  // fill byte
             ++at;
@@ -58,16 +55,13 @@ inline std::optional<cv::Size> jpeg_size(std::string_view b)
         if (marker == 0xD9 || marker == 0xDA)  // end of image or scan data before any frame
             return std::nullopt;
         const std::size_t length = big_endian(b, at + 2, 2);
-        if (length < 2)
-            return std::nullopt;
+        if (length < 2) return std::nullopt;
         const bool frame = marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC;
         if (frame) {
-            if (length < 7 || at + 9 > b.size())
-                return std::nullopt;
+            if (length < 7 || at + 9 > b.size()) return std::nullopt;
             const std::uint32_t h = big_endian(b, at + 5, 2), w = big_endian(b, at + 7, 2);
             // A height of 0 is given later (DNL): unknown here.
-            if (w == 0 || h == 0)
-                return std::nullopt;
+            if (w == 0 || h == 0) return std::nullopt;
             return cv::Size(static_cast<int>(w), static_cast<int>(h));
         }
         at += 2 + length;
@@ -81,8 +75,7 @@ inline std::optional<cv::Size> jpeg_size(std::string_view b)
 // formats, or when the header is not (entirely) within `bytes`.
 inline std::optional<cv::Size> image_header_size(std::string_view bytes)
 {
-    if (auto png = image_header_detail::png_size(bytes))
-        return png;
+    if (auto png = image_header_detail::png_size(bytes)) return png;
     return image_header_detail::jpeg_size(bytes);
 }
 

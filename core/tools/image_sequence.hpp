@@ -31,8 +31,7 @@ public:
         suffix_ = pattern.substr(end + 1);
         std::error_code ec;
         first_ = std::filesystem::exists(path(0), ec) ? 0 : 1;
-        while (std::filesystem::exists(path(length_), ec))
-            ++length_;
+        while (std::filesystem::exists(path(length_), ec)) ++length_;
         if (length_ == 0)
             throw InputError(what + ": no image matches the pattern (the sequence must start at index 0 or 1)");
     }

@@ -17,9 +17,8 @@ namespace gc::tools {
 struct JsonValue {
     using Array = std::vector<JsonValue>;
     using Object = std::map<std::string, JsonValue, std::less<>>;
-    std::variant<std::nullptr_t, bool, double, std::string, std::shared_ptr<Array>,
-                 std::shared_ptr<Object>>
-        v = nullptr;
+    std::variant<std::nullptr_t, bool, double, std::string, std::shared_ptr<Array>, std::shared_ptr<Object>> v =
+        nullptr;
 
     bool is_null() const { return std::holds_alternative<std::nullptr_t>(v); }
     bool is_number() const { return std::holds_alternative<double>(v); }
@@ -36,8 +35,7 @@ struct JsonValue {
     const JsonValue& operator[](std::string_view key) const
     {
         const auto it = object().find(key);
-        if (it == object().end())
-            throw std::out_of_range("no key '" + std::string(key) + "'");
+        if (it == object().end()) throw std::out_of_range("no key '" + std::string(key) + "'");
         return it->second;
     }
     const JsonValue& operator[](std::size_t i) const { return array().at(i); }
@@ -51,8 +49,7 @@ public:
         JsonReader r(text);
         JsonValue v = r.value(0);
         r.space();
-        if (r.pos_ != text.size())
-            r.fail("trailing characters");
+        if (r.pos_ != text.size()) r.fail("trailing characters");
         return v;
     }
 
@@ -82,25 +79,21 @@ private:
 
     void expect(char c)
     {
-        if (!eat(c))
-            fail(std::string("expected '") + c + "'");
+        if (!eat(c)) fail(std::string("expected '") + c + "'");
     }
 
     bool literal(std::string_view word)
     {
-        if (s_.substr(pos_, word.size()) != word)
-            return false;
+        if (s_.substr(pos_, word.size()) != word) return false;
         pos_ += word.size();
         return true;
     }
 
     JsonValue value(int depth)
     {
-        if (depth > 64)
-            fail("nesting too deep");
+        if (depth > 64) fail("nesting too deep");
         space();
-        if (pos_ >= s_.size())
-            fail("unexpected end");
+        if (pos_ >= s_.size()) fail("unexpected end");
         const char c = s_[pos_];
         JsonValue out;
         if (c == '{') {
@@ -111,8 +104,7 @@ private:
                     space();
                     std::string key = string();
                     expect(':');
-                    if (!obj->emplace(std::move(key), value(depth + 1)).second)
-                        fail("duplicate key");
+                    if (!obj->emplace(std::move(key), value(depth + 1)).second) fail("duplicate key");
                 } while (eat(','));
                 expect('}');
             }
@@ -121,8 +113,7 @@ private:
             ++pos_;
             auto arr = std::make_shared<JsonValue::Array>();
             if (!eat(']')) {
-                do
-                    arr->push_back(value(depth + 1));
+                do arr->push_back(value(depth + 1));
                 while (eat(','));
                 expect(']');
             }
@@ -143,39 +134,49 @@ private:
 
     std::string string()
     {
-        if (pos_ >= s_.size() || s_[pos_] != '"')
-            fail("expected a string");
+        if (pos_ >= s_.size() || s_[pos_] != '"') fail("expected a string");
         ++pos_;
         std::string out;
         while (pos_ < s_.size() && s_[pos_] != '"') {
             char c = s_[pos_++];
-            if (static_cast<unsigned char>(c) < 0x20)
-                fail("control character in a string");
+            if (static_cast<unsigned char>(c) < 0x20) fail("control character in a string");
             if (c == '\\') {
-                if (pos_ >= s_.size())
-                    fail("unfinished escape");
+                if (pos_ >= s_.size()) fail("unfinished escape");
                 c = s_[pos_++];
                 switch (c) {
-                case '"': case '\\': case '/': out += c; break;
-                case 'n': out += '\n'; break;
-                case 't': out += '\t'; break;
-                case 'r': out += '\r'; break;
-                case 'b': out += '\b'; break;
-                case 'f': out += '\f'; break;
+                case '"':
+                case '\\':
+                case '/':
+                    out += c;
+                    break;
+                case 'n':
+                    out += '\n';
+                    break;
+                case 't':
+                    out += '\t';
+                    break;
+                case 'r':
+                    out += '\r';
+                    break;
+                case 'b':
+                    out += '\b';
+                    break;
+                case 'f':
+                    out += '\f';
+                    break;
                 case 'u':
-                    if (pos_ + 4 > s_.size())
-                        fail("short \\u escape");
+                    if (pos_ + 4 > s_.size()) fail("short \\u escape");
                     out += '?';  // the checks only need to know the escape is well formed
                     pos_ += 4;
                     break;
-                default: fail("bad escape");
+                default:
+                    fail("bad escape");
                 }
             } else {
                 out += c;
             }
         }
-        if (pos_ >= s_.size())
-            fail("unterminated string");
+        if (pos_ >= s_.size()) fail("unterminated string");
         ++pos_;
         return out;
     }
@@ -184,34 +185,27 @@ private:
     {
         // JSON's grammar is stricter than from_chars: no '+', no leading zeros, no "inf"/"nan".
         const std::size_t start = pos_;
-        if (pos_ < s_.size() && s_[pos_] == '-')
-            ++pos_;
+        if (pos_ < s_.size() && s_[pos_] == '-') ++pos_;
         const auto digits = [&] {
             const std::size_t d = pos_;
-            while (pos_ < s_.size() && s_[pos_] >= '0' && s_[pos_] <= '9')
-                ++pos_;
+            while (pos_ < s_.size() && s_[pos_] >= '0' && s_[pos_] <= '9') ++pos_;
             return pos_ - d;
         };
         const std::size_t int_start = pos_;
         const std::size_t n = digits();
-        if (n == 0 || (n > 1 && s_[int_start] == '0'))
-            fail("bad number");
+        if (n == 0 || (n > 1 && s_[int_start] == '0')) fail("bad number");
         if (pos_ < s_.size() && s_[pos_] == '.') {
             ++pos_;
-            if (digits() == 0)
-                fail("bad fraction");
+            if (digits() == 0) fail("bad fraction");
         }
         if (pos_ < s_.size() && (s_[pos_] == 'e' || s_[pos_] == 'E')) {
             ++pos_;
-            if (pos_ < s_.size() && (s_[pos_] == '+' || s_[pos_] == '-'))
-                ++pos_;
-            if (digits() == 0)
-                fail("bad exponent");
+            if (pos_ < s_.size() && (s_[pos_] == '+' || s_[pos_] == '-')) ++pos_;
+            if (digits() == 0) fail("bad exponent");
         }
         double v = 0.0;
         const auto res = std::from_chars(s_.data() + start, s_.data() + pos_, v);
-        if (res.ec != std::errc())
-            fail("number out of range");
+        if (res.ec != std::errc()) fail("number out of range");
         return v;
     }
 

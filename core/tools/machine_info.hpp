@@ -24,16 +24,14 @@ inline MachineInfo machine_info()
             const std::size_t colon = line.find(':');
             if (colon != std::string::npos) {
                 const std::size_t start = line.find_first_not_of(" \t", colon + 1);
-                if (start != std::string::npos)
-                    m.cpu_model = line.substr(start);
+                if (start != std::string::npos) m.cpu_model = line.substr(start);
             }
             break;
         }
     }
     std::ifstream loadavg("/proc/loadavg");
     double load = 0.0;
-    if (loadavg >> load)
-        m.load_1min = load;
+    if (loadavg >> load) m.load_1min = load;
     return m;
 }
 

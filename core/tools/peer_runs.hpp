@@ -29,8 +29,8 @@ struct PeerRow {
 
 // Runs ours (`params`) and every peer on `seq`, adding to `scores` by tracker name
 // ("gesturecam" for ours). `where` names the sequence in warnings.
-void compare_with_peers(const Sequence& seq, const gc::TrackerParams& params,
-                        const std::string& where, std::map<std::string, PeerScore>& scores);
+void compare_with_peers(const Sequence& seq, const gc::TrackerParams& params, const std::string& where,
+                        std::map<std::string, PeerScore>& scores);
 
 // Appends one row per tracker of `scores` to `rows`: ours first, then OpenCV's by name.
 void append_peer_rows(const std::string& scene, const std::map<std::string, PeerScore>& scores,

@@ -40,8 +40,7 @@ public:
     std::optional<cv::Rect> update(const cv::Mat& bgr) override
     {
         cv::Rect box;
-        if (!tracker_->update(bgr, box))
-            return std::nullopt;
+        if (!tracker_->update(bgr, box)) return std::nullopt;
         return box;
     }
 
@@ -62,8 +61,7 @@ public:
     std::optional<cv::Rect> update(const cv::Mat& bgr) override
     {
         cv::Rect2d box;
-        if (!tracker_->update(bgr, box))
-            return std::nullopt;
+        if (!tracker_->update(bgr, box)) return std::nullopt;
         return cv::Rect(box);
     }
 
@@ -83,15 +81,12 @@ public:
     }
     std::optional<cv::Rect> update(const cv::Mat& bgr) override
     {
-        if (window_.area() <= 0)
-            return std::nullopt;  // collapsed earlier: CamShift cannot recover by itself
+        if (window_.area() <= 0) return std::nullopt;  // collapsed earlier: CamShift cannot recover by itself
         model_->probability(bgr, probability_);
         const cv::RotatedRect r = cv::CamShift(
-            probability_, window_,
-            cv::TermCriteria(cv::TermCriteria::EPS | cv::TermCriteria::COUNT, 10, 1.0));
+            probability_, window_, cv::TermCriteria(cv::TermCriteria::EPS | cv::TermCriteria::COUNT, 10, 1.0));
         const cv::Rect box = r.boundingRect() & cv::Rect(0, 0, bgr.cols, bgr.rows);
-        if (box.area() <= 0)
-            return std::nullopt;
+        if (box.area() <= 0) return std::nullopt;
         return box;
     }
 
@@ -104,10 +99,9 @@ private:
 inline std::vector<std::unique_ptr<PeerTracker>> make_peer_trackers()
 {
     std::vector<std::unique_ptr<PeerTracker>> peers;
-    peers.push_back(std::make_unique<ModernPeer>(
-        "kcf", [] { return cv::Ptr<cv::Tracker>(cv::TrackerKCF::create()); }));
-    peers.push_back(std::make_unique<ModernPeer>(
-        "csrt", [] { return cv::Ptr<cv::Tracker>(cv::TrackerCSRT::create()); }));
+    peers.push_back(std::make_unique<ModernPeer>("kcf", [] { return cv::Ptr<cv::Tracker>(cv::TrackerKCF::create()); }));
+    peers.push_back(
+        std::make_unique<ModernPeer>("csrt", [] { return cv::Ptr<cv::Tracker>(cv::TrackerCSRT::create()); }));
     peers.push_back(std::make_unique<MedianFlowPeer>());
     peers.push_back(std::make_unique<CamShiftPeer>());
     return peers;

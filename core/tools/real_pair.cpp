@@ -20,7 +20,8 @@ namespace gc::tools {
 
 namespace {
 
-JsonValue read_json(const std::string& path) {
+JsonValue read_json(const std::string& path)
+{
     std::ifstream in(path, std::ios::binary);
     if (!in) throw std::runtime_error("cannot read " + path);
     std::stringstream text;
@@ -32,7 +33,8 @@ cv::Point2d point_of(const JsonValue& v) { return {v[0].number(), v[1].number()}
 cv::Vec3d vec_of(const JsonValue& v) { return {v[0].number(), v[1].number(), v[2].number()}; }
 
 // Reference index fingertips of one view, by frame; frames without a hand are absent.
-std::map<int, cv::Point2d> view_reference(const std::string& path) {
+std::map<int, cv::Point2d> view_reference(const std::string& path)
+{
     std::map<int, cv::Point2d> tips;
     const std::vector<ReferenceHand> hands = read_reference_hands(path);
     for (std::size_t i = 0; i < hands.size(); ++i)
@@ -45,7 +47,8 @@ struct StereoReference {
     cv::Vec3d direction;
 };
 
-std::map<int, StereoReference> stereo_reference(const std::string& path) {
+std::map<int, StereoReference> stereo_reference(const std::string& path)
+{
     std::map<int, StereoReference> out;
     const JsonValue doc = read_json(path);
     for (const JsonValue& f : doc["frames"].array())
@@ -53,7 +56,8 @@ std::map<int, StereoReference> stereo_reference(const std::string& path) {
     return out;
 }
 
-double quantile(std::vector<double> v, double q) {
+double quantile(std::vector<double> v, double q)
+{
     if (v.empty()) return std::nan("");
     std::sort(v.begin(), v.end());
     return v[std::min(v.size() - 1, std::size_t(q * double(v.size())))];
@@ -66,7 +70,8 @@ struct ViewTally {
     std::vector<double> errors, on_models, carried, pointing_errors;
     int reference = 0, pointing_reference = 0, near = 0, tracked = 0, models = 0;
 
-    void add(const EyeEstimate& e, const std::optional<cv::Point2d>& tip, bool pointing) {
+    void add(const EyeEstimate& e, const std::optional<cv::Point2d>& tip, bool pointing)
+    {
         if (e.valid()) {
             ++tracked;
             models += e.models_ran;
@@ -82,7 +87,8 @@ struct ViewTally {
         near += error <= 30.0;
     }
 
-    ViewFigures figures() const {
+    ViewFigures figures() const
+    {
         ViewFigures f;
         f.reference_frames = reference;
         f.coverage = share(int(errors.size()), reference);
@@ -98,7 +104,8 @@ struct ViewTally {
     }
 };
 
-cv::VideoCapture open_video(const std::string& path) {
+cv::VideoCapture open_video(const std::string& path)
+{
     cv::VideoCapture video(path);
     if (!video.isOpened()) throw std::runtime_error("cannot decode " + path);
     return video;
@@ -106,7 +113,8 @@ cv::VideoCapture open_video(const std::string& path) {
 
 }  // namespace
 
-std::vector<ReferenceHand> read_reference_hands(const std::string& path) {
+std::vector<ReferenceHand> read_reference_hands(const std::string& path)
+{
     std::vector<ReferenceHand> hands;
     const JsonValue doc = read_json(path);
     for (const JsonValue& frame : doc["frames"].array()) {
@@ -121,7 +129,8 @@ std::vector<ReferenceHand> read_reference_hands(const std::string& path) {
     return hands;
 }
 
-RealPairFigures measure_real_pair(const RealPairOptions& o) {
+RealPairFigures measure_real_pair(const RealPairOptions& o)
+{
     const std::string base = o.dir + "/handpose3d_";
     const auto left_ref = view_reference(base + "cam0.mediapipe.json");
     const auto right_ref = view_reference(base + "cam1.mediapipe.json");

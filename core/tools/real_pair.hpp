@@ -24,28 +24,28 @@ struct RealPairOptions {
 };
 
 struct ViewFigures {
-    int reference_frames = 0;  // frames where the reference has the hand in this view
-    double coverage = 0.0;     // share of them with a tracked fingertip
-    double within_30px = 0.0;  // share of them with the fingertip within 30 px of the reference
-    double median_px = 0.0;    // fingertip error, over the covered frames
-    double median_px_models = 0.0;     // ... on frames where the learned models ran
-    double median_px_carried = 0.0;    // ... on frames the contour carried alone
-    double models_share = 0.0;         // share of tracked frames where the models ran
-    int pointing_frames = 0;           // reference pointing frames with the hand in this view
-    double pointing_coverage = 0.0;    // share of them with a tracked fingertip
-    double pointing_median_px = 0.0;   // fingertip error over those
+    int reference_frames = 0;         // frames where the reference has the hand in this view
+    double coverage = 0.0;            // share of them with a tracked fingertip
+    double within_30px = 0.0;         // share of them with the fingertip within 30 px of the reference
+    double median_px = 0.0;           // fingertip error, over the covered frames
+    double median_px_models = 0.0;    // ... on frames where the learned models ran
+    double median_px_carried = 0.0;   // ... on frames the contour carried alone
+    double models_share = 0.0;        // share of tracked frames where the models ran
+    int pointing_frames = 0;          // reference pointing frames with the hand in this view
+    double pointing_coverage = 0.0;   // share of them with a tracked fingertip
+    double pointing_median_px = 0.0;  // fingertip error over those
 };
 
 struct RealPairFigures {
     int frames = 0;
     ViewFigures left, right;
-    int pointing_frames = 0;      // reference frames where the hand points (3D reference)
-    double ray_coverage = 0.0;    // share of them with a 3D ray
+    int pointing_frames = 0;    // reference frames where the hand points (3D reference)
+    double ray_coverage = 0.0;  // share of them with a 3D ray
     double angle_median_deg = 0.0;
     double angle_p90_deg = 0.0;
-    int other_frames = 0;         // reference frames where it does not point
-    double false_pointing = 0.0;  // share of them with a 3D ray
-    double ms_per_frame = 0.0;    // median wall time of one stereo frame
+    int other_frames = 0;           // reference frames where it does not point
+    double false_pointing = 0.0;    // share of them with a 3D ray
+    double ms_per_frame = 0.0;      // median wall time of one stereo frame
     double cpu_ms_per_frame = 0.0;  // median CPU time of one, every thread of the process
 };
 

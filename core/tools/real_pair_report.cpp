@@ -10,8 +10,7 @@ namespace gc::tools {
 
 namespace {
 
-void print_view(const RealPairRow& row, std::string_view view, const ViewFigures& v,
-                bool json, std::ostream& out)
+void print_view(const RealPairRow& row, std::string_view view, const ViewFigures& v, bool json, std::ostream& out)
 {
     if (json) {
         out << JsonObject()
@@ -32,11 +31,10 @@ void print_view(const RealPairRow& row, std::string_view view, const ViewFigures
             << '\n';
         return;
     }
-    out << "| " << detector_name(row.detector) << " | " << view << " | " << v.reference_frames
-        << " | " << fixed(v.coverage, 3) << " | " << fixed(v.within_30px, 3) << " | "
-        << fixed(v.median_px, 1) << " | " << fixed(v.median_px_models, 1) << " | "
-        << fixed(v.median_px_carried, 1) << " | " << fixed(v.models_share, 3) << " | "
-        << v.pointing_frames << " | " << fixed(v.pointing_coverage, 3) << " | "
+    out << "| " << detector_name(row.detector) << " | " << view << " | " << v.reference_frames << " | "
+        << fixed(v.coverage, 3) << " | " << fixed(v.within_30px, 3) << " | " << fixed(v.median_px, 1) << " | "
+        << fixed(v.median_px_models, 1) << " | " << fixed(v.median_px_carried, 1) << " | " << fixed(v.models_share, 3)
+        << " | " << v.pointing_frames << " | " << fixed(v.pointing_coverage, 3) << " | "
         << fixed(v.pointing_median_px, 1) << " |\n";
 }
 
@@ -63,23 +61,20 @@ void print_3d(const BenchOptions& o, const RealPairRow& row, std::ostream& out)
             << '\n';
         return;
     }
-    out << "| " << detector_name(row.detector) << " | " << f.pointing_frames << " | "
-        << fixed(f.ray_coverage, 3) << " | " << fixed(f.angle_median_deg, 1) << " | "
-        << fixed(f.angle_p90_deg, 1) << " | " << f.other_frames << " | "
-        << fixed(f.false_pointing, 3) << " | " << fixed(row.ms_per_frame, 2) << " | "
-        << fixed(fps, 1) << " | " << fixed(row.cpu_ms_per_frame, 2) << " |\n";
+    out << "| " << detector_name(row.detector) << " | " << f.pointing_frames << " | " << fixed(f.ray_coverage, 3)
+        << " | " << fixed(f.angle_median_deg, 1) << " | " << fixed(f.angle_p90_deg, 1) << " | " << f.other_frames
+        << " | " << fixed(f.false_pointing, 3) << " | " << fixed(row.ms_per_frame, 2) << " | " << fixed(fps, 1) << " | "
+        << fixed(row.cpu_ms_per_frame, 2) << " |\n";
 }
 
 }  // namespace
 
 void print_real_pair(const BenchOptions& o, const std::vector<RealPairRow>& rows, std::ostream& out)
 {
-    if (rows.empty())
-        return;
+    if (rows.empty()) return;
     if (!o.json)
-        out << "\n## Real pair (" << o.real_dir << ": 720x720, " << rows.front().figures.frames
-            << " stereo frames, " << o.peer_particles << " particles per eye, seed "
-            << o.seeds.front() << ")\n\n"
+        out << "\n## Real pair (" << o.real_dir << ": 720x720, " << rows.front().figures.frames << " stereo frames, "
+            << o.peer_particles << " particles per eye, seed " << o.seeds.front() << ")\n\n"
             << "Fingertip against the reference key points, per view; \"models\" are the frames "
                "where the learned models ran, \"carried\" those the contour carried alone.\n\n"
             << "| detector | view | reference frames | tracked | within 30 px | median px | "
@@ -97,8 +92,7 @@ void print_real_pair(const BenchOptions& o, const std::vector<RealPairRow>& rows
                "other frames | false pointing | ms/stereo frame | stereo frames/s | "
                "CPU ms/stereo frame |\n"
             << "|---|---|---|---|---|---|---|---|---|---|\n";
-    for (const RealPairRow& row : rows)
-        print_3d(o, row, out);
+    for (const RealPairRow& row : rows) print_3d(o, row, out);
 }
 
 }  // namespace gc::tools

@@ -10,12 +10,10 @@ namespace gc::tools {
 std::vector<RealPairRow> measure_real_pair_rows(const BenchOptions& o)
 {
     std::vector<RealPairRow> rows;
-    if (o.real_dir.empty())
-        return rows;
+    if (o.real_dir.empty()) return rows;
     std::error_code ec;
     if (!o.real_dir_given && !std::filesystem::is_directory(o.real_dir, ec)) {
-        std::cerr << "gesturecam-bench: no real pair at " << o.real_dir
-                  << " (name its folder with --real); skipped\n";
+        std::cerr << "gesturecam-bench: no real pair at " << o.real_dir << " (name its folder with --real); skipped\n";
         return rows;
     }
     RealPairOptions options;
@@ -29,11 +27,9 @@ std::vector<RealPairRow> measure_real_pair_rows(const BenchOptions& o)
         row.detector = detector;
         std::vector<double> ms, cpu_ms;
         for (int run = 0; run < o.runs; ++run) {
-            std::cerr << "gesturecam-bench: real pair, " << detector_name(detector) << ", run "
-                      << run + 1 << '\n';
+            std::cerr << "gesturecam-bench: real pair, " << detector_name(detector) << ", run " << run + 1 << '\n';
             const RealPairFigures f = measure_real_pair(options);
-            if (run == 0)
-                row.figures = f;
+            if (run == 0) row.figures = f;
             ms.push_back(f.ms_per_frame);
             cpu_ms.push_back(f.cpu_ms_per_frame);
         }

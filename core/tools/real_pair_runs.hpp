@@ -11,8 +11,8 @@ namespace gc::tools {
 
 struct RealPairRow {
     gc::HandDetector detector = gc::HandDetector::Learned;
-    RealPairFigures figures;      // of the first run (the runs track alike)
-    double ms_per_frame = 0.0;    // median over runs of each run's median stereo frame
+    RealPairFigures figures;        // of the first run (the runs track alike)
+    double ms_per_frame = 0.0;      // median over runs of each run's median stereo frame
     double cpu_ms_per_frame = 0.0;  // ... of its CPU time
 };
 

@@ -22,9 +22,8 @@ struct Throughput {
 // on the calling thread, as a pair of scene sources feeding the tracker would do without
 // running beside it. `models_share`, when given, receives the share of eye-frames of the
 // first run on which the learned models ran.
-Throughput throughput(const gc::TrackerParams& params, const gc::sim::Scene& scene, int frames,
-                      int runs, const std::array<const Sequence*, 2>* rendered,
-                      double* models_share)
+Throughput throughput(const gc::TrackerParams& params, const gc::sim::Scene& scene, int frames, int runs,
+                      const std::array<const Sequence*, 2>* rendered, double* models_share)
 {
     std::vector<double> fps, cpu_ms;
     cv::Mat left, right;
@@ -46,8 +45,7 @@ Throughput throughput(const gc::TrackerParams& params, const gc::sim::Scene& sce
         }
         cpu_ms.push_back((process_cpu_ms() - cpu0) / frames);
         fps.push_back(1000.0 * frames / ms_since(t0));
-        if (run == 0 && models_share)
-            *models_share = models / (2.0 * frames);
+        if (run == 0 && models_share) *models_share = models / (2.0 * frames);
     }
     return {median(fps), median(cpu_ms)};
 }
@@ -77,13 +75,11 @@ StereoFigures measure_stereo(const BenchOptions& o, gc::HandDetector detector)
         std::vector<double> ms, direction_err, palm_err;
         for (int f = 0; f < o.frames; ++f) {
             const gc::StereoEstimate e = trackers.process(left.frames[f], right.frames[f]);
-            if (!e.left.valid() || !e.right.valid())
-                continue;
+            if (!e.left.valid() || !e.right.valid()) continue;
             const auto t0 = BenchClock::now();
             const gc::Pointing3D p = estimator.estimate(left.frames[f], right.frames[f], e.left, e.right);
             ms.push_back(ms_since(t0));
-            if (!p.valid)
-                continue;
+            if (!p.valid) continue;
             ++out.valid;
             const gc::sim::HandTruth truth = scene.hand_truth(scene.hand_pose(f));
             direction_err.push_back(angle_deg(p.direction_head, truth.direction));

@@ -20,7 +20,7 @@ struct StereoFigures {
     double cpu_ms = std::nan("");         // ... CPU time per stereo frame, all threads
     double rendering_fps = std::nan("");  // both views rendered in the timed loop
     double rendering_cpu_ms = std::nan("");
-    double models_share = std::nan("");   // eye-frames on which the learned models ran
+    double models_share = std::nan("");  // eye-frames on which the learned models ran
 };
 
 StereoFigures measure_stereo(const BenchOptions& o, gc::HandDetector detector);

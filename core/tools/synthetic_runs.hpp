@@ -33,9 +33,9 @@ struct AccuracyRow {
     std::int64_t tracked = 0;
     std::int64_t visible = 0;
     std::int64_t lost = 0;
-    std::vector<double> ms;            // per seed: the median over runs
-    std::vector<double> cpu_ms;        // ... of the CPU time
-    std::vector<int> acquired_at;      // per seed: first tracking frame, -1 never
+    std::vector<double> ms;        // per seed: the median over runs
+    std::vector<double> cpu_ms;    // ... of the CPU time
+    std::vector<int> acquired_at;  // per seed: first tracking frame, -1 never
 };
 
 // Per frame: the median over runs of the mean wall and CPU time.
@@ -47,8 +47,8 @@ struct TrackerCost {
 // Runs our tracker over a sequence `runs` times; the first run is also scored. Only
 // HandTracker::process is timed. `boxes`, when given, receives our per-frame box (empty
 // when not tracking) from the first run.
-TrackerCost run_tracker(const Sequence& seq, const gc::TrackerParams& params, int runs,
-                   AccuracyRow* row, std::vector<cv::Rect>* boxes);
+TrackerCost run_tracker(const Sequence& seq, const gc::TrackerParams& params, int runs, AccuracyRow* row,
+                        std::vector<cv::Rect>* boxes);
 
 // Baseline: the cost of touching the frame once (a copy and a BGR -> RGB conversion).
 struct Baseline {

@@ -23,7 +23,8 @@ double wrap_angle(double a) { return std::remainder(a, 2.0 * std::numbers::pi); 
 
 }  // namespace
 
-void HandTracker::Impl::track(const cv::Mat& bgr, const ImageMotion& motion) {
+void HandTracker::Impl::track(const cv::Mat& bgr, const ImageMotion& motion)
+{
     const Spread spread = predict(motion);
     // Every hypothesis outside the frame (the head turned far): nothing to measure.
     if (!map_skin(bgr, spread)) {
@@ -73,9 +74,10 @@ void HandTracker::Impl::track(const cv::Mat& bgr, const ImageMotion& motion) {
 
 // The skin map once per frame, over the region the hypotheses can reach; the rest of the
 // map stays 0 (cleared where the previous region was). False when that region is empty.
-bool HandTracker::Impl::map_skin(const cv::Mat& bgr, const Spread& spread) {
-    const double reach = spread.max_scale * std::max(1.0, previous.squash) * template_radius +
-                         measurement.params().half_window + 2.0;
+bool HandTracker::Impl::map_skin(const cv::Mat& bgr, const Spread& spread)
+{
+    const double reach =
+        spread.max_scale * std::max(1.0, previous.squash) * template_radius + measurement.params().half_window + 2.0;
     const cv::Rect frame(0, 0, bgr.cols, bgr.rows);
     const cv::Rect roi =
         cv::Rect(cv::Point(int(std::floor(spread.min_x - reach)), int(std::floor(spread.min_y - reach))),
@@ -90,7 +92,8 @@ bool HandTracker::Impl::map_skin(const cv::Mat& bgr, const Spread& spread) {
 
 // Weighs the particles, records the estimate's mean, best and confidence (against P_init,
 // taken on the first frame of a track), and judges whether the edges are weak.
-HandTracker::Impl::Weighed HandTracker::Impl::weigh_and_judge(const cv::Mat1b& steps, bool use_steps) {
+HandTracker::Impl::Weighed HandTracker::Impl::weigh_and_judge(const cv::Mat1b& steps, bool use_steps)
+{
     Weighed w;
     w.best_misfit = 2.0;
     const std::size_t best = weigh(steps, w.best_misfit);
@@ -109,9 +112,10 @@ HandTracker::Impl::Weighed HandTracker::Impl::weigh_and_judge(const cv::Mat1b& s
     // Whether the next frame measures grey steps is judged on the skin edges alone: judged
     // with the steps, finding them would switch them off on the next frame and the density
     // would alternate between two landscapes, frame by frame.
-    edges_were_weak = use_steps ? measurement.normal_likelihood(measurement.misfit(
-                                      membership, no_map, *shape, w.best)) < params.lost_ratio * p_init
-                                : w.weak_edges;
+    edges_were_weak = use_steps
+                          ? measurement.normal_likelihood(measurement.misfit(membership, no_map, *shape, w.best)) <
+                                params.lost_ratio * p_init
+                          : w.weak_edges;
     return w;
 }
 
@@ -123,17 +127,18 @@ HandTracker::Impl::Weighed HandTracker::Impl::weigh_and_judge(const cv::Mat1b& s
 // hand still fits edges there), so a candidate is stepped on at least one frame first, and
 // one whose outline has agreed with the image clearly better than the tracked one's on
 // every frame so far is not dropped for its size. True when the candidate took over.
-bool HandTracker::Impl::settle_trial(const cv::Mat& bgr, const HandState& out, double agreement, bool weak_edges) {
+bool HandTracker::Impl::settle_trial(const cv::Mat& bgr, const HandState& out, double agreement, bool weak_edges)
+{
     if (weak_edges && trial && trial->frames() > 0 && !trial->clearly_better() &&
-        grows_hand(cv::contourArea(trial->candidate().outline) * trial->state().scale *
-                   trial->state().scale))
+        grows_hand(cv::contourArea(trial->candidate().outline) * trial->state().scale * trial->state().scale))
         trial.reset();
     return trial && try_template(bgr, out, agreement, !weak_edges);
 }
 
 // Resample (systematic, O(N)), then predict through the zero-order dynamics plus the
 // camera-motion offset, with quasi-random noise. Returns the predicted set's extent.
-HandTracker::Impl::Spread HandTracker::Impl::predict(const ImageMotion& motion) {
+HandTracker::Impl::Spread HandTracker::Impl::predict(const ImageMotion& motion)
+{
     const std::size_t n = particles.size();
     for (std::size_t i = 0; i < n; ++i) weights[i] = particles[i].weight;
     std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -163,13 +168,13 @@ HandTracker::Impl::Spread HandTracker::Impl::predict(const ImageMotion& motion) 
 
 // Weights every particle by the observation density; returns the best one's index and
 // its misfit in `best_misfit` (which enters holding the largest misfit worth measuring).
-std::size_t HandTracker::Impl::weigh(const cv::Mat1b& steps, double& best_misfit) {
+std::size_t HandTracker::Impl::weigh(const cv::Mat1b& steps, double& best_misfit)
+{
     const std::size_t n = particles.size();
     std::size_t best = 0;
     const double margin = measurement.negligible_margin();
     for (std::size_t i = 0; i < n; ++i) {
-        const double q =
-            measurement.misfit(membership, steps, *shape, particles[i].state, best_misfit + margin);
+        const double q = measurement.misfit(membership, steps, *shape, particles[i].state, best_misfit + margin);
         log_weights[i] = measurement.log_likelihood(q);
         if (q < best_misfit) {
             best_misfit = q;
@@ -182,7 +187,8 @@ std::size_t HandTracker::Impl::weigh(const cv::Mat1b& steps, double& best_misfit
 }
 
 // The weighted mean state: rotation averaged about the best one, scale geometrically.
-HandState HandTracker::Impl::weighted_mean(const HandState& best) const {
+HandState HandTracker::Impl::weighted_mean(const HandState& best) const
+{
     HandState mean{0.0, 0.0, 0.0, 0.0};
     double log_s = 0.0;
     for (const Particle& p : particles) {
@@ -198,8 +204,8 @@ HandState HandTracker::Impl::weighted_mean(const HandState& best) const {
 }
 
 // On a weak-edge frame: whether the contour at `s` still holds the hand (see track()).
-bool HandTracker::Impl::hand_still_there(const HandState& s, const cv::Mat1b& steps,
-                                         const cv::Mat& bgr) const {
+bool HandTracker::Impl::hand_still_there(const HandState& s, const cv::Mat1b& steps, const cv::Mat& bgr) const
+{
     const double like = measurement.normal_likelihood(measurement.misfit(membership, steps, *shape, s));
     if (like >= params.lost_ratio * p_init) return true;
     const RimSurvey rim = survey_rim(*shape, s, membership, known_scene(), bgr);
@@ -208,7 +214,8 @@ bool HandTracker::Impl::hand_still_there(const HandState& s, const cv::Mat1b& st
 
 // True when the normals that are not skin against skin carry enough of the weight and fit
 // them as well as tracking did (lost_ratio x P_init).
-bool HandTracker::Impl::visible_edges_fit(const HandState& s) const {
+bool HandTracker::Impl::visible_edges_fit(const HandState& s) const
+{
     double judged = 0.0;
     const double q = measurement.judged_misfit(membership, *shape, s, judged);
     return judged >= kMinJudgedWeight && measurement.normal_likelihood(q) >= params.lost_ratio * p_init;
@@ -216,8 +223,8 @@ bool HandTracker::Impl::visible_edges_fit(const HandState& s) const {
 
 // Takes `out` as this frame's state: the noise adapts to the motion seen, the estimate is
 // reported, and the skin model and the template's custody follow.
-void HandTracker::Impl::follow(const cv::Mat& bgr, const HandState& out, const ImageMotion& motion,
-                               bool weak_edges) {
+void HandTracker::Impl::follow(const cv::Mat& bgr, const HandState& out, const ImageMotion& motion, bool weak_edges)
+{
     noise.update({out.x - previous.x - motion.dx, out.y - previous.y - motion.dy,
                   wrap_angle(out.rotation - previous.rotation - motion.drotation),
                   std::log(out.scale / (previous.scale * motion.scale_factor))});

@@ -18,64 +18,61 @@ namespace {
 
 constexpr int kMinFrameSide = 32;
 
-void check_frame(const cv::Mat& bgr) {
+void check_frame(const cv::Mat& bgr)
+{
     if (bgr.empty()) throw std::invalid_argument("HandTracker: empty frame");
     if (bgr.type() != CV_8UC3)
         throw std::invalid_argument("HandTracker: expected a CV_8UC3 (BGR) frame, got " +
                                     std::to_string(bgr.channels()) + " channel(s) of depth " +
                                     std::to_string(bgr.depth()));
     if (bgr.cols < kMinFrameSide || bgr.rows < kMinFrameSide)
-        throw std::invalid_argument("HandTracker: frame " + std::to_string(bgr.cols) + "x" +
-                                    std::to_string(bgr.rows) + " is smaller than 32x32");
+        throw std::invalid_argument("HandTracker: frame " + std::to_string(bgr.cols) + "x" + std::to_string(bgr.rows) +
+                                    " is smaller than 32x32");
 }
 
-const TrackerParams& checked(const TrackerParams& p) {
+const TrackerParams& checked(const TrackerParams& p)
+{
     if (p.particles < 1) throw std::invalid_argument("HandTracker: particles must be >= 1");
-    if (p.particles > 1'000'000)
-        throw std::invalid_argument("HandTracker: particles must be <= 1000000");
+    if (p.particles > 1'000'000) throw std::invalid_argument("HandTracker: particles must be <= 1000000");
     if (!(p.lost_ratio > 0.0 && p.lost_ratio < 1.0))
         throw std::invalid_argument("HandTracker: lost_ratio must be in (0, 1)");
     if (p.lost_frames < 1) throw std::invalid_argument("HandTracker: lost_frames must be >= 1");
     return p;
 }
 
-void check_motion(const ImageMotion& m) {
-    if (!std::isfinite(m.dx) || !std::isfinite(m.dy) || !std::isfinite(m.drotation) ||
-        !(m.scale_factor > 0.0) || !std::isfinite(m.scale_factor))
+void check_motion(const ImageMotion& m)
+{
+    if (!std::isfinite(m.dx) || !std::isfinite(m.dy) || !std::isfinite(m.drotation) || !(m.scale_factor > 0.0) ||
+        !std::isfinite(m.scale_factor))
         throw std::invalid_argument("HandTracker: camera motion must be finite with scale_factor > 0");
 }
 
 }  // namespace
 
 HandTracker::Impl::Impl(const TrackerParams& p)
-    : TrackerSession(checked(p)),
-      params(p),
-      predicted(p.particles),
-      log_weights(p.particles),
-      weights(p.particles),
-      deviates(4 * static_cast<std::size_t>(p.particles)),
-      ancestors(p.particles) {
+    : TrackerSession(checked(p)), params(p), predicted(p.particles), log_weights(p.particles), weights(p.particles),
+      deviates(4 * static_cast<std::size_t>(p.particles)), ancestors(p.particles)
+{
     if (p.detector == HandDetector::Learned) finder = std::make_unique<HandFinder>(HandFinderParams{p.model_dir});
 }
 
 void HandTracker::Impl::reset() { static_cast<TrackerSession&>(*this) = TrackerSession(params); }
 
-const EyeEstimate& HandTracker::Impl::process(const cv::Mat& bgr, const ImageMotion& motion) {
+const EyeEstimate& HandTracker::Impl::process(const cv::Mat& bgr, const ImageMotion& motion)
+{
     check_frame(bgr);
     check_motion(motion);
     if (frame_size.area() > 0 && bgr.size() != frame_size)
-        throw std::invalid_argument(
-            "HandTracker: frame size changed from " + std::to_string(frame_size.width) + "x" +
-            std::to_string(frame_size.height) + " to " + std::to_string(bgr.cols) + "x" +
-            std::to_string(bgr.rows) + " without reset()");
+        throw std::invalid_argument("HandTracker: frame size changed from " + std::to_string(frame_size.width) + "x" +
+                                    std::to_string(frame_size.height) + " to " + std::to_string(bgr.cols) + "x" +
+                                    std::to_string(bgr.rows) + " without reset()");
     frame_size = bgr.size();
     if (membership.size() != frame_size) {
         membership = cv::Mat1b(frame_size, uchar(0));
         membership_roi = {};
     }
     // A turn of the head moves the scene in the image: its median starts again.
-    if (motion.dx != 0.0 || motion.dy != 0.0 || motion.drotation != 0.0 ||
-        motion.scale_factor != 1.0)
+    if (motion.dx != 0.0 || motion.dy != 0.0 || motion.drotation != 0.0 || motion.scale_factor != 1.0)
         background.reset();
     estimate.models_ran = false;
     const bool was_tracking = estimate.state == TrackState::Tracking;
@@ -92,7 +89,8 @@ const EyeEstimate& HandTracker::Impl::process(const cv::Mat& bgr, const ImageMot
 }
 
 // Spreads the particles around x0 (x0 itself kept among them) and starts tracking there.
-void HandTracker::Impl::start_tracking(const HandState& x0) {
+void HandTracker::Impl::start_tracking(const HandState& x0)
+{
     noise.reset();
     const NoiseVector& sd = noise.sigma();
     std::normal_distribution<double> z;
@@ -121,7 +119,8 @@ void HandTracker::Impl::start_tracking(const HandState& x0) {
     detector.reset();
 }
 
-void HandTracker::Impl::lose() {
+void HandTracker::Impl::lose()
+{
     estimate.state = TrackState::Lost;
     estimate.confidence = 0.0;
     estimate.contour.clear();
@@ -135,7 +134,8 @@ void HandTracker::Impl::lose() {
     detector.reset();
 }
 
-void HandTracker::Impl::report(const HandState& s) {
+void HandTracker::Impl::report(const HandState& s)
+{
     estimate.contour.resize(shape->outline.size());
     for (std::size_t i = 0; i < shape->outline.size(); ++i)
         estimate.contour[i] = cv::Point2f(place(s, shape->outline[i]));
@@ -145,9 +145,9 @@ void HandTracker::Impl::report(const HandState& s) {
     estimate.gesture = gesture;
     if (has_key_points) place_key_points(s);
     // Image y points down; the reported angle is counter-clockwise with y up.
-    estimate.pointing_deg = std::atan2(-(estimate.fingertip.y - estimate.palm.y),
-                                       estimate.fingertip.x - estimate.palm.x) *
-                            180.0 / std::numbers::pi;
+    estimate.pointing_deg =
+        std::atan2(-(estimate.fingertip.y - estimate.palm.y), estimate.fingertip.x - estimate.palm.x) * 180.0 /
+        std::numbers::pi;
 }
 
 HandTracker::HandTracker(const TrackerParams& params) : impl_(std::make_unique<Impl>(params)) {}
@@ -155,7 +155,8 @@ HandTracker::~HandTracker() = default;
 HandTracker::HandTracker(HandTracker&&) noexcept = default;
 HandTracker& HandTracker::operator=(HandTracker&&) noexcept = default;
 
-const EyeEstimate& HandTracker::process(const cv::Mat& bgr, const ImageMotion& camera_motion) {
+const EyeEstimate& HandTracker::process(const cv::Mat& bgr, const ImageMotion& camera_motion)
+{
     return impl_->process(bgr, camera_motion);
 }
 

@@ -21,17 +21,17 @@ namespace gc {
 enum class HandDetector { Learned, Motion };
 
 struct TrackerParams {
-    int particles = 1000;            // N, the sample-set size (>= 1)
-    std::uint64_t seed = 1;          // same seed + same frames = same output
-    double lost_ratio = 0.6;         // lost when every likelihood < lost_ratio * P_init
-    int lost_frames = 3;             // ... for this many consecutive frames
-    bool adapt_skin = true;          // update the skin mean from inside the tracked contour
+    int particles = 1000;     // N, the sample-set size (>= 1)
+    std::uint64_t seed = 1;   // same seed + same frames = same output
+    double lost_ratio = 0.6;  // lost when every likelihood < lost_ratio * P_init
+    int lost_frames = 3;      // ... for this many consecutive frames
+    bool adapt_skin = true;   // update the skin mean from inside the tracked contour
     // Learn the static scene: captures leave out its skin, and in front of skin the hand is
     // told from the scene behind it.
     bool use_static_scene = true;
     HandDetector detector = HandDetector::Learned;
-    std::string model_dir;           // learned models' folder; empty: found without configuration
-    int max_model_interval = 8;      // frames between landmark checks while the contour agrees
+    std::string model_dir;       // learned models' folder; empty: found without configuration
+    int max_model_interval = 8;  // frames between landmark checks while the contour agrees
 };
 
 // A weighted hypothesis, exposed for drawing the marginal distributions.

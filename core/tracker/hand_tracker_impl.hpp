@@ -41,7 +41,9 @@ inline constexpr double kMaxScale = 2.0;
 // same output as a new one with the same parameters.
 struct TrackerSession {
     explicit TrackerSession(const TrackerParams& p)
-        : sampler(4, p.seed ^ 0x5EEDULL), rng(p.seed), particles(p.particles) {}
+        : sampler(4, p.seed ^ 0x5EEDULL), rng(p.seed), particles(p.particles)
+    {
+    }
 
     QuasiNormalSampler sampler;
     std::mt19937_64 rng;
@@ -57,21 +59,21 @@ struct TrackerSession {
     std::vector<Particle> particles;
     cv::Mat1b membership;
     cv::Rect membership_roi;
-    cv::Mat1b grey;  // the frame's grey levels, where the membership map was computed
+    cv::Mat1b grey;                // the frame's grey levels, where the membership map was computed
     bool edges_were_weak = false;  // on the last tracked frame (best_like < lost_ratio P_init)
 
     EyeEstimate estimate;
     cv::Size frame_size;
-    double p_init = 0.0;           // per-normal likelihood of the first tracked iteration
+    double p_init = 0.0;  // per-normal likelihood of the first tracked iteration
     bool awaiting_p_init = false;
     int low_frames = 0;
-    HandState previous;            // the last reported (refined) state
+    HandState previous;                                        // the last reported (refined) state
     CaptureQuality template_quality = CaptureQuality::Unsure;  // of the template's capture
-    int tracked_frames = 0;        // since the last start_tracking
-    double firm_area = 0.0;        // of the contour, on the last frame whose edges fitted
-    int lost_search = 0;           // frames searched since the hand was lost
-    cv::Rect recapture_roi;        // the window the detector watches while tracking
-    bool watch_everywhere = false; // the last watch saw the tracked contour hold still
+    int tracked_frames = 0;                                    // since the last start_tracking
+    double firm_area = 0.0;                                    // of the contour, on the last frame whose edges fitted
+    int lost_search = 0;                                       // frames searched since the hand was lost
+    cv::Rect recapture_roi;                                    // the window the detector watches while tracking
+    bool watch_everywhere = false;                             // the last watch saw the tracked contour hold still
 
     std::optional<TemplateTrial> trial;  // a re-capture of the template's quality, on trial
 
@@ -91,7 +93,7 @@ struct HandTracker::Impl : TrackerSession {
     TrackerParams params;
     ContourMeasurement measurement;
     std::unique_ptr<HandFinder> finder;  // the learned models; null in the motion-only mode
-    const cv::Mat1b no_map;  // an empty map: no grey steps, no static scene
+    const cv::Mat1b no_map;              // an empty map: no grey steps, no static scene
 
     // Scratch buffers of the filter step and the contour fill, sized once.
     std::vector<Particle> predicted;
@@ -132,8 +134,8 @@ struct HandTracker::Impl : TrackerSession {
     bool capture(const Detection& found, CaptureQuality quality, const cv::Mat1b& memb, const cv::Mat& bgr);
     void adopt(HandTemplate&& t, const SkinModel& model, CaptureQuality quality, const HandState& at);
     bool recapture(const cv::Mat& bgr, bool weak_edges);
-    bool replace_from_watch(const cv::Mat& bgr, const Detection& found, CaptureQuality quality,
-                            bool everywhere, bool still_twice);
+    bool replace_from_watch(const cv::Mat& bgr, const Detection& found, CaptureQuality quality, bool everywhere,
+                            bool still_twice);
     bool try_template(const cv::Mat& bgr, const HandState& out, double current, bool may_replace);
     bool holds_less_scene(const HandState& out, const cv::Mat& bgr) const;
     bool lies_on_scene(const HandState& s, const cv::Mat& bgr) const;

@@ -35,14 +35,15 @@ constexpr double kContourTipReach = 2.5;
 constexpr double kWristReach = 0.6;
 
 // The bones drawn between key points (MediaPipe's hand topology).
-constexpr int kBones[][2] = {{0, 1},   {1, 2},   {2, 3},   {3, 4},   {0, 5},   {5, 6},  {6, 7},
-                             {7, 8},   {5, 9},   {9, 10},  {10, 11}, {11, 12}, {9, 13}, {13, 14},
+constexpr int kBones[][2] = {{0, 1},   {1, 2},   {2, 3},   {3, 4},   {0, 5},   {5, 6},   {6, 7},
+                             {7, 8},   {5, 9},   {9, 10},  {10, 11}, {11, 12}, {9, 13},  {13, 14},
                              {14, 15}, {15, 16}, {13, 17}, {17, 18}, {18, 19}, {19, 20}, {0, 17}};
 constexpr int kPalmOutline[] = {0, 1, 5, 9, 13, 17};
 
 double palm_size(const std::array<cv::Point2f, 21>& p) { return cv::norm(p[9] - p[0]); }
 
-std::vector<cv::Point> palm_polygon(const std::array<cv::Point2f, 21>& p) {
+std::vector<cv::Point> palm_polygon(const std::array<cv::Point2f, 21>& p)
+{
     std::vector<cv::Point> palm;
     for (const int i : kPalmOutline) palm.emplace_back(cvRound(p[i].x), cvRound(p[i].y));
     std::vector<cv::Point> hull;
@@ -51,12 +52,12 @@ std::vector<cv::Point> palm_polygon(const std::array<cv::Point2f, 21>& p) {
 }
 
 // Where the hand may be: the palm filled and every bone drawn as thick as a finger.
-cv::Mat1b hand_region(const std::array<cv::Point2f, 21>& p, cv::Size size) {
+cv::Mat1b hand_region(const std::array<cv::Point2f, 21>& p, cv::Size size)
+{
     cv::Mat1b region(size, uchar(0));
     cv::fillConvexPoly(region, palm_polygon(p), 255);
     const int finger = std::max(3, cvRound(0.32 * palm_size(p)));
-    for (const auto& bone : kBones)
-        cv::line(region, p[bone[0]], p[bone[1]], 255, finger, cv::LINE_8);
+    for (const auto& bone : kBones) cv::line(region, p[bone[0]], p[bone[1]], 255, finger, cv::LINE_8);
     // The wrist beyond its key point, most of the palm's width: a sleeve or the end of the
     // skin ends it in the mask, so the outline closes where the hand's silhouette does.
     const cv::Point2f away = (p[0] - p[9]) * float(kWristReach);
@@ -67,7 +68,8 @@ cv::Mat1b hand_region(const std::array<cv::Point2f, 21>& p, cv::Size size) {
 
 // The skin of the region's connected part that holds the palm centre; empty if the skin
 // model does not see most of the region as skin (then the region itself stands in).
-cv::Mat1b skin_of_hand(const cv::Mat1b& region, const cv::Mat1b& membership, cv::Point palm) {
+cv::Mat1b skin_of_hand(const cv::Mat1b& region, const cv::Mat1b& membership, cv::Point palm)
+{
     cv::Mat1b mask = (membership >= kSkinEdgeLevel) & region;
     cv::morphologyEx(mask, mask, cv::MORPH_CLOSE, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(5, 5)));
     cv::Mat1i labels;
@@ -80,13 +82,15 @@ cv::Mat1b skin_of_hand(const cv::Mat1b& region, const cv::Mat1b& membership, cv:
     return mask;
 }
 
-bool touches_border(const cv::Mat1b& mask) {
+bool touches_border(const cv::Mat1b& mask)
+{
     const cv::Rect box = cv::boundingRect(mask);
     return box.x <= 1 || box.y <= 1 || box.br().x >= mask.cols - 1 || box.br().y >= mask.rows - 1;
 }
 
 // The template point that `s` places at `p` (the inverse of place()).
-cv::Point2f unplace(const HandState& s, const cv::Point2f& p) {
+cv::Point2f unplace(const HandState& s, const cv::Point2f& p)
+{
     const double dx = (p.x - s.x) / s.squash, dy = p.y - s.y;
     const double c = std::cos(s.rotation), sn = std::sin(s.rotation);
     return {float((c * dx + sn * dy) / s.scale), float((-sn * dx + c * dy) / s.scale)};
@@ -96,7 +100,8 @@ cv::Point2f unplace(const HandState& s, const cv::Point2f& p) {
 
 // No hand is tracked: the palm detector looks (every frame at first, then less often), and
 // a hand it finds with key points the landmark model confirms becomes the template.
-void HandTracker::Impl::search_with_models(const cv::Mat& bgr) {
+void HandTracker::Impl::search_with_models(const cv::Mat& bgr)
+{
     const int turn = search_turn++;
     const std::optional<FoundHand> proposed = propose_by_motion(bgr);
     if (turn >= kEagerSearchFrames && turn % kSlowSearchEvery != 0 && !proposed) return;
@@ -110,7 +115,8 @@ void HandTracker::Impl::search_with_models(const cv::Mat& bgr) {
 // the blob's palm and fingertip, says whether it is a hand. This finds hands the palm
 // detector misses (a dark hand against clutter, a hand seen edge-on) without trusting
 // colour and motion alone.
-std::optional<FoundHand> HandTracker::Impl::propose_by_motion(const cv::Mat& bgr) {
+std::optional<FoundHand> HandTracker::Impl::propose_by_motion(const cv::Mat& bgr)
+{
     const SkinModel prior = skin ? *skin : SkinModel::generic();
     const auto found = detector.process(bgr, prior, true, static_scene(bgr, true, {}));
     if (!found) return std::nullopt;
@@ -129,7 +135,8 @@ std::optional<FoundHand> HandTracker::Impl::propose_by_motion(const cv::Mat& bgr
 // contour carried them: a new template from this frame. Else the key points and gesture
 // are the model's, re-expressed on the template, and the next check waits longer while
 // the two agree.
-void HandTracker::Impl::check_with_models(const cv::Mat& bgr) {
+void HandTracker::Impl::check_with_models(const cv::Mat& bgr)
+{
     ++frames_since_check;
     const bool doubt = estimate.confidence < params.lost_ratio;
     if (!doubt && frames_since_check < check_interval) return;
@@ -159,7 +166,8 @@ void HandTracker::Impl::check_with_models(const cv::Mat& bgr) {
 // A template from a hand the models found: the skin model learnt from its palm, the mask
 // the skin inside the region its key points span. False (nothing changed) when the hand is
 // cut by the frame's border or no template can be made of it.
-bool HandTracker::Impl::adopt_found(const cv::Mat& bgr, const FoundHand& hand) {
+bool HandTracker::Impl::adopt_found(const cv::Mat& bgr, const FoundHand& hand)
+{
     const cv::Mat1b region = hand_region(hand.points, bgr.size());
     if (touches_border(region)) return false;
     cv::Mat1b palm(bgr.size(), uchar(0));
@@ -194,10 +202,12 @@ bool HandTracker::Impl::adopt_found(const cv::Mat& bgr, const FoundHand& hand) {
 
 // estimate.landmarks: the template's key points placed by `s`; the fingertip and palm
 // reported are theirs (index tip; mean of wrist and knuckles).
-void HandTracker::Impl::place_key_points(const HandState& s) {
+void HandTracker::Impl::place_key_points(const HandState& s)
+{
     estimate.landmarks.resize(key_points.size());
     std::array<cv::Point2f, 21> placed;
-    for (std::size_t i = 0; i < key_points.size(); ++i) placed[i] = estimate.landmarks[i] = cv::Point2f(place(s, key_points[i]));
+    for (std::size_t i = 0; i < key_points.size(); ++i)
+        placed[i] = estimate.landmarks[i] = cv::Point2f(place(s, key_points[i]));
     estimate.palm = palm_centre(placed);
     estimate.fingertip = placed[8];
     // The contour's own fingertip (its extreme point along the finger) is where the

@@ -17,15 +17,11 @@
 namespace gc {
 namespace {
 
-std::string size_text(const cv::Size& s)
-{
-    return std::to_string(s.width) + "x" + std::to_string(s.height);
-}
+std::string size_text(const cv::Size& s) { return std::to_string(s.width) + "x" + std::to_string(s.height); }
 
 void check_frame(const cv::Mat& frame, std::string_view what)
 {
-    if (frame.empty())
-        throw std::invalid_argument(std::string(what) + " frame is empty");
+    if (frame.empty()) throw std::invalid_argument(std::string(what) + " frame is empty");
     if (frame.type() != CV_8UC3)
         throw std::invalid_argument(std::string(what) + " frame must be CV_8UC3 (BGR), got " +
                                     cv::typeToString(frame.type()));
@@ -35,8 +31,7 @@ TrackState overall_state(std::initializer_list<TrackState> eyes)
 {
     bool all_tracking = true;
     for (TrackState s : eyes) {
-        if (s == TrackState::Lost)
-            return TrackState::Lost;
+        if (s == TrackState::Lost) return TrackState::Lost;
         all_tracking = all_tracking && s == TrackState::Tracking;
     }
     return all_tracking ? TrackState::Tracking : TrackState::Acquiring;
@@ -60,15 +55,14 @@ struct PointingTracker::Impl {
     TrackerParams params;
     std::optional<StereoCalibration> calibration;
     StereoHandTracker stereo;
-    std::optional<HandTracker> mono;  // created on the first mono frame
+    std::optional<HandTracker> mono;             // created on the first mono frame
     std::optional<PointingEstimator> estimator;  // created on the first stereo frame
     Mode mode = Mode::Unset;
     cv::Size frame_size;
     FrameResult result;
     std::int64_t next_frame = 0;
 
-    Impl(const TrackerParams& p, std::optional<StereoCalibration> c)
-        : params(p), calibration(std::move(c)), stereo(p)
+    Impl(const TrackerParams& p, std::optional<StereoCalibration> c) : params(p), calibration(std::move(c)), stereo(p)
     {
     }
 
@@ -77,11 +71,11 @@ struct PointingTracker::Impl {
     {
         const auto name = [](Mode x) { return x == Mode::Mono ? "mono" : "stereo"; };
         if (mode != Mode::Unset && mode != m)
-            throw std::logic_error(std::string("PointingTracker: a ") + name(m) + " frame after " +
-                                   name(mode) + " frames; call reset() to change mode");
+            throw std::logic_error(std::string("PointingTracker: a ") + name(m) + " frame after " + name(mode) +
+                                   " frames; call reset() to change mode");
         if (mode == m && size != frame_size)
-            throw std::invalid_argument("frame size changed from " + size_text(frame_size) +
-                                        " to " + size_text(size) + " without reset()");
+            throw std::invalid_argument("frame size changed from " + size_text(frame_size) + " to " + size_text(size) +
+                                        " without reset()");
     }
 
     void begin_frame(Mode m, const cv::Size& size)
@@ -94,9 +88,8 @@ struct PointingTracker::Impl {
     {
         if (!estimator) {
             if (calibration && calibration->image_size != size)
-                throw std::invalid_argument("frames are " + size_text(size) +
-                                            " but the calibration '" + calibration->source +
-                                            "' is for " + size_text(calibration->image_size));
+                throw std::invalid_argument("frames are " + size_text(size) + " but the calibration '" +
+                                            calibration->source + "' is for " + size_text(calibration->image_size));
             estimator.emplace(calibration ? *calibration : default_calibration(size));
         }
         return *estimator;
@@ -109,25 +102,22 @@ struct PointingTracker::Impl {
     }
 };
 
-PointingTracker::PointingTracker(const TrackerParams& params,
-                                 std::optional<StereoCalibration> calibration)
+PointingTracker::PointingTracker(const TrackerParams& params, std::optional<StereoCalibration> calibration)
     : impl_(std::make_unique<Impl>(params, std::move(calibration)))
 {
 }
 
 PointingTracker::~PointingTracker() = default;
 
-const FrameResult& PointingTracker::process_stereo(const cv::Mat& left_bgr,
-                                                   const cv::Mat& right_bgr, std::int64_t pts_ns,
-                                                   const std::optional<HeadPose>& head,
-                                                   const ImageMotion& left_motion,
-                                                   const ImageMotion& right_motion)
+const FrameResult& PointingTracker::process_stereo(const cv::Mat& left_bgr, const cv::Mat& right_bgr,
+                                                   std::int64_t pts_ns, const std::optional<HeadPose>& head,
+                                                   const ImageMotion& left_motion, const ImageMotion& right_motion)
 {
     check_frame(left_bgr, "left");
     check_frame(right_bgr, "right");
     if (left_bgr.size() != right_bgr.size())
-        throw std::invalid_argument("left frame is " + size_text(left_bgr.size()) +
-                                    " but right frame is " + size_text(right_bgr.size()));
+        throw std::invalid_argument("left frame is " + size_text(left_bgr.size()) + " but right frame is " +
+                                    size_text(right_bgr.size()));
     Impl& d = *impl_;
     // Everything is validated before any state changes: a rejected frame leaves no trace.
     d.check_continuity(Impl::Mode::Stereo, left_bgr.size());
@@ -143,21 +133,18 @@ const FrameResult& PointingTracker::process_stereo(const cv::Mat& left_bgr,
     r.state = overall_state({r.left.state, r.right.state});
     r.head = head;
     r.pointing = points_in_both(r.left, r.right)
-                     ? estimator.estimate(left_bgr, right_bgr, r.left, r.right,
-                                          head.value_or(HeadPose{}))
+                     ? estimator.estimate(left_bgr, right_bgr, r.left, r.right, head.value_or(HeadPose{}))
                      : Pointing3D{};
     return r;
 }
 
-const FrameResult& PointingTracker::process_mono(const cv::Mat& bgr, std::int64_t pts_ns,
-                                                 const ImageMotion& motion)
+const FrameResult& PointingTracker::process_mono(const cv::Mat& bgr, std::int64_t pts_ns, const ImageMotion& motion)
 {
     check_frame(bgr, "mono");
     Impl& d = *impl_;
     d.check_continuity(Impl::Mode::Mono, bgr.size());
     d.begin_frame(Impl::Mode::Mono, bgr.size());
-    if (!d.mono)
-        d.mono.emplace(d.params);
+    if (!d.mono) d.mono.emplace(d.params);
     FrameResult& r = d.result;
     r.left = d.mono->process(bgr, motion);
     d.stamp(pts_ns);
@@ -268,16 +255,14 @@ public:
     void vec3(const cv::Vec3d& v, int decimals)
     {
         begin('[');
-        for (int i = 0; i < 3; ++i)
-            number(v[i], decimals);
+        for (int i = 0; i < 3; ++i) number(v[i], decimals);
         end(']');
     }
 
 private:
     void separator()
     {
-        if (!fresh_)
-            out_ += ',';
+        if (!fresh_) out_ += ',';
         fresh_ = false;
     }
 
@@ -321,8 +306,7 @@ void write_eye(JsonLine& j, const EyeEstimate& e)
     j.end(']');
     j.key("contour");
     j.begin('[');
-    for (const cv::Point2f& p : e.contour)
-        j.point(p, kPixelDecimals);
+    for (const cv::Point2f& p : e.contour) j.point(p, kPixelDecimals);
     j.end(']');
     j.key("fingertip");
     j.point(e.fingertip, kPixelDecimals);
@@ -333,8 +317,7 @@ void write_eye(JsonLine& j, const EyeEstimate& e)
     if (!e.landmarks.empty()) {
         j.key("landmarks");
         j.begin('[');
-        for (const cv::Point2f& p : e.landmarks)
-            j.point(p, kPixelDecimals);
+        for (const cv::Point2f& p : e.landmarks) j.point(p, kPixelDecimals);
         j.end(']');
     }
     j.end('}');

@@ -17,31 +17,27 @@ namespace gc {
 
 struct FrameResult {
     std::int64_t frame = 0;
-    std::int64_t pts_ns = -1;     // -1 when unknown
+    std::int64_t pts_ns = -1;                  // -1 when unknown
     TrackState state = TrackState::Acquiring;  // tracking only when every eye tracks
     bool stereo = false;
     EyeEstimate left;
-    EyeEstimate right;            // meaningful when stereo
-    Pointing3D pointing;          // valid only in stereo when both eyes track
-    std::optional<HeadPose> head; // the head pose at capture, when known
+    EyeEstimate right;             // meaningful when stereo
+    Pointing3D pointing;           // valid only in stereo when both eyes track
+    std::optional<HeadPose> head;  // the head pose at capture, when known
 };
 
 class PointingTracker {
 public:
     // calibration: nullopt = the nominal default for the first frame's size.
-    explicit PointingTracker(const TrackerParams& params,
-                             std::optional<StereoCalibration> calibration = std::nullopt);
+    explicit PointingTracker(const TrackerParams& params, std::optional<StereoCalibration> calibration = std::nullopt);
     ~PointingTracker();
 
     // BGR frames, CV_8UC3. Throws std::invalid_argument on bad frames (empty, wrong type,
     // left/right size mismatch, or a size that does not match the calibration).
-    const FrameResult& process_stereo(const cv::Mat& left_bgr, const cv::Mat& right_bgr,
-                                      std::int64_t pts_ns = -1,
+    const FrameResult& process_stereo(const cv::Mat& left_bgr, const cv::Mat& right_bgr, std::int64_t pts_ns = -1,
                                       const std::optional<HeadPose>& head = std::nullopt,
-                                      const ImageMotion& left_motion = {},
-                                      const ImageMotion& right_motion = {});
-    const FrameResult& process_mono(const cv::Mat& bgr, std::int64_t pts_ns = -1,
-                                    const ImageMotion& motion = {});
+                                      const ImageMotion& left_motion = {}, const ImageMotion& right_motion = {});
+    const FrameResult& process_mono(const cv::Mat& bgr, std::int64_t pts_ns = -1, const ImageMotion& motion = {});
     void reset();
     const FrameResult& last() const;
     // The hypotheses behind `eye` in the last frame (for drawing their marginals): the mono

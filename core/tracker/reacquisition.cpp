@@ -21,7 +21,8 @@ const FitParams kRefit{8, 8.0, 0.5, 2.0, 0.5};
 // Places the known template on a detected blob (palm to palm, finger direction to finger
 // direction), refines, and resumes tracking if it measures as well as tracking did
 // (lost_ratio x P_init).
-bool HandTracker::Impl::refit_known_shape(const Detection& found, const cv::Mat1b& memb, const cv::Mat& bgr) {
+bool HandTracker::Impl::refit_known_shape(const Detection& found, const cv::Mat1b& memb, const cv::Mat& bgr)
+{
     HandLandmarks lm;
     try {
         lm = find_hand_landmarks(found.mask, found.motion);
@@ -34,8 +35,7 @@ bool HandTracker::Impl::refit_known_shape(const Detection& found, const cv::Mat1
     const HandState guess{lm.palm.x, lm.palm.y,
                           std::atan2(lm.fingertip.y - lm.palm.y, lm.fingertip.x - lm.palm.x) -
                               std::atan2(shape->fingertip.y, shape->fingertip.x),
-                          std::clamp(found_reach / reach, tracking::kMinScale, tracking::kMaxScale),
-                          previous.squash};
+                          std::clamp(found_reach / reach, tracking::kMinScale, tracking::kMaxScale), previous.squash};
     const FitResult fit = refine_fit(memb, *shape, guess, kRefit);
     if (!fit.converged) return false;
     update_grey(bgr, cv::Rect(0, 0, bgr.cols, bgr.rows));
@@ -51,7 +51,8 @@ bool HandTracker::Impl::refit_known_shape(const Detection& found, const cv::Mat1
 // Re-initialisation guided by the skin map: the largest skin blobs of a plausible size are
 // tried as palm positions at the last rotation and scale; the best fit is taken if it
 // measures as well as tracking did (lost_ratio x P_init).
-bool HandTracker::Impl::reacquire_by_skin(const cv::Mat& bgr) {
+bool HandTracker::Impl::reacquire_by_skin(const cv::Mat& bgr)
+{
     cv::Mat1b seg;
     skin->segment(bgr, seg);
     // Skin of the static scene (a face the hand was lost in front of) is left out, as the

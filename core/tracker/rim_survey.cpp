@@ -7,18 +7,19 @@ namespace gc {
 
 namespace {
 
-constexpr double kRimSkinFraction = 0.85;       // inner rim this much skin: the hand is there;
-constexpr double kLooseRimSkinFraction = 0.75;  // ... or this much, with the finger's at 0.85
-constexpr double kRimDepth = 2.5;           // px along the normals, in or out: the contour's rims
+constexpr double kRimSkinFraction = 0.85;           // inner rim this much skin: the hand is there;
+constexpr double kLooseRimSkinFraction = 0.75;      // ... or this much, with the finger's at 0.85
+constexpr double kRimDepth = 2.5;                   // px along the normals, in or out: the contour's rims
 constexpr double kForegroundRimSkinFraction = 0.5;  // a contour on what moved: this much rim skin,
-constexpr double kMovedFraction = 0.5;               // this much of it known to differ from the scene,
+constexpr double kMovedFraction = 0.5;              // this much of it known to differ from the scene,
 constexpr double kMaxSceneInsideFraction = 0.15;    // at most this much of it the scene,
-constexpr double kSceneOutsideFraction = 0.5;        // and this much of the outer rim matching it
+constexpr double kSceneOutsideFraction = 0.5;       // and this much of the outer rim matching it
 
 }  // namespace
 
 RimSurvey survey_rim(const HandTemplate& t, const HandState& s, const cv::Mat1b& membership,
-                     const StaticBackground* scene, const cv::Mat& bgr) {
+                     const StaticBackground* scene, const cv::Mat& bgr)
+{
     RimSurvey rim;
     rim.points = static_cast<int>(t.outline.size());
     const cv::Rect frame(0, 0, membership.cols, membership.rows);
@@ -55,11 +56,11 @@ RimSurvey survey_rim(const HandTemplate& t, const HandState& s, const cv::Mat1b&
 // and the finger carries the direction. A contour cut by the image border is held to the
 // first rule: there the rim is missing for want of image, and a hand pushed to the border
 // by the head's turn is better found again whole.
-bool rim_is_skin(const RimSurvey& rim) {
+bool rim_is_skin(const RimSurvey& rim)
+{
     const double all = double(rim.skin) / rim.points;
     const double finger = rim.finger > 0 ? double(rim.finger_skin) / rim.finger : 0.0;
-    return all >= kRimSkinFraction ||
-           (rim.in_view && all >= kLooseRimSkinFraction && finger >= kRimSkinFraction);
+    return all >= kRimSkinFraction || (rim.in_view && all >= kLooseRimSkinFraction && finger >= kRimSkinFraction);
 }
 
 // Just inside the contour, at least half known to differ from the scene and hardly any of
@@ -70,11 +71,11 @@ bool rim_is_skin(const RimSurvey& rim) {
 // of the template's rim; the scene can. A contour slid onto the face has the face, the
 // scene, inside it; one shrunk or slid within the hand and arm has them outside it.
 // Without a learnt scene the counts are 0 and this is false.
-bool outlines_foreground(const RimSurvey& rim) {
+bool outlines_foreground(const RimSurvey& rim)
+{
     const double points = rim.points;
     return rim.skin >= kForegroundRimSkinFraction * points && rim.moved >= kMovedFraction * points &&
-           rim.scene <= kMaxSceneInsideFraction * points &&
-           rim.scene_outside >= kSceneOutsideFraction * points;
+           rim.scene <= kMaxSceneInsideFraction * points && rim.scene_outside >= kSceneOutsideFraction * points;
 }
 
 }  // namespace gc

@@ -10,14 +10,16 @@ namespace gc {
 namespace {
 
 // splitmix64: a well-mixed, reproducible seed for the right eye from the left eye's.
-std::uint64_t derive_seed(std::uint64_t seed) {
+std::uint64_t derive_seed(std::uint64_t seed)
+{
     std::uint64_t z = seed + 0x9E3779B97F4A7C15ULL;
     z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
     z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
     return z ^ (z >> 31);
 }
 
-TrackerParams right_params(TrackerParams p) {
+TrackerParams right_params(TrackerParams p)
+{
     p.seed = derive_seed(p.seed);
     return p;
 }
@@ -41,10 +43,10 @@ struct StereoHandTracker::Impl {
     std::exception_ptr job_error;
     std::thread worker;
 
-    explicit Impl(const TrackerParams& params)
-        : left(params), right(right_params(params)), worker([this] { run(); }) {}
+    explicit Impl(const TrackerParams& params) : left(params), right(right_params(params)), worker([this] { run(); }) {}
 
-    ~Impl() {
+    ~Impl()
+    {
         {
             std::lock_guard lock(mutex);
             stopping = true;
@@ -53,7 +55,8 @@ struct StereoHandTracker::Impl {
         worker.join();
     }
 
-    void run() {
+    void run()
+    {
         std::unique_lock lock(mutex);
         for (;;) {
             wake.wait(lock, [this] { return job_pending || stopping; });
@@ -75,8 +78,8 @@ struct StereoHandTracker::Impl {
         }
     }
 
-    StereoEstimate process(const cv::Mat& l, const cv::Mat& r, const ImageMotion& lm,
-                           const ImageMotion& rm) {
+    StereoEstimate process(const cv::Mat& l, const cv::Mat& r, const ImageMotion& lm, const ImageMotion& rm)
+    {
         {
             std::lock_guard lock(mutex);
             job_frame = &r;
@@ -105,24 +108,22 @@ struct StereoHandTracker::Impl {
     }
 };
 
-StereoHandTracker::StereoHandTracker(const TrackerParams& params)
-    : impl_(std::make_unique<Impl>(params)) {}
+StereoHandTracker::StereoHandTracker(const TrackerParams& params) : impl_(std::make_unique<Impl>(params)) {}
 
 StereoHandTracker::~StereoHandTracker() = default;
 
 StereoEstimate StereoHandTracker::process(const cv::Mat& left_bgr, const cv::Mat& right_bgr,
-                                          const ImageMotion& left_motion,
-                                          const ImageMotion& right_motion) {
+                                          const ImageMotion& left_motion, const ImageMotion& right_motion)
+{
     return impl_->process(left_bgr, right_bgr, left_motion, right_motion);
 }
 
-void StereoHandTracker::reset() {
+void StereoHandTracker::reset()
+{
     impl_->left.reset();
     impl_->right.reset();
 }
 
-const HandTracker& StereoHandTracker::eye(Eye e) const {
-    return e == Eye::Left ? impl_->left : impl_->right;
-}
+const HandTracker& StereoHandTracker::eye(Eye e) const { return e == Eye::Left ? impl_->left : impl_->right; }
 
 }  // namespace gc

@@ -19,8 +19,7 @@ public:
 
     // Tracks one stereo pair; the right eye's tracker is seeded differently from the left's
     // (derived from params.seed) so the two are independent but reproducible.
-    StereoEstimate process(const cv::Mat& left_bgr, const cv::Mat& right_bgr,
-                           const ImageMotion& left_motion = {},
+    StereoEstimate process(const cv::Mat& left_bgr, const cv::Mat& right_bgr, const ImageMotion& left_motion = {},
                            const ImageMotion& right_motion = {});
     void reset();
     const HandTracker& eye(Eye e) const;

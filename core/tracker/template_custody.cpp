@@ -15,15 +15,16 @@ namespace {
 
 constexpr double kMaxCaptureGrowth = 1.15;  // area ratio: a capture this much larger adds something
 constexpr int kLostSearchEvery = 3;
-constexpr int kRecapturePeriod = 16;  // while the template is provisional, look again this often
+constexpr int kRecapturePeriod = 16;       // while the template is provisional, look again this often
 constexpr int kUnsureRecapturePeriod = 8;  // ... and this often while it is not even pointing-shaped
-constexpr int kRecaptureFrames = 7;   // ... over this many frames (history_frames + 1)
-constexpr double kStillMotion = 0.02;  // moved share of the contour below which it held still
+constexpr int kRecaptureFrames = 7;        // ... over this many frames (history_frames + 1)
+constexpr double kStillMotion = 0.02;      // moved share of the contour below which it held still
 
 // A template's state in the frame it was captured from.
 HandState as_captured(const HandTemplate& t) { return HandState{t.origin_px.x, t.origin_px.y, 0.0, 1.0}; }
 
-std::optional<HandTemplate> template_from(const Detection& found, const cv::Mat1b& memb, const cv::Mat& bgr) {
+std::optional<HandTemplate> template_from(const Detection& found, const cv::Mat1b& memb, const cv::Mat& bgr)
+{
     try {
         return HandTemplate::from_mask(found.mask, memb, TemplateOptions{}, bgr, found.motion);
     } catch (const std::invalid_argument&) {
@@ -32,18 +33,21 @@ std::optional<HandTemplate> template_from(const Detection& found, const cv::Mat1
 }
 
 // `box` grown about its centre to at least `side` x `side`.
-cv::Rect at_least(const cv::Rect& box, int side) {
+cv::Rect at_least(const cv::Rect& box, int side)
+{
     const int w = std::max(box.width, side), h = std::max(box.height, side);
     return {box.x - (w - box.width) / 2, box.y - (h - box.height) / 2, w, h};
 }
 
-bool touches_border(const cv::Rect& box, const cv::Size& area) {
+bool touches_border(const cv::Rect& box, const cv::Size& area)
+{
     return box.x <= 1 || box.y <= 1 || box.br().x >= area.width - 1 || box.br().y >= area.height - 1;
 }
 
 }  // namespace
 
-void HandTracker::Impl::acquire(const cv::Mat& bgr) {
+void HandTracker::Impl::acquire(const cv::Mat& bgr)
+{
     // A known hand that was lost may return without waving: look for it by skin first.
     // While lost, the whole-frame searches are the expensive part of a frame: the skin
     // search runs every kLostSearchEvery frames and the motion detection segments every
@@ -71,7 +75,8 @@ void HandTracker::Impl::acquire(const cv::Mat& bgr) {
 
 // A new template from a detection; false (nothing changed) if the blob has no finger.
 bool HandTracker::Impl::capture(const Detection& found, CaptureQuality quality, const cv::Mat1b& memb,
-                                const cv::Mat& bgr) {
+                                const cv::Mat& bgr)
+{
     auto captured = template_from(found, memb, bgr);
     if (!captured) return false;
     const HandState at = as_captured(*captured);
@@ -79,8 +84,8 @@ bool HandTracker::Impl::capture(const Detection& found, CaptureQuality quality, 
     return true;
 }
 
-void HandTracker::Impl::adopt(HandTemplate&& t, const SkinModel& model, CaptureQuality quality,
-                              const HandState& at) {
+void HandTracker::Impl::adopt(HandTemplate&& t, const SkinModel& model, CaptureQuality quality, const HandState& at)
+{
     shape = std::move(t);
     skin = model;
     template_radius = 0.0;
@@ -102,18 +107,18 @@ void HandTracker::Impl::adopt(HandTemplate&& t, const SkinModel& model, CaptureQ
 // The hand is what waved: a watch that saw (nearly) nothing change under the tracked
 // contour says it may hold a static skin-coloured object instead. The next watch then
 // covers the whole frame, and there a capture need not overlap the tracked contour.
-bool HandTracker::Impl::recapture(const cv::Mat& bgr, bool weak_edges) {
-    const int period = template_quality == CaptureQuality::Unsure || watch_everywhere
-                           ? kUnsureRecapturePeriod
-                           : kRecapturePeriod;
+bool HandTracker::Impl::recapture(const cv::Mat& bgr, bool weak_edges)
+{
+    const int period =
+        template_quality == CaptureQuality::Unsure || watch_everywhere ? kUnsureRecapturePeriod : kRecapturePeriod;
     const int phase = tracked_frames % period;
     const int first = period - kRecaptureFrames;
     if (phase < first) return false;
     const cv::Rect frame(0, 0, bgr.cols, bgr.rows);
     if (phase == first) {
         const cv::Rect b = at_least(estimate.bbox, template_side);
-        recapture_roi = watch_everywhere ? frame
-                                         : cv::Rect(b.x - b.width, b.y - b.height, 3 * b.width, 3 * b.height) & frame;
+        recapture_roi =
+            watch_everywhere ? frame : cv::Rect(b.x - b.width, b.y - b.height, 3 * b.width, 3 * b.height) & frame;
         detector.reset();
     }
     if (recapture_roi.width < 32 || recapture_roi.height < 32) return false;
@@ -139,7 +144,8 @@ bool HandTracker::Impl::recapture(const cv::Mat& bgr, bool weak_edges) {
 // The watch's capture `found` (in window pixels) replaces the template, or goes on trial
 // against it when both are of the same quality.
 bool HandTracker::Impl::replace_from_watch(const cv::Mat& bgr, const Detection& found, CaptureQuality quality,
-                                           bool everywhere, bool still_twice) {
+                                           bool everywhere, bool still_twice)
+{
     const cv::Rect local = cv::boundingRect(found.mask);
     const bool apart = ((local + recapture_roi.tl()) & estimate.bbox).area() == 0;
     // A contour whose inner rim is mostly the learnt scene has been left on a static thing
@@ -174,7 +180,8 @@ bool HandTracker::Impl::replace_from_watch(const cv::Mat& bgr, const Detection& 
 
 // One frame of the trial; true if the candidate won (and `may_replace`) and tracking
 // restarted on it, judged against the same P_init (the hand did not change).
-bool HandTracker::Impl::try_template(const cv::Mat& bgr, const HandState& out, double current, bool may_replace) {
+bool HandTracker::Impl::try_template(const cv::Mat& bgr, const HandState& out, double current, bool may_replace)
+{
     auto verdict = trial->step(membership, bgr, previous, out, current);
     if (verdict == TemplateTrial::Verdict::Running) return false;
     // Edges cannot tell a template merged with a static skin-coloured object from the hand
@@ -194,7 +201,8 @@ bool HandTracker::Impl::try_template(const cv::Mat& bgr, const HandState& out, d
 
 // Whether the tracked contour at `out` holds the learnt static scene along its inner rim
 // (more than a hand alone shows) and the trial's candidate at most half as much.
-bool HandTracker::Impl::holds_less_scene(const HandState& out, const cv::Mat& bgr) const {
+bool HandTracker::Impl::holds_less_scene(const HandState& out, const cv::Mat& bgr) const
+{
     const RimSurvey tracked = survey_rim(*shape, out, membership, known_scene(), bgr);
     if (tracked.scene < kMergedSceneFraction * tracked.points) return false;
     const RimSurvey candidate = survey_rim(trial->candidate(), trial->state(), membership, known_scene(), bgr);
@@ -202,14 +210,16 @@ bool HandTracker::Impl::holds_less_scene(const HandState& out, const cv::Mat& bg
 }
 
 // Whether most of the inner rim of the contour at `s` is the learnt static scene.
-bool HandTracker::Impl::lies_on_scene(const HandState& s, const cv::Mat& bgr) const {
+bool HandTracker::Impl::lies_on_scene(const HandState& s, const cv::Mat& bgr) const
+{
     const RimSurvey rim = survey_rim(*shape, s, membership, known_scene(), bgr);
     return rim.scene >= kOnSceneFraction * rim.points;
 }
 
 // Whether the reported contour lies inside the watched `window` and less than kStillMotion
 // of it changed during the watch (`moved`: the window's recent motion).
-bool HandTracker::Impl::contour_held_still(const cv::Mat1b& moved, const cv::Rect& window) {
+bool HandTracker::Impl::contour_held_still(const cv::Mat1b& moved, const cv::Rect& window)
+{
     const cv::Rect box = estimate.bbox & window;
     if (moved.size() != window.size() || box != estimate.bbox || box.area() == 0) return false;
     fill_contour(box);

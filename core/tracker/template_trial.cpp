@@ -8,20 +8,23 @@
 
 namespace gc {
 
-HandState moved_along(const HandState& s, const HandState& from, const HandState& to) {
+HandState moved_along(const HandState& s, const HandState& from, const HandState& to)
+{
     const double k = to.scale / from.scale, dr = to.rotation - from.rotation;
     const double vx = s.x - from.x, vy = s.y - from.y;
     const double c = std::cos(dr), sn = std::sin(dr);
-    return HandState{to.x + k * (c * vx - sn * vy), to.y + k * (sn * vx + c * vy),
-                     s.rotation + dr, s.scale * k, s.squash};
+    return HandState{to.x + k * (c * vx - sn * vy), to.y + k * (sn * vx + c * vy), s.rotation + dr, s.scale * k,
+                     s.squash};
 }
 
 TemplateTrial::TemplateTrial(HandTemplate candidate, SkinModel skin, const HandState& at)
-    : candidate_(std::move(candidate)), skin_(std::move(skin)), state_(at) {}
+    : candidate_(std::move(candidate)), skin_(std::move(skin)), state_(at)
+{
+}
 
-TemplateTrial::Verdict TemplateTrial::step(const cv::Mat1b& membership, const cv::Mat& bgr,
-                                           const HandState& before, const HandState& after,
-                                           double current_agreement) {
+TemplateTrial::Verdict TemplateTrial::step(const cv::Mat1b& membership, const cv::Mat& bgr, const HandState& before,
+                                           const HandState& after, double current_agreement)
+{
     const HandState guess = moved_along(state_, before, after);
     const FitResult fit = refine_fit(membership, candidate_, guess, FitParams{}, bgr);
     state_ = fit.converged ? fit.state : guess;

@@ -34,8 +34,8 @@ public:
     // One frame: the tracked template moved from `before` to `after` and its refinement
     // agreed with the image by `current_agreement` (FitResult::agreement). The candidate
     // is moved the same way and refined on `membership` (and `bgr`, for the colour edge).
-    Verdict step(const cv::Mat1b& membership, const cv::Mat& bgr, const HandState& before,
-                 const HandState& after, double current_agreement);
+    Verdict step(const cv::Mat1b& membership, const cv::Mat& bgr, const HandState& before, const HandState& after,
+                 double current_agreement);
 
     // Frames stepped so far, and whether on every one of them the candidate's outline has
     // agreed with the image by at least kClearMargin more than the tracked template's.

@@ -15,14 +15,16 @@ constexpr double kAdaptRate = 0.05;
 }  // namespace
 
 // The learnt static scene when it may be consulted; nullptr while none is known.
-const StaticBackground* HandTracker::Impl::known_scene() const {
+const StaticBackground* HandTracker::Impl::known_scene() const
+{
     return params.use_static_scene && !background.empty() ? &background : nullptr;
 }
 
 // Where the frame shows the static scene, over `roi` (empty: the whole frame), for a
 // segmentation of this frame (`wanted`: the detector's, or the skin search after a loss);
 // else, or while it is unknown, empty.
-const cv::Mat1b& HandTracker::Impl::static_scene(const cv::Mat& bgr, bool wanted, cv::Rect roi) {
+const cv::Mat1b& HandTracker::Impl::static_scene(const cv::Mat& bgr, bool wanted, cv::Rect roi)
+{
     if (!wanted || !params.use_static_scene) return no_map;
     if (roi.area() == 0) roi = cv::Rect(0, 0, bgr.cols, bgr.rows);
     return background.find_static(bgr, roi);
@@ -31,7 +33,8 @@ const cv::Mat1b& HandTracker::Impl::static_scene(const cv::Mat& bgr, bool wanted
 // The static scene is learnt everywhere but on and around the tracked hand (its contour
 // grown by the search window), so that a hand held still is not learnt into it, while the
 // scene between the fingers and around the hand is.
-void HandTracker::Impl::learn_background(const cv::Mat& bgr) {
+void HandTracker::Impl::learn_background(const cv::Mat& bgr)
+{
     if (!estimate.valid()) {
         background.learn(bgr);
         return;
@@ -55,7 +58,8 @@ void HandTracker::Impl::learn_background(const cv::Mat& bgr) {
 
 // The grey map over `roi`, for the normals that run from skin into skin: levels above
 // kSceneGreyLevel, which is kept for the learnt scene (update_steps).
-void HandTracker::Impl::update_grey(const cv::Mat& bgr, const cv::Rect& roi) {
+void HandTracker::Impl::update_grey(const cv::Mat& bgr, const cv::Rect& roi)
+{
     if (grey.size() != bgr.size()) grey = cv::Mat1b(bgr.size(), kSceneGreyLevel);
     cv::Mat part = grey(roi);
     cv::cvtColor(bgr(roi), part, cv::COLOR_BGR2GRAY);
@@ -66,7 +70,8 @@ void HandTracker::Impl::update_grey(const cv::Mat& bgr, const cv::Rect& roi) {
 // step that counts is where the moving hand meets the scene behind it, and the face's own
 // steps (eyes, brows, mouth), with the scene on both sides, are gone. Where no scene is
 // learnt, the plain grey levels.
-void HandTracker::Impl::update_steps(const cv::Mat& bgr, const cv::Rect& roi) {
+void HandTracker::Impl::update_steps(const cv::Mat& bgr, const cv::Rect& roi)
+{
     update_grey(bgr, roi);
     const cv::Mat1b& scene = static_scene(bgr, true, roi);
     if (!scene.empty()) grey(roi).setTo(kSceneGreyLevel, scene(roi));
@@ -74,7 +79,8 @@ void HandTracker::Impl::update_steps(const cv::Mat& bgr, const cv::Rect& roi) {
 
 // The skin mean follows the lighting, sampled inside the tracked contour (shrunk by a few
 // pixels so the boundary's mixed pixels stay out). Only the contour's box is touched.
-void HandTracker::Impl::adapt_skin(const cv::Mat& bgr) {
+void HandTracker::Impl::adapt_skin(const cv::Mat& bgr)
+{
     const cv::Rect box = estimate.bbox & cv::Rect(0, 0, bgr.cols, bgr.rows);
     if (box.width < 8 || box.height < 8) return;
     fill_contour(box);
@@ -83,7 +89,8 @@ void HandTracker::Impl::adapt_skin(const cv::Mat& bgr) {
 }
 
 // contour_fill: the reported contour filled, over `box` (in image pixels).
-void HandTracker::Impl::fill_contour(const cv::Rect& box) {
+void HandTracker::Impl::fill_contour(const cv::Rect& box)
+{
     contour_fill.create(box.size());
     contour_fill.setTo(0);
     fill_points.resize(estimate.contour.size());

@@ -11,14 +11,19 @@ namespace gc::headctl {
 
 AuthThrottle::AuthThrottle(Clock::duration initial, Clock::duration max, std::size_t capacity,
                            Clock::duration forget_after)
-    : initial_(initial), max_(std::max(max, initial)), forget_after_(forget_after), capacity_(std::max<std::size_t>(capacity, 1)) {}
+    : initial_(initial), max_(std::max(max, initial)), forget_after_(forget_after),
+      capacity_(std::max<std::size_t>(capacity, 1))
+{
+}
 
-AuthThrottle::Clock::time_point AuthThrottle::next_check(const std::string& address) const {
+AuthThrottle::Clock::time_point AuthThrottle::next_check(const std::string& address) const
+{
     const auto it = records_.find(address);
     return it == records_.end() ? Clock::time_point{} : it->second.next_check;
 }
 
-void AuthThrottle::failed(const std::string& address, Clock::time_point now) {
+void AuthThrottle::failed(const std::string& address, Clock::time_point now)
+{
     if (!records_.count(address)) make_room(now);
     Record& r = records_[address];
     if (r.failures > 0 && now - r.next_check > forget_after_) r.failures = 0;
@@ -31,7 +36,8 @@ void AuthThrottle::failed(const std::string& address, Clock::time_point now) {
 void AuthThrottle::succeeded(const std::string& address) { records_.erase(address); }
 
 // Forgets addresses quiet for long; if none is, the one whose wait ended first.
-void AuthThrottle::make_room(Clock::time_point now) {
+void AuthThrottle::make_room(Clock::time_point now)
+{
     if (records_.size() < capacity_) return;
     std::erase_if(records_, [&](const auto& entry) { return now - entry.second.next_check > forget_after_; });
     if (records_.size() < capacity_) return;
@@ -41,7 +47,8 @@ void AuthThrottle::make_room(Clock::time_point now) {
     records_.erase(oldest);
 }
 
-std::string address_key(const sockaddr_storage& peer) {
+std::string address_key(const sockaddr_storage& peer)
+{
     char text[INET6_ADDRSTRLEN] = "?";
     if (peer.ss_family == AF_INET) {
         ::inet_ntop(AF_INET, &reinterpret_cast<const sockaddr_in&>(peer).sin_addr, text, sizeof text);

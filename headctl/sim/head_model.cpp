@@ -14,14 +14,16 @@ namespace {
 constexpr std::size_t kMaxPending = 64;
 constexpr double kSettleDeg = 1e-6;
 
-std::string fmt(double v) {
+std::string fmt(double v)
+{
     char b[32];
     std::snprintf(b, sizeof b, "%g", v);
     return b;
 }
 }  // namespace
 
-HeadLimits default_simulated_limits() {
+HeadLimits default_simulated_limits()
+{
     HeadLimits l;
     l[Axis::Pan] = AxisLimits{-170.0, 170.0, 120.0, 400.0};
     l[Axis::Tilt] = AxisLimits{-45.0, 45.0, 90.0, 300.0};
@@ -32,7 +34,8 @@ HeadLimits default_simulated_limits() {
     return l;
 }
 
-void HeadModelConfig::validate() const {
+void HeadModelConfig::validate() const
+{
     headctl::validate(limits);
     if (!std::isfinite(latency_s) || latency_s < 0.0 || latency_s > 10.0)
         throw std::invalid_argument("latency must be in [0, 10] s");
@@ -45,7 +48,8 @@ void HeadModelConfig::validate() const {
 }
 
 HeadModel::HeadModel(const HeadModelConfig& config, double start_time_s)
-    : config_(config), time_s_(start_time_s), rng_(config.seed) {
+    : config_(config), time_s_(start_time_s), rng_(config.seed)
+{
     config_.validate();
     for (Axis a : kAllAxes) {
         axes_[static_cast<std::size_t>(a)].position = home_value(a);
@@ -53,7 +57,8 @@ HeadModel::HeadModel(const HeadModelConfig& config, double start_time_s)
     }
 }
 
-void HeadModel::check_targets(const AxisValues& targets) const {
+void HeadModel::check_targets(const AxisValues& targets) const
+{
     for (Axis a : kAllAxes) {
         if (!targets.has(a)) continue;
         const AxisLimits& l = config_.limits[a];
@@ -64,12 +69,14 @@ void HeadModel::check_targets(const AxisValues& targets) const {
     }
 }
 
-void HeadModel::move_absolute(const AxisValues& targets, double now_s) {
+void HeadModel::move_absolute(const AxisValues& targets, double now_s)
+{
     check_targets(targets);
     enqueue(Kind::Absolute, targets, now_s);
 }
 
-void HeadModel::move_relative(const AxisValues& offsets, double now_s) {
+void HeadModel::move_relative(const AxisValues& offsets, double now_s)
+{
     AxisValues targets;
     for (Axis a : kAllAxes)
         if (offsets.has(a)) targets.set(a, commanded_[static_cast<std::size_t>(a)] + offsets.get(a));
@@ -77,7 +84,8 @@ void HeadModel::move_relative(const AxisValues& offsets, double now_s) {
     enqueue(Kind::Absolute, targets, now_s);
 }
 
-void HeadModel::move_velocity(const AxisValues& velocities, double now_s) {
+void HeadModel::move_velocity(const AxisValues& velocities, double now_s)
+{
     for (Axis a : kAllAxes) {
         if (!velocities.has(a)) continue;
         const double v = velocities.get(a);
@@ -91,26 +99,30 @@ void HeadModel::move_velocity(const AxisValues& velocities, double now_s) {
 
 void HeadModel::stop(double now_s) { enqueue(Kind::Stop, AxisValues{}, now_s); }
 
-void HeadModel::home(double now_s) {
+void HeadModel::home(double now_s)
+{
     AxisValues home;
     for (Axis a : kAllAxes) home.set(a, home_value(a));
     enqueue(Kind::Absolute, home, now_s);
 }
 
-void HeadModel::save_preset(int number, double now_s) {
+void HeadModel::save_preset(int number, double now_s)
+{
     const HeadState s = state(now_s);
     AxisValues here;
     for (Axis a : kAllAxes) here.set(a, axis_value(s.pose, a));
     presets_[number] = here;
 }
 
-void HeadModel::recall_preset(int number, double now_s) {
+void HeadModel::recall_preset(int number, double now_s)
+{
     const auto p = presets_.find(number);
     if (p == presets_.end()) throw std::out_of_range("preset " + std::to_string(number) + " was never saved");
     move_absolute(p->second, now_s);
 }
 
-void HeadModel::enqueue(Kind kind, const AxisValues& values, double now_s) {
+void HeadModel::enqueue(Kind kind, const AxisValues& values, double now_s)
+{
     advance(now_s);
     for (Axis a : kAllAxes) {
         const auto i = static_cast<std::size_t>(a);
@@ -125,34 +137,36 @@ void HeadModel::enqueue(Kind kind, const AxisValues& values, double now_s) {
     pending_.push_back(std::move(p));
 }
 
-void HeadModel::apply(const Pending& p) {
+void HeadModel::apply(const Pending& p)
+{
     for (Axis a : kAllAxes) {
         AxisMotion& m = axes_[static_cast<std::size_t>(a)];
         const AxisLimits& l = config_.limits[a];
         switch (p.kind) {
-            case Kind::Stop:
-                m.mode = Mode::Hold;
-                break;
-            case Kind::Absolute:
-                if (!p.values.has(a)) break;
-                m.mode = Mode::Position;
-                // Where the axis really comes to rest: the command plus a mechanical angle error
-                // (a zoom lens's stop is not an angle).
-                m.target = p.values.get(a);
-                if (a != Axis::Zoom) m.target += config_.angle_error_deg * error_(rng_);
-                m.target = std::clamp(m.target, l.min_deg, l.max_deg);
-                break;
-            case Kind::Velocity:
-                if (!p.values.has(a)) break;
-                m.mode = Mode::Velocity;
-                m.commanded_velocity = p.values.get(a);
-                m.velocity_deadline = p.apply_time + config_.velocity_timeout_s;
-                break;
+        case Kind::Stop:
+            m.mode = Mode::Hold;
+            break;
+        case Kind::Absolute:
+            if (!p.values.has(a)) break;
+            m.mode = Mode::Position;
+            // Where the axis really comes to rest: the command plus a mechanical angle error
+            // (a zoom lens's stop is not an angle).
+            m.target = p.values.get(a);
+            if (a != Axis::Zoom) m.target += config_.angle_error_deg * error_(rng_);
+            m.target = std::clamp(m.target, l.min_deg, l.max_deg);
+            break;
+        case Kind::Velocity:
+            if (!p.values.has(a)) break;
+            m.mode = Mode::Velocity;
+            m.commanded_velocity = p.values.get(a);
+            m.velocity_deadline = p.apply_time + config_.velocity_timeout_s;
+            break;
         }
     }
 }
 
-void HeadModel::step_axis(Axis axis, double dt) {
+void HeadModel::step_axis(Axis axis, double dt)
+{
     AxisMotion& m = axes_[static_cast<std::size_t>(axis)];
     const AxisLimits& l = config_.limits[axis];
     const double a = l.max_acceleration_dps2;
@@ -184,7 +198,8 @@ void HeadModel::step_axis(Axis axis, double dt) {
     if (m.mode == Mode::Hold && std::abs(m.velocity) <= a * dt) m.velocity = 0.0;
 }
 
-void HeadModel::advance(double now_s) {
+void HeadModel::advance(double now_s)
+{
     if (!std::isfinite(now_s)) throw std::invalid_argument("head model time is not finite");
     while (time_s_ < now_s) {
         while (!pending_.empty() && pending_.front().apply_time <= time_s_) {
@@ -202,7 +217,8 @@ void HeadModel::advance(double now_s) {
     }
 }
 
-HeadState HeadModel::state(double now_s) {
+HeadState HeadModel::state(double now_s)
+{
     advance(now_s);
     HeadState s;
     s.server_time_us = static_cast<std::int64_t>(std::llround(time_s_ * 1e6));

@@ -18,11 +18,11 @@ HeadLimits default_simulated_limits();
 
 struct HeadModelConfig {
     HeadLimits limits = default_simulated_limits();
-    double latency_s = 0.0;            // from a command's arrival to its effect
-    double angle_error_deg = 0.0;      // std. deviation of the reached angle around a position target
-    std::uint64_t seed = 1;            // of the angle error
-    double velocity_timeout_s = 1.0;   // a velocity move not renewed within this stops (0 = never)
-    double step_s = 0.001;             // integration step
+    double latency_s = 0.0;           // from a command's arrival to its effect
+    double angle_error_deg = 0.0;     // std. deviation of the reached angle around a position target
+    std::uint64_t seed = 1;           // of the angle error
+    double velocity_timeout_s = 1.0;  // a velocity move not renewed within this stops (0 = never)
+    double step_s = 0.001;            // integration step
 
     // Throws std::invalid_argument naming the bad field.
     void validate() const;

@@ -20,18 +20,18 @@ namespace gc::headctl {
 
 struct HeadServer::Client {
     net::Fd fd;
-    std::string peer;        // address:port, for the log
-    std::string address;     // what it is counted and throttled under (address_key)
-    std::string unread;      // received, not yet handled (the rest of a chunk behind a waiting AUTH)
-    std::string input;       // the unfinished line
-    std::string output;      // replies not yet accepted by the socket
-    bool discarding = false; // inside an over-long line: drop bytes until its '\n'
+    std::string peer;         // address:port, for the log
+    std::string address;      // what it is counted and throttled under (address_key)
+    std::string unread;       // received, not yet handled (the rest of a chunk behind a waiting AUTH)
+    std::string input;        // the unfinished line
+    std::string output;       // replies not yet accepted by the socket
+    bool discarding = false;  // inside an over-long line: drop bytes until its '\n'
     bool authenticated = false;
     int auth_failures = 0;
     Clock::time_point auth_deadline;   // not authenticated by then: dropped
     std::optional<Request> held_auth;  // an AUTH waiting for its address's delay to pass
-    bool closing = false;    // close once output is flushed
-    bool dead = false;       // close now
+    bool closing = false;              // close once output is flushed
+    bool dead = false;                 // close now
 };
 
 namespace {
@@ -42,13 +42,15 @@ constexpr auto kAcceptPause = std::chrono::milliseconds(100);
 std::string errno_text(const char* what) { return std::string(what) + ": " + std::strerror(errno); }
 
 // Compares without an early exit, so timing does not reveal how much of a token matched.
-bool same_token(std::string_view a, std::string_view b) {
+bool same_token(std::string_view a, std::string_view b)
+{
     unsigned diff = a.size() == b.size() ? 0u : 1u;
     for (std::size_t i = 0; i < a.size(); ++i) diff |= static_cast<unsigned>(a[i] ^ (i < b.size() ? b[i] : 0));
     return diff == 0;
 }
 
-std::string peer_text(const sockaddr_storage& addr) {
+std::string peer_text(const sockaddr_storage& addr)
+{
     char text[INET6_ADDRSTRLEN] = "?";
     std::uint16_t port = 0;
     if (addr.ss_family == AF_INET) {
@@ -65,7 +67,8 @@ std::string peer_text(const sockaddr_storage& addr) {
 
 }  // namespace
 
-bool is_loopback_address(const std::string& host) {
+bool is_loopback_address(const std::string& host)
+{
     in_addr v4{};
     in6_addr v6{};
     if (::inet_pton(AF_INET, host.c_str(), &v4) == 1) return (ntohl(v4.s_addr) >> 24) == 127;
@@ -75,10 +78,9 @@ bool is_loopback_address(const std::string& host) {
 }
 
 HeadServer::HeadServer(const HeadServerConfig& config)
-    : config_(config),
-      model_(config.model),
-      throttle_(config.auth_delay_initial, config.auth_delay_max),
-      start_(Clock::now()) {
+    : config_(config), model_(config.model), throttle_(config.auth_delay_initial, config.auth_delay_max),
+      start_(Clock::now())
+{
     if (config_.max_clients == 0) throw std::invalid_argument("the client cap must be at least 1");
     if (config_.max_unauthenticated == 0 || config_.max_unauthenticated_per_address == 0)
         throw std::invalid_argument("the caps on unauthenticated connections must be at least 1");
@@ -126,25 +128,29 @@ HeadServer::HeadServer(const HeadServerConfig& config)
 
 HeadServer::~HeadServer() = default;
 
-void HeadServer::request_stop() noexcept {
+void HeadServer::request_stop() noexcept
+{
     const char byte = 1;
     [[maybe_unused]] const ssize_t n = ::write(wake_write_.get(), &byte, 1);
 }
 
 double HeadServer::now_s() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
 
-void HeadServer::log(const std::string& peer, const std::string& what) const {
+void HeadServer::log(const std::string& peer, const std::string& what) const
+{
     if (config_.verbose) std::cerr << "headsim: " << peer << " " << what << "\n";
 }
 
-std::size_t HeadServer::count_clients(bool authenticated, const std::string* address) const {
+std::size_t HeadServer::count_clients(bool authenticated, const std::string* address) const
+{
     return static_cast<std::size_t>(std::count_if(clients_.begin(), clients_.end(), [&](const auto& c) {
         return !c->dead && c->authenticated == authenticated && (!address || c->address == *address);
     }));
 }
 
 // Until the next authentication deadline, held AUTH or end of an accept pause; -1: none.
-int HeadServer::poll_timeout_ms(Clock::time_point now) const {
+int HeadServer::poll_timeout_ms(Clock::time_point now) const
+{
     auto next = Clock::time_point::max();
     if (accept_paused_until_ > now) next = accept_paused_until_;
     for (const auto& c : clients_) {
@@ -157,17 +163,21 @@ int HeadServer::poll_timeout_ms(Clock::time_point now) const {
     return static_cast<int>(std::clamp<long long>(ms, 0, 60'000));
 }
 
-void HeadServer::run() {
+void HeadServer::run()
+{
     for (;;) {
         poll_set_.clear();
         poll_set_.push_back({wake_read_.get(), POLLIN, 0});
-        poll_set_.push_back({listener_.get(), static_cast<short>(Clock::now() >= accept_paused_until_ ? POLLIN : 0), 0});
+        poll_set_.push_back(
+            {listener_.get(), static_cast<short>(Clock::now() >= accept_paused_until_ ? POLLIN : 0), 0});
         for (const auto& c : clients_) {
             short events = 0;
             // A client that does not read its replies is not read either (back-pressure); one
             // whose AUTH waits is not read until it is checked, only watched for hanging up.
-            if (c->held_auth) events |= POLLRDHUP;
-            else if (!c->closing && c->output.size() < config_.max_pending_output) events |= POLLIN;
+            if (c->held_auth)
+                events |= POLLRDHUP;
+            else if (!c->closing && c->output.size() < config_.max_pending_output)
+                events |= POLLIN;
             if (!c->output.empty()) events |= POLLOUT;
             poll_set_.push_back({c->fd.get(), events, 0});
         }
@@ -199,7 +209,8 @@ void HeadServer::run() {
 
 // Drops the connections whose time to authenticate is up, and checks the AUTHs whose
 // address's delay has passed (one per address: a failure starts the next delay).
-void HeadServer::expire_and_release(Clock::time_point now) {
+void HeadServer::expire_and_release(Clock::time_point now)
+{
     for (const auto& client : clients_) {
         Client& c = *client;
         if (c.dead || c.authenticated) continue;
@@ -222,7 +233,8 @@ void HeadServer::expire_and_release(Clock::time_point now) {
     }
 }
 
-void HeadServer::accept_clients() {
+void HeadServer::accept_clients()
+{
     for (int accepted = 0; accepted < kMaxAcceptsPerWakeUp; ++accepted) {
         sockaddr_storage addr{};
         socklen_t len = sizeof addr;
@@ -241,7 +253,8 @@ void HeadServer::accept_clients() {
     }
 }
 
-void HeadServer::admit(net::Fd& fd, const std::string& address, const std::string& peer) {
+void HeadServer::admit(net::Fd& fd, const std::string& address, const std::string& peer)
+{
     if (count_clients(true) >= config_.max_clients) {
         refuse(fd, peer, "too many clients (at most " + std::to_string(config_.max_clients) + ")");
         return;
@@ -250,8 +263,9 @@ void HeadServer::admit(net::Fd& fd, const std::string& address, const std::strin
     if (needs_auth) {
         const std::size_t per_address = config_.max_unauthenticated_per_address;
         if (count_clients(false, &address) >= per_address) {
-            refuse(fd, peer, "too many unauthenticated connections from " + address + " (at most " +
-                                 std::to_string(per_address) + ")");
+            refuse(fd, peer,
+                   "too many unauthenticated connections from " + address + " (at most " + std::to_string(per_address) +
+                       ")");
             return;
         }
         if (count_clients(false) >= config_.max_unauthenticated) drop_one_unauthenticated();
@@ -274,7 +288,8 @@ void HeadServer::admit(net::Fd& fd, const std::string& address, const std::strin
 // Makes room for a newcomer: the oldest connection of the address holding the most
 // unauthenticated ones goes, so a crowd from a few addresses pushes out its own members
 // first and a client arriving alone keeps its few seconds to authenticate.
-void HeadServer::drop_one_unauthenticated() {
+void HeadServer::drop_one_unauthenticated()
+{
     std::unordered_map<std::string, std::size_t> per_address;
     for (const auto& c : clients_)
         if (!c->dead && !c->authenticated) ++per_address[c->address];
@@ -288,13 +303,15 @@ void HeadServer::drop_one_unauthenticated() {
     clients_.erase(victim);
 }
 
-void HeadServer::refuse(net::Fd& fd, const std::string& peer, const std::string& why) {
+void HeadServer::refuse(net::Fd& fd, const std::string& peer, const std::string& why)
+{
     const std::string line = format_reply(make_error_reply(std::nullopt, ErrorCode::Busy, why)) + "\n";
     [[maybe_unused]] const ssize_t n = ::send(fd.get(), line.data(), line.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
     log(peer, "refused: " + why);
 }
 
-void HeadServer::read_from(Client& c) {
+void HeadServer::read_from(Client& c)
+{
     char chunk[4096];
     const ssize_t n = ::recv(c.fd.get(), chunk, sizeof chunk, 0);
     if (n == 0 || (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR)) {
@@ -308,12 +325,14 @@ void HeadServer::read_from(Client& c) {
 }
 
 // Handles the complete lines received, up to an AUTH that has to wait (the rest waits with it).
-void HeadServer::process_input(Client& c) {
+void HeadServer::process_input(Client& c)
+{
     const std::string_view data(c.unread);
     std::size_t used = 0;
     while (used < data.size() && !c.closing && !c.held_auth) {
         const auto nl = data.find('\n', used);
-        const std::string_view piece = data.substr(used, nl == std::string_view::npos ? std::string_view::npos : nl - used);
+        const std::string_view piece =
+            data.substr(used, nl == std::string_view::npos ? std::string_view::npos : nl - used);
         if (c.discarding) {
             if (nl != std::string_view::npos) c.discarding = false;
         } else if (c.input.size() + piece.size() > kMaxLineLength + 1) {  // +1: a trailing '\r'
@@ -333,7 +352,8 @@ void HeadServer::process_input(Client& c) {
     c.unread.erase(0, used);
 }
 
-void HeadServer::handle_line(Client& c, std::string_view line) {
+void HeadServer::handle_line(Client& c, std::string_view line)
+{
     if (line.find_first_not_of(" \t\r") == std::string_view::npos) return;  // blank lines are no requests
     Request req;
     try {
@@ -353,27 +373,45 @@ void HeadServer::handle_line(Client& c, std::string_view line) {
     const double now = now_s();
     try {
         switch (req.command) {
-            case Command::Auth:
-                if (config_.token.empty()) break;
-                if (!c.authenticated && Clock::now() < throttle_.next_check(c.address)) c.held_auth = req;
-                else authenticate(c, req);
-                return;
-            case Command::Status:
-                r.body = ReplyBody::State;
-                r.state = model_.state(now);
-                break;
-            case Command::Limits:
-                r.body = ReplyBody::Limits;
-                r.limits = model_.limits();
-                break;
-            case Command::MoveAbsolute: model_.move_absolute(req.values, now); break;
-            case Command::MoveRelative: model_.move_relative(req.values, now); break;
-            case Command::MoveVelocity: model_.move_velocity(req.values, now); break;
-            case Command::Stop: model_.stop(now); break;
-            case Command::Home: model_.home(now); break;
-            case Command::PresetSave: model_.save_preset(req.preset, now); break;
-            case Command::PresetRecall: model_.recall_preset(req.preset, now); break;
-            case Command::Quit: c.closing = true; break;
+        case Command::Auth:
+            if (config_.token.empty()) break;
+            if (!c.authenticated && Clock::now() < throttle_.next_check(c.address))
+                c.held_auth = req;
+            else
+                authenticate(c, req);
+            return;
+        case Command::Status:
+            r.body = ReplyBody::State;
+            r.state = model_.state(now);
+            break;
+        case Command::Limits:
+            r.body = ReplyBody::Limits;
+            r.limits = model_.limits();
+            break;
+        case Command::MoveAbsolute:
+            model_.move_absolute(req.values, now);
+            break;
+        case Command::MoveRelative:
+            model_.move_relative(req.values, now);
+            break;
+        case Command::MoveVelocity:
+            model_.move_velocity(req.values, now);
+            break;
+        case Command::Stop:
+            model_.stop(now);
+            break;
+        case Command::Home:
+            model_.home(now);
+            break;
+        case Command::PresetSave:
+            model_.save_preset(req.preset, now);
+            break;
+        case Command::PresetRecall:
+            model_.recall_preset(req.preset, now);
+            break;
+        case Command::Quit:
+            c.closing = true;
+            break;
         }
     } catch (const std::out_of_range& e) {
         reply(c, make_error_reply(req.id, ErrorCode::OutOfRange, e.what()));
@@ -386,7 +424,8 @@ void HeadServer::handle_line(Client& c, std::string_view line) {
 }
 
 // Checks an AUTH now; a wrong token makes the next one from that address wait.
-void HeadServer::authenticate(Client& c, const Request& auth) {
+void HeadServer::authenticate(Client& c, const Request& auth)
+{
     if (!same_token(auth.token, config_.token)) {
         throttle_.failed(c.address, Clock::now());
         if (++c.auth_failures >= config_.max_auth_failures) c.closing = true;
@@ -407,13 +446,15 @@ void HeadServer::authenticate(Client& c, const Request& auth) {
     reply(c, ok);
 }
 
-void HeadServer::reply(Client& c, const Reply& r) {
+void HeadServer::reply(Client& c, const Reply& r)
+{
     reply_line_ = format_reply(r);
     c.output += reply_line_;
     c.output += '\n';
 }
 
-void HeadServer::flush(Client& c) {
+void HeadServer::flush(Client& c)
+{
     while (!c.output.empty()) {
         const ssize_t n = ::send(c.fd.get(), c.output.data(), c.output.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
         if (n > 0) {

@@ -41,7 +41,7 @@ struct HeadServerConfig {
     // doubling with each further failure up to the maximum.
     std::chrono::milliseconds auth_delay_initial{100};
     std::chrono::milliseconds auth_delay_max{5000};
-    bool verbose = false;                        // one stderr line per connection event
+    bool verbose = false;  // one stderr line per connection event
     HeadModelConfig model;
 };
 

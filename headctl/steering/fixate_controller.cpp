@@ -13,7 +13,8 @@ namespace {
 constexpr double kRadToDeg = 57.29577951308232;
 }
 
-void FixateConfig::validate() const {
+void FixateConfig::validate() const
+{
     auto check = [](double v, bool ok, const char* name) {
         if (!std::isfinite(v) || !ok) throw std::invalid_argument(std::string("fixate controller: bad ") + name);
     };
@@ -34,7 +35,8 @@ void FixateConfig::validate() const {
     headctl::validate(limits);
 }
 
-FixateObservation offset_from_image(double dx_px, double dy_px, double fx_px, double fy_px) {
+FixateObservation offset_from_image(double dx_px, double dy_px, double fx_px, double fy_px)
+{
     if (!(fx_px > 0.0) || !(fy_px > 0.0) || !std::isfinite(fx_px) || !std::isfinite(fy_px))
         throw std::invalid_argument("image offset: focal lengths must be finite and > 0");
     if (!std::isfinite(dx_px) || !std::isfinite(dy_px))
@@ -48,7 +50,8 @@ FixateObservation offset_from_image(double dx_px, double dy_px, double fx_px, do
 
 FixateController::FixateController(const FixateConfig& config) : config_(config) { config_.validate(); }
 
-void FixateController::reset() {
+void FixateController::reset()
+{
     velocity_ = {};
     settled_ = {};
     lost_s_ = 0.0;
@@ -57,20 +60,23 @@ void FixateController::reset() {
 }
 
 double FixateController::axis_velocity(std::size_t i, double offset, double rate, double position,
-                                       const AxisLimits& limits, double dt) {
+                                       const AxisLimits& limits, double dt)
+{
     const FixateConfig& c = config_;
     // Dead band with hysteresis: a settled axis stays put until the offset clearly grows.
     const double magnitude = std::abs(offset);
-    if (magnitude <= c.dead_band_deg) settled_[i] = true;
-    else if (magnitude > c.release_band_deg) settled_[i] = false;
+    if (magnitude <= c.dead_band_deg)
+        settled_[i] = true;
+    else if (magnitude > c.release_band_deg)
+        settled_[i] = false;
     const double error = settled_[i] ? 0.0 : offset;
 
     // Proportional, but never faster than what can still brake to rest at the target
     // within one control period: this is what keeps the step response from overshooting.
     const double a = c.max_acceleration_dps2;
     const double dir = error >= 0.0 ? 1.0 : -1.0;
-    double v = dir * std::min(c.gain_per_s * std::abs(error),
-                              braking_speed(std::abs(error), dir * velocity_[i], a, dt));
+    double v =
+        dir * std::min(c.gain_per_s * std::abs(error), braking_speed(std::abs(error), dir * velocity_[i], a, dt));
     if (std::abs(rate) > c.rate_dead_band_dps) v += c.feed_forward * rate;
     v = std::clamp(v, -c.max_velocity_dps, c.max_velocity_dps);
 
@@ -87,7 +93,8 @@ double FixateController::axis_velocity(std::size_t i, double offset, double rate
     return v;
 }
 
-std::optional<HeadCommand> FixateController::update(const FixateObservation& seen, const HeadPose& head, double dt_s) {
+std::optional<HeadCommand> FixateController::update(const FixateObservation& seen, const HeadPose& head, double dt_s)
+{
     if (!std::isfinite(dt_s) || dt_s <= 0.0 || dt_s > 10.0)
         throw std::invalid_argument("fixate controller: time step must be in (0, 10] s");
     const bool finite = std::isfinite(seen.offset_pan_deg) && std::isfinite(seen.offset_tilt_deg) &&

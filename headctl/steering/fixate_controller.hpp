@@ -9,22 +9,22 @@
 namespace gc::headctl {
 
 struct FixateConfig {
-    double dead_band_deg = 1.0;         // offsets inside are left alone...
-    double release_band_deg = 2.0;      // ...until they grow beyond this (hysteresis)
-    double gain_per_s = 4.0;            // velocity per degree of offset
-    double feed_forward = 1.0;          // share of the target's own angular velocity
-    double rate_dead_band_dps = 1.0;    // target velocities below this count as noise
+    double dead_band_deg = 1.0;       // offsets inside are left alone...
+    double release_band_deg = 2.0;    // ...until they grow beyond this (hysteresis)
+    double gain_per_s = 4.0;          // velocity per degree of offset
+    double feed_forward = 1.0;        // share of the target's own angular velocity
+    double rate_dead_band_dps = 1.0;  // target velocities below this count as noise
     double max_velocity_dps = 60.0;
     double max_acceleration_dps2 = 200.0;  // rate limit of the commanded velocity
-    double limit_margin_deg = 1.0;      // stop this far inside the soft limits
-    double head_latency_s = 0.05;       // from a command to the head's response
-    double hold_s = 2.0;                // after the hand is lost, hold still this long, then home
-    std::optional<int> home_preset;     // home is this preset of the head (else its HOME)
+    double limit_margin_deg = 1.0;         // stop this far inside the soft limits
+    double head_latency_s = 0.05;          // from a command to the head's response
+    double hold_s = 2.0;                   // after the hand is lost, hold still this long, then home
+    std::optional<int> home_preset;        // home is this preset of the head (else its HOME)
     // Lost for this long (0: never), and not yet home, the lens zooms out towards its widest
     // at widen_rate (magnification per second), so a hand just outside a narrow view shows.
     double widen_after_s = 0.0;
     double widen_rate = 2.0;
-    HeadLimits limits;                  // the head's soft limits (pan and tilt are used)
+    HeadLimits limits;  // the head's soft limits (pan and tilt are used)
 
     void validate() const;  // throws std::invalid_argument naming the field
 };
@@ -35,7 +35,7 @@ struct FixateObservation {
     bool valid = false;
     double offset_pan_deg = 0.0;
     double offset_tilt_deg = 0.0;
-    double rate_pan_dps = 0.0;   // the hand's angular velocity, same axes
+    double rate_pan_dps = 0.0;  // the hand's angular velocity, same axes
     double rate_tilt_dps = 0.0;
 };
 
@@ -59,8 +59,8 @@ private:
                          double dt);
 
     FixateConfig config_;
-    std::array<double, 2> velocity_{};   // last commanded, pan and tilt
-    std::array<bool, 2> settled_{};      // inside the dead band
+    std::array<double, 2> velocity_{};  // last commanded, pan and tilt
+    std::array<bool, 2> settled_{};     // inside the dead band
     double lost_s_ = 0.0;
     bool homed_ = false;
     bool widening_ = false;  // the last command drove the zoom out

@@ -49,9 +49,12 @@ cv::Vec3d in_unverged_eye(const HeadGeometry& g, const HeadPose& pose, Eye eye, 
 std::string_view to_string(SteerMode mode)
 {
     switch (mode) {
-    case SteerMode::Off: return "off";
-    case SteerMode::Fixate: return "fixate";
-    case SteerMode::Point: return "point";
+    case SteerMode::Off:
+        return "off";
+    case SteerMode::Fixate:
+        return "fixate";
+    case SteerMode::Point:
+        return "point";
     }
     return "unknown";
 }
@@ -111,8 +114,8 @@ struct HeadLink::Impl {
     std::optional<std::pair<double, double>> last_aim;
 
     Impl(HeadLinkConfig c, StereoCalibration cal)
-        : config(std::move(c)), calibration(std::move(cal)), fixate(config.fixate),
-          hand_depth_mm{config.nominal_depth_mm, config.nominal_depth_mm}
+        : config(std::move(c)), calibration(std::move(cal)),
+          fixate(config.fixate), hand_depth_mm{config.nominal_depth_mm, config.nominal_depth_mm}
     {
         headctl::HeadClientConfig cc;
         cc.uri = config.uri;
@@ -160,16 +163,12 @@ struct HeadLink::Impl {
         fixate = headctl::FixateController(fc);
     }
 
-    const headctl::AxisLimits& axis_limits(Axis a) const
-    {
-        return limits ? (*limits)[a] : config.fixate.limits[a];
-    }
+    const headctl::AxisLimits& axis_limits(Axis a) const { return limits ? (*limits)[a] : config.fixate.limits[a]; }
 
     // Submits; a head without vergence axes gets the command without them from then on.
     void submit(HeadCommand command)
     {
-        if (!client->has_axis(Axis::Zoom))
-            command.values.clear(Axis::Zoom);
+        if (!client->has_axis(Axis::Zoom)) command.values.clear(Axis::Zoom);
         if (!head_has_vergence) {
             command.values.clear(Axis::VergeLeft);
             command.values.clear(Axis::VergeRight);
@@ -249,12 +248,11 @@ struct HeadLink::Impl {
         // Only a ray seen from a head at rest counts: frames taken while turning carry the
         // pose's interpolation error and motion blur, and re-aiming on them makes the head hunt.
         const std::optional<headctl::StateSample> latest = client->latest();
-        const bool moving = latest && std::any_of(latest->state.moving.begin(), latest->state.moving.end(),
-                                                  [](bool m) { return m; });
+        const bool moving =
+            latest && std::any_of(latest->state.moving.begin(), latest->state.moving.end(), [](bool m) { return m; });
         pointing_run = r.pointing.valid && !moving ? pointing_run + 1 : 0;
         if (pointing_run < config.point_settle_frames) return;
-        const cv::Vec3d target =
-            r.pointing.fingertip_head_mm + config.target_distance_mm * r.pointing.direction_head;
+        const cv::Vec3d target = r.pointing.fingertip_head_mm + config.target_distance_mm * r.pointing.direction_head;
         const double margin = config.fixate.limit_margin_deg;
         auto [pan, tilt] = aim_at(target, calibration.head);
         pan = clamp_to(axis_limits(Axis::Pan), pan, margin);
@@ -357,8 +355,7 @@ void HeadLink::set_steering(SteerMode mode, double target_distance_mm)
     if (s.limits) fc.limits = *s.limits;
     s.fixate = headctl::FixateController(fc);
     // Leaving a mode that was driving the head by velocity: stop it where it is.
-    if (s.client->state() == headctl::ConnectionState::Connected)
-        s.submit(HeadCommand{CommandKind::Stop, {}});
+    if (s.client->state() == headctl::ConnectionState::Connected) s.submit(HeadCommand{CommandKind::Stop, {}});
 }
 
 bool HeadLink::last_view_stale() const { return impl_->view_stale; }

@@ -26,18 +26,18 @@ std::string_view to_string(SteerMode mode);
 std::optional<SteerMode> steer_mode_from_string(std::string_view name);
 
 struct HeadLinkConfig {
-    std::string uri;                      // e.g. tcp://127.0.0.1:5050 (headctl/uri.hpp)
+    std::string uri;  // e.g. tcp://127.0.0.1:5050 (headctl/uri.hpp)
     std::string token;
     SteerMode steer = SteerMode::Fixate;
-    double target_distance_mm = 2000.0;   // point mode: how far along the ray to look
-    double nominal_depth_mm = 1000.0;     // C_t's depth while the 3D position is unknown
+    double target_distance_mm = 2000.0;  // point mode: how far along the ray to look
+    double nominal_depth_mm = 1000.0;    // C_t's depth while the 3D position is unknown
     // Fixate-mode pan/tilt law; its limits are replaced by the head's once it reports them.
     headctl::FixateConfig fixate;
-    double vergence_gain_per_s = 6.0;     // vergence velocity per degree of error
+    double vergence_gain_per_s = 6.0;  // vergence velocity per degree of error
     double vergence_dead_band_deg = 0.3;
-    double point_release_deg = 2.0;       // point mode: re-aim when the target moved this far
-    int point_settle_frames = 5;          // ...and the pointing held valid this many frames
-                                          // with the head at rest
+    double point_release_deg = 2.0;                // point mode: re-aim when the target moved this far
+    int point_settle_frames = 5;                   // ...and the pointing held valid this many frames
+                                                   // with the head at rest
     std::chrono::milliseconds reconnect_max{500};  // longest wait between connection attempts
     // Views that reach the tracker later than this after their capture do not steer the
     // head (fixate brakes as on a loss): a loop closed over old views turns too far and

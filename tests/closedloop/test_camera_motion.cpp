@@ -86,7 +86,8 @@ TEST(CameraMotion, PredictsTheSceneForStepsOfAFewDegreesAndOfTheZoom)
             const ImageMotion m = camera_motion(cal, eye, s.before, s.after, a.palm_px);
             EXPECT_NEAR(a.palm_px.x + m.dx, b.palm_px.x, 0.5);
             EXPECT_NEAR(a.palm_px.y + m.dy, b.palm_px.y, 0.5);
-            worst_px = std::max(worst_px, std::hypot(a.palm_px.x + m.dx - b.palm_px.x, a.palm_px.y + m.dy - b.palm_px.y));
+            worst_px =
+                std::max(worst_px, std::hypot(a.palm_px.x + m.dx - b.palm_px.x, a.palm_px.y + m.dy - b.palm_px.y));
             worst_rad = std::max(worst_rad, std::abs(wrap(image_angle(b) - image_angle(a)) - m.drotation));
             // The palm -> fingertip direction turns by about the predicted rotation (predicted
             // at the palm; the rotation varies a little over the hand's extent).
@@ -158,7 +159,8 @@ TEST(CameraMotion, ThereAndBackAgainWithDistortionAndOffsetCentres)
     const ImageMotion go = camera_motion(cal, Eye::Left, a, b, p, depth);
     EXPECT_GT(std::hypot(go.dx, go.dy), 20.0);
     // The point's depth in the moved camera, so that the way back starts from the same 3D point.
-    const RigidTransform moved = camera_to_head(cal.head, b, Eye::Left).inverse() * camera_to_head(cal.head, a, Eye::Left);
+    const RigidTransform moved =
+        camera_to_head(cal.head, b, Eye::Left).inverse() * camera_to_head(cal.head, a, Eye::Left);
     std::vector<cv::Point2d> undistorted;
     cv::undistortPoints(std::vector<cv::Point2d>{p}, undistorted, cv::Mat(cal.M1), cal.D1);
     const cv::Vec3d x = moved.apply(cv::Vec3d(undistorted[0].x, undistorted[0].y, 1.0) * depth);

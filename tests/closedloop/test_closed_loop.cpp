@@ -37,13 +37,13 @@ constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 
 struct LoopFigures {
     int frames = 0;
-    int first_tracked = -1;      // frame of acquisition
-    int scored = 0;              // frames from one second after acquisition
-    int centred = 0;             // of those, with the true palm in the central third
-    int tracked = 0;             // of those, with the tracker tracking
-    double max_pan_deg = 0.0;    // how far the head moved
-    double error_px_sum = 0.0;   // tracked palm vs the true one, over the scored tracked frames
-    double busy_s = 0.0;         // time spent processing frames
+    int first_tracked = -1;     // frame of acquisition
+    int scored = 0;             // frames from one second after acquisition
+    int centred = 0;            // of those, with the true palm in the central third
+    int tracked = 0;            // of those, with the tracker tracking
+    double max_pan_deg = 0.0;   // how far the head moved
+    double error_px_sum = 0.0;  // tracked palm vs the true one, over the scored tracked frames
+    double busy_s = 0.0;        // time spent processing frames
     // The head's travel (max - min, degrees) from LoopOptions::rest_from_s on.
     HeadPose rest_min, rest_max;
     int rest_frames = 0;
@@ -184,8 +184,8 @@ LoopFigures run_loop(const LoopOptions& o)
                 "third %.1f %%, tracked %.1f %% (palm error %.1f px), largest pan %.1f deg, %.1f ms per frame\n",
                 std::string(to_string(o.mode)).c_str(), o.saccades ? " with saccades" : "",
                 std::string(sim::to_string(sc.motion)).c_str(), int(o.seed), f.frames, o.seconds, f.first_tracked,
-                f.scored, 100.0 * f.centred_fraction(), 100.0 * f.tracked_fraction(), f.mean_error_px(),
-                f.max_pan_deg, 1000.0 * f.busy_s / std::max(f.frames, 1));
+                f.scored, 100.0 * f.centred_fraction(), 100.0 * f.tracked_fraction(), f.mean_error_px(), f.max_pan_deg,
+                1000.0 * f.busy_s / std::max(f.frames, 1));
     if (f.rest_frames)
         std::printf("  from %.1f s (%d frames): pan %.3f .. %.3f, tilt %.3f .. %.3f deg; travel pan %.3f, tilt %.3f, "
                     "vergence %.3f deg\n",
@@ -270,11 +270,11 @@ TEST_F(ClosedLoop, FixateHoldsStillOnAStillHand)
 // Point mode: where the eyes end up looking, against where the hand truly points.
 struct PointFigures {
     int first_tracked = -1;
-    double settled_s = -1.0;     // from the link's first frame to the head's last motion (< 0: never at rest)
-    HeadPose pose;               // at rest
+    double settled_s = -1.0;               // from the link's first frame to the head's last motion (< 0: never at rest)
+    HeadPose pose;                         // at rest
     double eye_error_deg[2] = {NAN, NAN};  // optical axis vs the true target, left and right
-    double estimate_error_deg = NAN;  // the tracker's last target vs the true one, seen from the left eye
-    double eye_to_estimate_deg = NAN;  // the left eye's axis vs the tracker's last target
+    double estimate_error_deg = NAN;       // the tracker's last target vs the true one, seen from the left eye
+    double eye_to_estimate_deg = NAN;      // the left eye's axis vs the tracker's last target
     double aim_pan_deg = NAN, aim_tilt_deg = NAN;  // the true target's pan and tilt
 };
 
@@ -378,13 +378,14 @@ PointFigures run_point(sim::Preset preset, std::uint64_t seed, double max_second
         for (std::size_t k = targets.size() - n; k < targets.size(); ++k) mean += targets[k];
         f.eye_to_estimate_deg = off_axis_deg(cal, f.pose, Eye::Left, mean * (1.0 / double(n)));
     }
-    std::printf("steer=point, %s Static seed %d: acquired at frame %d, head stopped %.2f s after the link began to "
-                "steer, at pan %.2f tilt %.2f verge %.2f/%.2f deg for a true target at pan %.2f tilt %.2f; eyes off the "
-                "true target by %.2f (left) and %.2f (right) deg; the tracker's last target is %.2f deg off the true "
-                "one; its mean target over the last half second is %.2f deg off the left eye's axis\n",
-                std::string(sim::to_string(preset)).c_str(), int(seed), f.first_tracked, f.settled_s, f.pose.pan_deg,
-                f.pose.tilt_deg, f.pose.verge_left_deg, f.pose.verge_right_deg, f.aim_pan_deg, f.aim_tilt_deg,
-                f.eye_error_deg[0], f.eye_error_deg[1], f.estimate_error_deg, f.eye_to_estimate_deg);
+    std::printf(
+        "steer=point, %s Static seed %d: acquired at frame %d, head stopped %.2f s after the link began to "
+        "steer, at pan %.2f tilt %.2f verge %.2f/%.2f deg for a true target at pan %.2f tilt %.2f; eyes off the "
+        "true target by %.2f (left) and %.2f (right) deg; the tracker's last target is %.2f deg off the true "
+        "one; its mean target over the last half second is %.2f deg off the left eye's axis\n",
+        std::string(sim::to_string(preset)).c_str(), int(seed), f.first_tracked, f.settled_s, f.pose.pan_deg,
+        f.pose.tilt_deg, f.pose.verge_left_deg, f.pose.verge_right_deg, f.aim_pan_deg, f.aim_tilt_deg,
+        f.eye_error_deg[0], f.eye_error_deg[1], f.estimate_error_deg, f.eye_to_estimate_deg);
     return f;
 }
 

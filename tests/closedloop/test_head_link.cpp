@@ -28,8 +28,8 @@ using headctl::ConnectionState;
 using headctl::HeadAtCapture;
 using headctl::HeadLink;
 using headctl::HeadLinkConfig;
-using headctl::SteerMode;
 using headctl::steer_mode_from_string;
+using headctl::SteerMode;
 
 const StereoCalibration& calibration()
 {
@@ -114,10 +114,12 @@ TEST(HeadLink, FixateReturnsToTheHomePresetOnceTheHandIsLost)
     driver.submit(headctl::preset_command(headctl::CommandKind::SavePreset, 5));
     ASSERT_TRUE(eventually([&] { return driver.stats().commands_sent >= 2; }, 2000ms));
     driver.submit(headctl::HeadCommand{headctl::CommandKind::Home, {}});
-    ASSERT_TRUE(eventually([&] {
-        const auto s = driver.latest();
-        return s && s->state.pose.pan_deg == 0.0 && s->state.pose.zoom == 1.0;
-    }, 3000ms));
+    ASSERT_TRUE(eventually(
+        [&] {
+            const auto s = driver.latest();
+            return s && s->state.pose.pan_deg == 0.0 && s->state.pose.zoom == 1.0;
+        },
+        3000ms));
 
     HeadLinkConfig config = link_config(head.uri(), SteerMode::Fixate);
     config.fixate.hold_s = 0.3;
@@ -236,7 +238,7 @@ TEST(HeadLink, PointAimsAlongTheRayAndSettles)
     const double pan = std::atan2(target[0], target[2]) * 180.0 / std::numbers::pi;
     const HeadPose p = latest_pose(link);
     EXPECT_NEAR(p.pan_deg, pan, 0.5);
-    EXPECT_GT(p.tilt_deg, 3.0);   // up
+    EXPECT_GT(p.tilt_deg, 3.0);                      // up
     EXPECT_GT(p.verge_left_deg, p.verge_right_deg);  // converging on the target
     // Settled: one aim for an unchanging ray, not one per frame.
     EXPECT_EQ(link.client().stats().commands_submitted, 1u);
@@ -305,13 +307,23 @@ TEST(HeadLink, ReconnectsAndNeverBlocksWhileTheHeadIsGone)
     };
     for (int i = 0; i < 10; ++i) frame();
     head.reset();
-    ASSERT_TRUE(eventually([&] { frame(); return link.state() != ConnectionState::Connected; }, 2000ms));
+    ASSERT_TRUE(eventually(
+        [&] {
+            frame();
+            return link.state() != ConnectionState::Connected;
+        },
+        2000ms));
     const auto gone_until = std::chrono::steady_clock::now() + 700ms;
     while (std::chrono::steady_clock::now() < gone_until) frame();
 
     head = std::make_unique<RunningHead>(loopback_head(port));
     const auto restarted = std::chrono::steady_clock::now();
-    ASSERT_TRUE(eventually([&] { frame(); return link.state() == ConnectionState::Connected; }, 2000ms));
+    ASSERT_TRUE(eventually(
+        [&] {
+            frame();
+            return link.state() == ConnectionState::Connected;
+        },
+        2000ms));
     const auto reconnect = std::chrono::steady_clock::now() - restarted;
     for (int i = 0; i < 10; ++i) frame();
 

@@ -10,7 +10,8 @@
 
 namespace gc_test {
 
-inline cv::Mat1b drawn_hand(cv::Size size, cv::Point2d palm, double finger_deg, double s) {
+inline cv::Mat1b drawn_hand(cv::Size size, cv::Point2d palm, double finger_deg, double s)
+{
     cv::Mat1b m(size, uchar(0));
     cv::circle(m, palm, cvRound(22 * s), 255, cv::FILLED, cv::LINE_8);
     const double a = finger_deg * std::numbers::pi / 180.0;

@@ -23,10 +23,10 @@ namespace gc::test {
 
 struct LineWatch {
     bool started = false;
-    int looks = 0;                 // times the file was seen non-empty while the program ran
-    std::string partial;           // the first content seen ending inside a line that stayed so; empty if none
-    bool terminated = false;       // the program ended by the SIGTERM
-    std::string final_content;     // the file after the program ended
+    int looks = 0;              // times the file was seen non-empty while the program ran
+    std::string partial;        // the first content seen ending inside a line that stayed so; empty if none
+    bool terminated = false;    // the program ended by the SIGTERM
+    std::string final_content;  // the file after the program ended
 };
 
 inline std::string file_text(const std::string& path)
@@ -44,8 +44,7 @@ inline LineWatch watch_lines(const std::vector<std::string>& argv, const std::st
 {
     LineWatch w;
     std::vector<char*> args;
-    for (const std::string& a : argv)
-        args.push_back(const_cast<char*>(a.c_str()));
+    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
     args.push_back(nullptr);
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
@@ -54,8 +53,7 @@ inline LineWatch watch_lines(const std::vector<std::string>& argv, const std::st
     pid_t pid = -1;
     w.started = ::posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ) == 0;
     posix_spawn_file_actions_destroy(&actions);
-    if (!w.started)
-        return w;
+    if (!w.started) return w;
     const auto deadline = std::chrono::steady_clock::now() + timeout;
     bool sent = false;
     int status = 0;
@@ -68,8 +66,7 @@ inline LineWatch watch_lines(const std::vector<std::string>& argv, const std::st
                 // a line held back in a buffer stays cut until the next flush, a frame later.
                 std::this_thread::sleep_for(std::chrono::milliseconds(5));
                 const std::string later = file_text(path);
-                if (later.find('\n', seen.size()) == std::string::npos)
-                    w.partial = seen;
+                if (later.find('\n', seen.size()) == std::string::npos) w.partial = seen;
             }
         }
         const auto lines = static_cast<std::size_t>(std::count(seen.begin(), seen.end(), '\n'));

@@ -27,22 +27,24 @@ inline constexpr int kLastPointingFrame = 212;
 
 inline bool is_pointing_frame(int i) { return i >= kFirstPointingFrame && i <= kLastPointingFrame; }
 
-inline std::filesystem::path source_root() {
+inline std::filesystem::path source_root()
+{
     const char* root = std::getenv("GESTURECAM_SOURCE_ROOT");
     EXPECT_NE(root, nullptr) << "GESTURECAM_SOURCE_ROOT is not set (meson test sets it)";
     return root != nullptr ? std::filesystem::path(root) : std::filesystem::path(".");
 }
 
-inline std::filesystem::path real_pair_file(int view, const std::string& suffix) {
-    return source_root() / "tests" / "data" / "handpose3d" /
-           ("handpose3d_cam" + std::to_string(view) + suffix);
+inline std::filesystem::path real_pair_file(int view, const std::string& suffix)
+{
+    return source_root() / "tests" / "data" / "handpose3d" / ("handpose3d_cam" + std::to_string(view) + suffix);
 }
 
 // MediaPipe's 21 points of a frame, in pixels, or nothing where it found no hand.
 using ReferenceHand = std::optional<std::array<cv::Point2f, 21>>;
 
 // frames[i].landmarks of the view's reference, read as gesturecam-bench reads them.
-inline std::vector<ReferenceHand> load_reference(int view) {
+inline std::vector<ReferenceHand> load_reference(int view)
+{
     std::vector<ReferenceHand> hands;
     for (const gc::tools::ReferenceHand& read :
          gc::tools::read_reference_hands(real_pair_file(view, ".mediapipe.json").string())) {
@@ -64,7 +66,8 @@ struct DecodedView {
     std::map<int, cv::Mat> frames;
 };
 
-inline DecodedView decode_view(int view, const std::set<int>& keep) {
+inline DecodedView decode_view(int view, const std::set<int>& keep)
+{
     cv::VideoCapture video(real_pair_file(view, ".mp4").string());
     EXPECT_TRUE(video.isOpened()) << "cannot open " << real_pair_file(view, ".mp4");
     DecodedView decoded;

@@ -11,7 +11,8 @@ namespace {
 const cv::Rect kWhole(0, 0, 160, 120);
 
 // A textured static scene with sensor noise (sd 2 levels).
-cv::Mat3b noisy(const cv::Mat3b& scene, int seed) {
+cv::Mat3b noisy(const cv::Mat3b& scene, int seed)
+{
     cv::RNG rng(seed);
     cv::Mat3s noise(scene.size());
     rng.fill(noise, cv::RNG::NORMAL, 0.0, 2.0);
@@ -23,7 +24,8 @@ cv::Mat3b noisy(const cv::Mat3b& scene, int seed) {
     return out;
 }
 
-cv::Mat3b textured_scene() {
+cv::Mat3b textured_scene()
+{
     cv::Mat3b scene(kWhole.size(), cv::Vec3b(90, 120, 150));
     cv::rectangle(scene, cv::Rect(20, 20, 50, 40), cv::Scalar(120, 150, 200), cv::FILLED);  // skin-like board
     cv::circle(scene, {120, 70}, 25, cv::Scalar(40, 60, 70), cv::FILLED);
@@ -34,7 +36,8 @@ int count_in(const cv::Mat1b& map, const cv::Rect& r) { return cv::countNonZero(
 
 }  // namespace
 
-TEST(StaticBackground, KnowsNothingUntilItHasLearntAndTrustedTheScene) {
+TEST(StaticBackground, KnowsNothingUntilItHasLearntAndTrustedTheScene)
+{
     gc::StaticBackground bg;
     const cv::Mat3b scene = textured_scene();
     EXPECT_TRUE(bg.find_static(scene, kWhole).empty());
@@ -49,7 +52,8 @@ TEST(StaticBackground, KnowsNothingUntilItHasLearntAndTrustedTheScene) {
     EXPECT_GT(cv::countNonZero(found), 0.95 * kWhole.area());
 }
 
-TEST(StaticBackground, AnObjectInFrontOfTheSceneIsNotTheScene) {
+TEST(StaticBackground, AnObjectInFrontOfTheSceneIsNotTheScene)
+{
     gc::StaticBackground bg;
     const cv::Mat3b scene = textured_scene();
     for (int i = 0; i < 40; ++i) bg.learn(noisy(scene, i));
@@ -65,7 +69,8 @@ TEST(StaticBackground, AnObjectInFrontOfTheSceneIsNotTheScene) {
     EXPECT_EQ(cv::countNonZero(part) - count_in(part, roi), 0);
 }
 
-TEST(StaticBackground, AHandHeldStillInTheKeepOutIsNeverLearnt) {
+TEST(StaticBackground, AHandHeldStillInTheKeepOutIsNeverLearnt)
+{
     gc::StaticBackground bg;
     const cv::Mat3b scene = textured_scene();
     for (int i = 0; i < 20; ++i) bg.learn(noisy(scene, i));
@@ -92,7 +97,8 @@ TEST(StaticBackground, AHandHeldStillInTheKeepOutIsNeverLearnt) {
     EXPECT_GT(count_in(learns_all.find_static(with_hand, kWhole), hand), 0.8 * hand.area());
 }
 
-TEST(StaticBackground, TheSceneUnderTheKeepOutIsStillRecognisedWhenUncovered) {
+TEST(StaticBackground, TheSceneUnderTheKeepOutIsStillRecognisedWhenUncovered)
+{
     gc::StaticBackground bg;
     const cv::Mat3b scene = textured_scene();
     const cv::Rect keep_out(10, 10, 70, 60);  // over the board, from the start
@@ -103,7 +109,8 @@ TEST(StaticBackground, TheSceneUnderTheKeepOutIsStillRecognisedWhenUncovered) {
     EXPECT_GT(count_in(bg.find_static(noisy(scene, 77), kWhole), cv::Rect(21, 21, 48, 38)), 0.85 * 48 * 38);
 }
 
-TEST(StaticBackground, ACoveredPatchLosesItsTrustAndSweptPatchesAreStillLearnt) {
+TEST(StaticBackground, ACoveredPatchLosesItsTrustAndSweptPatchesAreStillLearnt)
+{
     gc::StaticBackground bg;
     const cv::Mat3b scene = textured_scene();
     const cv::Rect patch(100, 20, 20, 20);
@@ -116,7 +123,8 @@ TEST(StaticBackground, ACoveredPatchLosesItsTrustAndSweptPatchesAreStillLearnt) 
     EXPECT_GT(count_in(bg.find_static(noisy(scene, 500), kWhole), patch), 0.9 * patch.area());
 }
 
-TEST(StaticBackground, ResetAndANewFrameSizeStartAgain) {
+TEST(StaticBackground, ResetAndANewFrameSizeStartAgain)
+{
     gc::StaticBackground bg;
     const cv::Mat3b scene = textured_scene();
     for (int i = 0; i < 30; ++i) bg.learn(noisy(scene, i));
@@ -131,7 +139,8 @@ TEST(StaticBackground, ResetAndANewFrameSizeStartAgain) {
     EXPECT_EQ(cv::countNonZero(bg.find_static(larger, cv::Rect(0, 0, larger.cols, larger.rows))), 0);
 }
 
-TEST(StaticBackground, BadInputsThrow) {
+TEST(StaticBackground, BadInputsThrow)
+{
     EXPECT_THROW(gc::StaticBackground(gc::StaticBackgroundParams{0, 15}), std::invalid_argument);
     EXPECT_THROW(gc::StaticBackground(gc::StaticBackgroundParams{8, 256}), std::invalid_argument);
     gc::StaticBackground bg;
@@ -144,7 +153,8 @@ TEST(StaticBackground, BadInputsThrow) {
     EXPECT_TRUE(bg.find_static(cv::Mat1b(scene.size(), uchar(0)), kWhole).empty());
 }
 
-TEST(StaticBackground, LooksAtOnePixelAsTheMapDoesAndTellsWhatMovedFromWhatIsUnknown) {
+TEST(StaticBackground, LooksAtOnePixelAsTheMapDoesAndTellsWhatMovedFromWhatIsUnknown)
+{
     using Look = gc::StaticBackground::Look;
     gc::StaticBackground bg;
     const cv::Mat3b scene = textured_scene();
@@ -173,7 +183,8 @@ TEST(StaticBackground, LooksAtOnePixelAsTheMapDoesAndTellsWhatMovedFromWhatIsUnk
     EXPECT_EQ(bg.look(grey, {75, 60}), Look::Unknown);
 }
 
-TEST(StaticBackground, ASceneTheFrameNoLongerMatchesIsForgottenNotCalledForeground) {
+TEST(StaticBackground, ASceneTheFrameNoLongerMatchesIsForgottenNotCalledForeground)
+{
     using Look = gc::StaticBackground::Look;
     gc::StaticBackground bg;
     const cv::Mat3b scene = textured_scene();

@@ -70,8 +70,7 @@ const Rows& quick_json_rows()
             JsonValue v;
             EXPECT_NO_THROW(v = JsonReader::parse(line)) << line;
             EXPECT_TRUE(v.has("kind")) << line;
-            if (v.has("kind"))
-                by_kind[v["kind"].string()].push_back(v);
+            if (v.has("kind")) by_kind[v["kind"].string()].push_back(v);
         }
         return by_kind;
     }();
@@ -97,8 +96,7 @@ TEST(BenchTool, QuickJsonRunCoversTheSyntheticTables)
     // --quick: scenes clean and heavy, 50 and 200 particles, each with both detectors.
     std::set<std::tuple<std::string, std::string, int>> seen;
     for (const JsonValue& row : rows_of("tracker")) {
-        seen.insert({row["detector"].string(), row["scene"].string(),
-                     static_cast<int>(row["particles"].number())});
+        seen.insert({row["detector"].string(), row["scene"].string(), static_cast<int>(row["particles"].number())});
         EXPECT_TRUE(in_range(row["mean_iou"], 0.0, 1.0));
         EXPECT_TRUE(in_range(row["tracked_fraction"], 0.0, 1.0));
         EXPECT_TRUE(in_range(row["ms_per_frame"], 0.0, 10000.0));
@@ -109,8 +107,7 @@ TEST(BenchTool, QuickJsonRunCoversTheSyntheticTables)
     std::set<std::tuple<std::string, std::string, int>> expected;
     for (const char* detector : {"learned", "motion"})
         for (const char* scene : {"clean", "heavy"})
-            for (int particles : {50, 200})
-                expected.insert({detector, scene, particles});
+            for (int particles : {50, 200}) expected.insert({detector, scene, particles});
     EXPECT_EQ(seen, expected);
     EXPECT_EQ(rows_of("tracker").size(), expected.size());
 
@@ -128,8 +125,7 @@ TEST(BenchTool, QuickJsonRunCoversTheSyntheticTables)
 TEST(BenchTool, QuickJsonRunHasAStereoRowPerDetector)
 {
     std::map<std::string, JsonValue> by_detector;
-    for (const JsonValue& s : rows_of("stereo"))
-        by_detector[s["detector"].string()] = s;
+    for (const JsonValue& s : rows_of("stereo")) by_detector[s["detector"].string()] = s;
     ASSERT_EQ(rows_of("stereo").size(), 2u);
     ASSERT_EQ(by_detector.size(), 2u);
     for (const auto& [detector, s] : by_detector) {
@@ -183,8 +179,7 @@ TEST(BenchTool, QuickJsonRunHasTheRealPairForEachDetector)
 std::size_t count(const std::string& text, const std::string& what)
 {
     std::size_t n = 0;
-    for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1))
-        ++n;
+    for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
     return n;
 }
 
@@ -201,8 +196,7 @@ TEST(BenchTool, MarkdownTablesByDefault)
     EXPECT_EQ(count(r.out, "### motion detector"), 1u) << r.out;
     EXPECT_EQ(count(r.out, "| clean | "), 4u) << r.out;
     EXPECT_EQ(count(r.out, "## Real pair"), 1u) << r.out;
-    for (const char* row : {"| learned | left | ", "| learned | right | ", "| motion | left | ",
-                            "| motion | right | "})
+    for (const char* row : {"| learned | left | ", "| learned | right | ", "| motion | left | ", "| motion | right | "})
         EXPECT_EQ(count(r.out, row), 1u) << row << '\n' << r.out;
     // Stereo and the real pair's 3D table: one row per detector each.
     EXPECT_EQ(count(r.out, "| learned | "), 4u) << r.out;
@@ -211,7 +205,8 @@ TEST(BenchTool, MarkdownTablesByDefault)
 
 TEST(BenchTool, OneDetectorAndNoRealPair)
 {
-    const RunResult r = run_bench("--quick --no-peers --no-real --detectors motion --scenes clean --particles 20 --frames 20");
+    const RunResult r =
+        run_bench("--quick --no-peers --no-real --detectors motion --scenes clean --particles 20 --frames 20");
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(count(r.out, "### motion detector"), 1u) << r.out;
     EXPECT_EQ(r.out.find("### learned"), std::string::npos) << r.out;
@@ -222,8 +217,8 @@ TEST(BenchTool, OneDetectorAndNoRealPair)
 
 TEST(BenchTool, RejectsBadOptions)
 {
-    for (const char* args : {"--particles 0", "--scenes clean,nowhere", "--runs x", "--particles 20,,50",
-                             "--bogus", "--detectors learned,blob", "--real-frames 0", "--no-real=1"}) {
+    for (const char* args : {"--particles 0", "--scenes clean,nowhere", "--runs x", "--particles 20,,50", "--bogus",
+                             "--detectors learned,blob", "--real-frames 0", "--no-real=1"}) {
         const RunResult r = run_bench(args);
         EXPECT_EQ(r.status, 2) << args;
         EXPECT_FALSE(r.err.empty()) << args;

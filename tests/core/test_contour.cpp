@@ -16,7 +16,8 @@ namespace {
 
 using gc_test::drawn_hand;
 
-TEST(ClosedBSpline, InterpolatesItsPoints) {
+TEST(ClosedBSpline, InterpolatesItsPoints)
+{
     std::vector<cv::Point2d> pts;
     for (int i = 0; i < 12; ++i) {
         const double a = 2.0 * std::numbers::pi * i / 12;
@@ -34,7 +35,8 @@ TEST(ClosedBSpline, InterpolatesItsPoints) {
     EXPECT_NEAR(s.point(-0.5).x, s.point(11.5).x, 1e-9);
 }
 
-TEST(ClosedBSpline, NormalsPointOutwardForBothOrientations) {
+TEST(ClosedBSpline, NormalsPointOutwardForBothOrientations)
+{
     for (int dir : {1, -1}) {
         std::vector<cv::Point2d> pts;
         for (int i = 0; i < 16; ++i) {
@@ -56,7 +58,8 @@ TEST(ClosedBSpline, NormalsPointOutwardForBothOrientations) {
     }
 }
 
-TEST(ClosedBSpline, RejectsDegenerateInput) {
+TEST(ClosedBSpline, RejectsDegenerateInput)
+{
     std::vector<cv::Point2d> three{{0, 0}, {1, 0}, {0, 1}};
     EXPECT_THROW(gc::ClosedBSpline::interpolate(three), std::invalid_argument);
     std::vector<cv::Point2d> dup{{0, 0}, {0, 0}, {1, 1}, {0, 1}};
@@ -67,7 +70,8 @@ TEST(ClosedBSpline, RejectsDegenerateInput) {
     EXPECT_THROW(gc::ClosedBSpline::interpolate(nan), std::invalid_argument);
 }
 
-TEST(HandTemplate, FindsPalmAndFingertipFromTheShape) {
+TEST(HandTemplate, FindsPalmAndFingertipFromTheShape)
+{
     for (double angle : {0.0, 70.0, 160.0, 250.0}) {
         const cv::Point2d palm(160, 120);
         const auto mask = drawn_hand({320, 240}, palm, angle, 1.0);
@@ -85,7 +89,8 @@ TEST(HandTemplate, FindsPalmAndFingertipFromTheShape) {
 // where the hand's own outline changed, puts it back on the finger, even with a few
 // changed pixels at the strip's end (where a moving sleeve passes it), and ranks the
 // shape as not pointing.
-TEST(HandTemplate, FindsTheFingertipWhereTheShapeMoved) {
+TEST(HandTemplate, FindsTheFingertipWhereTheShapeMoved)
+{
     const cv::Size size(320, 240);
     const cv::Point2d palm(150, 100);
     const cv::Mat1b hand = drawn_hand(size, palm, 0.0, 1.0);  // finger to +x, tip at x = 217
@@ -101,8 +106,7 @@ TEST(HandTemplate, FindsTheFingertipWhereTheShapeMoved) {
     cv::bitwise_xor(hand, before, motion);
     motion(cv::Rect(86, 194, 8, 8)).setTo(255);  // a sleeve passing the strip's end
     const auto moving = gc::find_hand_landmarks(merged, motion);
-    EXPECT_LT(std::hypot(moving.fingertip.x - 217, moving.fingertip.y - 100), 4.0)
-        << moving.fingertip;
+    EXPECT_LT(std::hypot(moving.fingertip.x - 217, moving.fingertip.y - 100), 4.0) << moving.fingertip;
     // What the hand is merged with reaches farther than the finger: not a pointing hand's
     // shape, though the hand alone is.
     const gc::HandProportions with_strip = gc::hand_proportions(merged, motion);
@@ -119,7 +123,8 @@ TEST(HandTemplate, FindsTheFingertipWhereTheShapeMoved) {
 
 // on_finger marks the outline along the index finger: the fingertip and the finger's sides,
 // not the palm's far side or the thumb.
-TEST(HandTemplate, KnowsWhichOutlinePointsAreOnTheFinger) {
+TEST(HandTemplate, KnowsWhichOutlinePointsAreOnTheFinger)
+{
     const auto mask = drawn_hand({320, 240}, {160, 120}, 0.0, 1.0);  // finger to +x
     const auto t = gc::HandTemplate::from_mask(mask);
     EXPECT_TRUE(t.on_finger(t.fingertip));
@@ -134,7 +139,8 @@ TEST(HandTemplate, KnowsWhichOutlinePointsAreOnTheFinger) {
     EXPECT_FALSE(t.on_finger({-22.0f, 0.0f}));  // the palm's far side
 }
 
-TEST(HandTemplate, OutlineIsFaithfulAndDenserOnTheFinger) {
+TEST(HandTemplate, OutlineIsFaithfulAndDenserOnTheFinger)
+{
     const cv::Point2d palm(160, 120);
     const auto mask = drawn_hand({320, 240}, palm, 30.0, 1.2);
     const auto t = gc::HandTemplate::from_mask(mask);
@@ -176,7 +182,8 @@ TEST(HandTemplate, OutlineIsFaithfulAndDenserOnTheFinger) {
 
 // Curled fingers make knuckle bumps a few pixels apart along the palm: the template's
 // spline must follow them, not cut across them as sparser points would (docs/adr/0006).
-TEST(HandTemplate, OutlineFollowsTheKnuckles) {
+TEST(HandTemplate, OutlineFollowsTheKnuckles)
+{
     const cv::Point2d palm(160, 120);
     cv::Mat1b mask = drawn_hand({320, 240}, palm, 30.0, 1.2);
     const double a = 30.0 * std::numbers::pi / 180.0;
@@ -204,7 +211,8 @@ TEST(HandTemplate, OutlineFollowsTheKnuckles) {
 
 // The proportions tell a pointing hand from one merged with a touching object: a box at the
 // fingertip makes the finger thick, a box beside the palm moves the palm into it.
-TEST(HandProportions, FlagAHandMergedWithATouchingObject) {
+TEST(HandProportions, FlagAHandMergedWithATouchingObject)
+{
     const cv::Size size(320, 240);
     const cv::Mat1b hand = drawn_hand(size, {150, 140}, 60.0, 1.0);
     const gc::HandProportions plain = gc::hand_proportions(hand);
@@ -231,7 +239,8 @@ TEST(HandProportions, FlagAHandMergedWithATouchingObject) {
     EXPECT_FALSE(gc::hand_proportions(cv::Mat1b(size, uchar(0))).valid);
 }
 
-TEST(HandTemplate, BadMasksGiveClearErrors) {
+TEST(HandTemplate, BadMasksGiveClearErrors)
+{
     EXPECT_THROW(gc::HandTemplate::from_mask(cv::Mat1b()), std::invalid_argument);
     EXPECT_THROW(gc::HandTemplate::from_mask(cv::Mat3b(50, 50)), std::invalid_argument);
     EXPECT_THROW(gc::HandTemplate::from_mask(cv::Mat1b(50, 50, uchar(0))), std::invalid_argument);

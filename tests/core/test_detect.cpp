@@ -20,7 +20,8 @@ struct DrawnScene {
     cv::Mat3b background;
     cv::Vec3b skin{105, 140, 205};  // BGR
 
-    explicit DrawnScene(std::uint32_t seed) : background(240, 320) {
+    explicit DrawnScene(std::uint32_t seed) : background(240, 320)
+    {
         std::mt19937 rng(seed);
         std::uniform_int_distribution<int> c(30, 220), px(0, 319), py(0, 239), sz(8, 60);
         background.setTo(cv::Vec3b(60, 70, 65));
@@ -33,14 +34,14 @@ struct DrawnScene {
     void paint_skin(const cv::Rect& box) { cv::rectangle(background, box, cv::Scalar(skin), cv::FILLED); }
 
     // Sensor noise comes from OpenCV's RNG: seed it with cv::setRNGSeed for a test.
-    void render(cv::Point2d palm, double finger_deg, cv::Mat3b& out, cv::Mat1b& mask) const {
+    void render(cv::Point2d palm, double finger_deg, cv::Mat3b& out, cv::Mat1b& mask) const
+    {
         mask = cv::Mat1b(background.size(), uchar(0));
         cv::circle(mask, palm, 22, 255, cv::FILLED);
         const double a = finger_deg * std::numbers::pi / 180.0;
         const cv::Point2d dir(std::cos(a), -std::sin(a)), side(-dir.y, dir.x);
         const cv::Point2d base = palm + dir * 15.0, tip = palm + dir * 62.0;
-        std::vector<cv::Point> finger{base + side * 5.0, tip + side * 5.0, tip - side * 5.0,
-                                      base - side * 5.0};
+        std::vector<cv::Point> finger{base + side * 5.0, tip + side * 5.0, tip - side * 5.0, base - side * 5.0};
         cv::fillConvexPoly(mask, finger, 255);
         cv::circle(mask, tip, 5, 255, cv::FILLED);
         cv::circle(mask, palm + side * 26.0 + dir * 6.0, 7, 255, cv::FILLED);
@@ -55,7 +56,8 @@ struct DrawnScene {
     }
 };
 
-double iou(const cv::Mat1b& a, const cv::Mat1b& b) {
+double iou(const cv::Mat1b& a, const cv::Mat1b& b)
+{
     cv::Mat1b i, u;
     cv::bitwise_and(a, b, i);
     cv::bitwise_or(a, b, u);
@@ -63,7 +65,8 @@ double iou(const cv::Mat1b& a, const cv::Mat1b& b) {
 }
 
 // Pixels of `captured` inside `box` that are not the hand's (`truth`).
-int captured_off_hand(const cv::Mat1b& captured, const cv::Mat1b& truth, const cv::Rect& box) {
+int captured_off_hand(const cv::Mat1b& captured, const cv::Mat1b& truth, const cv::Rect& box)
+{
     cv::Mat1b off_hand(captured.size(), uchar(0));
     off_hand(box).setTo(255);
     cv::bitwise_and(off_hand, ~truth, off_hand);
@@ -75,23 +78,22 @@ int captured_off_hand(const cv::Mat1b& captured, const cv::Mat1b& truth, const c
 // x 150, the finger turning by `turn_deg` steps from 35 deg) until the detector finds it,
 // for at most 12 frames. `frame` and `truth` are left with the last frame's; with `learnt`,
 // its static scene is given to the detector.
-std::optional<gc::Detection> wave_until_found(const DrawnScene& scene, double turn_deg,
-                                              cv::Mat3b& frame, cv::Mat1b& truth,
-                                              gc::StaticBackground* learnt = nullptr) {
+std::optional<gc::Detection> wave_until_found(const DrawnScene& scene, double turn_deg, cv::Mat3b& frame,
+                                              cv::Mat1b& truth, gc::StaticBackground* learnt = nullptr)
+{
     gc::MotionDetector det;
     std::optional<gc::Detection> found;
     for (int i = 0; i < 12 && !found; ++i) {
-        scene.render({150.0 + 3.0 * (i % 2 ? 1 : -1), 130.0}, 35.0 + turn_deg * (i % 3), frame,
-                     truth);
+        scene.render({150.0 + 3.0 * (i % 2 ? 1 : -1), 130.0}, 35.0 + turn_deg * (i % 3), frame, truth);
         const cv::Rect whole(0, 0, frame.cols, frame.rows);
-        found = learnt ? det.process(frame, gc::SkinModel::generic(), true,
-                                     learnt->find_static(frame, whole))
+        found = learnt ? det.process(frame, gc::SkinModel::generic(), true, learnt->find_static(frame, whole))
                        : det.process(frame);
     }
     return found;
 }
 
-TEST(MotionDetector, FindsAWavingHand) {
+TEST(MotionDetector, FindsAWavingHand)
+{
     cv::setRNGSeed(3);
     DrawnScene scene(5);
     gc::MotionDetector det;
@@ -113,7 +115,8 @@ TEST(MotionDetector, FindsAWavingHand) {
     EXPECT_NEAR(found->skin.mean()[1], 140 / sum, 0.01);
 }
 
-TEST(MotionDetector, LeavesOutAStaticSkinObjectTheHandTouches) {
+TEST(MotionDetector, LeavesOutAStaticSkinObjectTheHandTouches)
+{
     cv::setRNGSeed(5);
     DrawnScene scene(7);
     // A skin-coloured board, same tone and brightness, that the fingertip touches.
@@ -131,7 +134,8 @@ TEST(MotionDetector, LeavesOutAStaticSkinObjectTheHandTouches) {
     EXPECT_GT(iou(found->mask, truth), 0.7);
 }
 
-TEST(MotionDetector, CutsOffAKnownStaticSceneExactly) {
+TEST(MotionDetector, CutsOffAKnownStaticSceneExactly)
+{
     cv::setRNGSeed(5);
     DrawnScene scene(7);
     const cv::Rect board_box(190, 40, 80, 50);
@@ -153,12 +157,12 @@ TEST(MotionDetector, CutsOffAKnownStaticSceneExactly) {
     // not ranked clean.
     EXPECT_TRUE(found->cut);
     EXPECT_NE(gc::capture_quality(*found), gc::CaptureQuality::Clean);
-    EXPECT_THROW(gc::MotionDetector().process(frame, gc::SkinModel::generic(), true,
-                                              cv::Mat1b(10, 10, uchar(0))),
+    EXPECT_THROW(gc::MotionDetector().process(frame, gc::SkinModel::generic(), true, cv::Mat1b(10, 10, uchar(0))),
                  std::invalid_argument);
 }
 
-TEST(MotionDetector, DropsAThinStrandOfSkinColourTheHandTouches) {
+TEST(MotionDetector, DropsAThinStrandOfSkinColourTheHandTouches)
+{
     cv::setRNGSeed(9);
     DrawnScene scene(11);
     // A shelf's edge of the hand's colour, 3 px thick, that the fingertip (about (201, 94))
@@ -177,14 +181,14 @@ TEST(MotionDetector, DropsAThinStrandOfSkinColourTheHandTouches) {
     EXPECT_LT(cv::norm(tip - gc::find_hand_landmarks(truth).fingertip), 10.0);
 }
 
-TEST(MotionDetector, LearnsTheHandsBrightnessBesideADarkerObjectOfItsTone) {
+TEST(MotionDetector, LearnsTheHandsBrightnessBesideADarkerObjectOfItsTone)
+{
     cv::setRNGSeed(11);
     DrawnScene scene(9);
     // A board of the hand's chromaticity at 45 % of its brightness behind the lower palm:
     // the waving hand uncovers it, so moving skin-chromaticity pixels are of both.
     const cv::Rect board_box(95, 135, 90, 80);
-    const cv::Vec3b dark(cv::saturate_cast<uchar>(0.45 * scene.skin[0]),
-                         cv::saturate_cast<uchar>(0.45 * scene.skin[1]),
+    const cv::Vec3b dark(cv::saturate_cast<uchar>(0.45 * scene.skin[0]), cv::saturate_cast<uchar>(0.45 * scene.skin[1]),
                          cv::saturate_cast<uchar>(0.45 * scene.skin[2]));
     cv::rectangle(scene.background, board_box, cv::Scalar(dark), cv::FILLED);
     gc::MotionDetector det;
@@ -206,7 +210,8 @@ TEST(MotionDetector, LearnsTheHandsBrightnessBesideADarkerObjectOfItsTone) {
     EXPECT_GT(iou(found->mask, truth), 0.8);
 }
 
-TEST(MotionDetector, RanksCapturesCleanOverPointingOverUnsure) {
+TEST(MotionDetector, RanksCapturesCleanOverPointingOverUnsure)
+{
     // A pointing hand: palm radius 22, a finger 10 px wide reaching 2.5 palm radii.
     cv::Mat1b hand(240, 320, uchar(0));
     cv::circle(hand, {150, 130}, 22, 255, cv::FILLED);
@@ -226,7 +231,8 @@ TEST(MotionDetector, RanksCapturesCleanOverPointingOverUnsure) {
     EXPECT_LT(gc::CaptureQuality::Pointing, gc::CaptureQuality::Clean);
 }
 
-TEST(MotionDetector, StaticSceneOrNonSkinMotionGivesNothing) {
+TEST(MotionDetector, StaticSceneOrNonSkinMotionGivesNothing)
+{
     cv::setRNGSeed(4);
     DrawnScene scene(6);
     gc::MotionDetector det;
@@ -245,7 +251,8 @@ TEST(MotionDetector, StaticSceneOrNonSkinMotionGivesNothing) {
     }
 }
 
-TEST(MotionDetector, RemembersWhereTheImageChangedForItsHistory) {
+TEST(MotionDetector, RemembersWhereTheImageChangedForItsHistory)
+{
     cv::setRNGSeed(6);
     DrawnScene scene(8);
     gc::DetectionParams params;
@@ -274,7 +281,8 @@ TEST(MotionDetector, RemembersWhereTheImageChangedForItsHistory) {
 
 // The difference of two frames of Gaussian noise sigma has sigma * sqrt(2): its threshold
 // is 3 of that, also with a fifth of the frame truly moving, and 0 without noise.
-TEST(MotionDetector, NoiseThresholdFollowsTheSensorNoise) {
+TEST(MotionDetector, NoiseThresholdFollowsTheSensorNoise)
+{
     cv::setRNGSeed(9);
     for (double sigma : {2.0, 5.0, 8.0}) {
         cv::Mat1s a(480, 640), b(480, 640);
@@ -292,7 +300,8 @@ TEST(MotionDetector, NoiseThresholdFollowsTheSensorNoise) {
     EXPECT_EQ(gc::frame_noise_threshold(cv::Mat1b()), 0);
 }
 
-TEST(MotionDetector, BadInputsThrow) {
+TEST(MotionDetector, BadInputsThrow)
+{
     gc::MotionDetector det;
     EXPECT_THROW(det.process(cv::Mat()), std::invalid_argument);
     EXPECT_THROW(det.process(cv::Mat1b(40, 40)), std::invalid_argument);

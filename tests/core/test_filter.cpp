@@ -14,7 +14,8 @@
 
 namespace {
 
-TEST(Resampling, NormalisesLogWeightsWithoutUnderflow) {
+TEST(Resampling, NormalisesLogWeightsWithoutUnderflow)
+{
     std::vector<double> lw{-1000.0, -1001.0, -1000.0 - std::log(2.0)};
     const double log_mean = gc::normalise_log_weights(lw);
     EXPECT_NEAR(std::accumulate(lw.begin(), lw.end(), 0.0), 1.0, 1e-12);
@@ -26,7 +27,8 @@ TEST(Resampling, NormalisesLogWeightsWithoutUnderflow) {
     EXPECT_THROW(gc::normalise_log_weights(zero), std::invalid_argument);
 }
 
-TEST(Resampling, SystematicIsUnbiased) {
+TEST(Resampling, SystematicIsUnbiased)
+{
     // Over many offsets, the expected number of copies of particle i is N * w_i.
     const std::vector<double> w{0.05, 0.3, 0.0, 0.15, 0.5};
     const int n = 37, trials = 20000;
@@ -39,8 +41,7 @@ TEST(Resampling, SystematicIsUnbiased) {
         for (std::size_t k = 1; k < anc.size(); ++k) ASSERT_LE(anc[k - 1], anc[k]);
         for (auto a : anc) copies[a] += 1.0;
     }
-    for (std::size_t i = 0; i < w.size(); ++i)
-        EXPECT_NEAR(copies[i] / trials, n * w[i], 0.02 * n) << i;
+    for (std::size_t i = 0; i < w.size(); ++i) EXPECT_NEAR(copies[i] / trials, n * w[i], 0.02 * n) << i;
     EXPECT_EQ(copies[2], 0.0);
     // Low variance: each particle gets floor or ceil of N w_i copies.
     gc::systematic_resample(w, 0.37, anc);
@@ -54,12 +55,14 @@ TEST(Resampling, SystematicIsUnbiased) {
     EXPECT_THROW(gc::systematic_resample(std::vector<double>{}, 0.5, anc), std::invalid_argument);
 }
 
-TEST(Resampling, EffectiveSampleSize) {
+TEST(Resampling, EffectiveSampleSize)
+{
     EXPECT_NEAR(gc::effective_sample_size(std::vector<double>(10, 0.1)), 10.0, 1e-9);
     EXPECT_NEAR(gc::effective_sample_size(std::vector<double>{1.0, 0.0, 0.0}), 1.0, 1e-9);
 }
 
-TEST(QuasiRandom, InverseNormalCdf) {
+TEST(QuasiRandom, InverseNormalCdf)
+{
     EXPECT_NEAR(gc::inverse_normal_cdf(0.5), 0.0, 1e-6);
     EXPECT_NEAR(gc::inverse_normal_cdf(0.975), 1.959964, 1e-3);
     EXPECT_NEAR(gc::inverse_normal_cdf(0.025), -1.959964, 1e-3);
@@ -68,16 +71,17 @@ TEST(QuasiRandom, InverseNormalCdf) {
     EXPECT_GT(gc::inverse_normal_cdf(1.0), 4.0);
 }
 
-TEST(QuasiRandom, HaltonPoints) {
+TEST(QuasiRandom, HaltonPoints)
+{
     EXPECT_DOUBLE_EQ(gc::radical_inverse(1, 2), 0.5);
-    EXPECT_DOUBLE_EQ(gc::radical_inverse(6, 2), 0.375);   // 110b -> 0.011b
-    EXPECT_NEAR(gc::radical_inverse(5, 3), 7.0 / 9.0, 1e-12);  // 12_3 -> 0.21_3
+    EXPECT_DOUBLE_EQ(gc::radical_inverse(6, 2), 0.375);            // 110b -> 0.011b
+    EXPECT_NEAR(gc::radical_inverse(5, 3), 7.0 / 9.0, 1e-12);      // 12_3 -> 0.21_3
     EXPECT_NEAR(gc::radical_inverse(23, 23), 1.0 / 529.0, 1e-15);  // 10_23 -> 0.01_23 (a base not among the sampler's)
     // Every base, the sampler's own (compiled with a constant base) and others, against
     // the digits taken one by one: the same point exactly.
     for (unsigned base : {2u, 3u, 5u, 7u, 11u, 13u, 17u, 19u, 23u, 29u})
-        for (std::uint64_t index : {std::uint64_t{0}, std::uint64_t{1}, std::uint64_t{977},
-                                    std::uint64_t{1} << 20, (std::uint64_t{1} << 40) + 12345}) {
+        for (std::uint64_t index : {std::uint64_t{0}, std::uint64_t{1}, std::uint64_t{977}, std::uint64_t{1} << 20,
+                                    (std::uint64_t{1} << 40) + 12345}) {
             double expected = 0.0, scale = 1.0 / base;
             for (std::uint64_t rest = index; rest > 0; rest /= base, scale /= base)
                 expected += double(rest % base) * scale;
@@ -85,7 +89,8 @@ TEST(QuasiRandom, HaltonPoints) {
         }
 }
 
-TEST(QuasiRandom, DeviatesAreStandardNormalAndEvenlySpread) {
+TEST(QuasiRandom, DeviatesAreStandardNormalAndEvenlySpread)
+{
     gc::QuasiNormalSampler s(4, 5);
     std::vector<double> out(4 * 1000);
     s.next_frame(out);
@@ -111,7 +116,8 @@ TEST(QuasiRandom, DeviatesAreStandardNormalAndEvenlySpread) {
     EXPECT_THROW(s.next_frame(odd), std::invalid_argument);
 }
 
-TEST(AdaptiveNoise, GrowsWithAccelerationAndShrinksWhenSlowing) {
+TEST(AdaptiveNoise, GrowsWithAccelerationAndShrinksWhenSlowing)
+{
     gc::AdaptiveNoise n;
     const double x0 = n.sigma()[0];
     n.update({2, 0, 0, 0});
@@ -130,7 +136,8 @@ TEST(AdaptiveNoise, GrowsWithAccelerationAndShrinksWhenSlowing) {
 
 // The factored-sampling core on a linear-Gaussian model, x_t = a x_{t-1} + w, z_t = x_t + v,
 // where the Kalman filter gives the exact posterior: the particle mean must agree.
-TEST(FactoredSampling, MatchesKalmanOnLinearGaussianModel) {
+TEST(FactoredSampling, MatchesKalmanOnLinearGaussianModel)
+{
     const double a = 0.95, q = 0.5, r = 1.0;  // dynamics gain, process and measurement variances
     const int n = 4000, steps = 60;
     std::mt19937_64 rng(42);
@@ -168,7 +175,7 @@ TEST(FactoredSampling, MatchesKalmanOnLinearGaussianModel) {
         sum_err += err;
         EXPECT_NEAR(var, kv, 0.15 * kv) << "t=" << t;
     }
-    EXPECT_LT(max_err, 0.12);            // in posterior standard deviations
+    EXPECT_LT(max_err, 0.12);  // in posterior standard deviations
     EXPECT_LT(sum_err / steps, 0.04);
 }
 

@@ -14,14 +14,16 @@
 
 namespace {
 
-gc::HandKeyPoints as_landmarks(const std::array<cv::Point2f, 21>& points) {
+gc::HandKeyPoints as_landmarks(const std::array<cv::Point2f, 21>& points)
+{
     gc::HandKeyPoints hand;
     hand.points = points;
     hand.presence = 1.0f;
     return hand;
 }
 
-TEST(Gesture, PointingOnThePointingFramesOfBothViews) {
+TEST(Gesture, PointingOnThePointingFramesOfBothViews)
+{
     for (int view = 0; view < 2; ++view) {
         const std::vector<gc_test::ReferenceHand> reference = gc_test::load_reference(view);
         ASSERT_EQ(int(reference.size()), gc_test::kRealPairFrames);
@@ -47,7 +49,8 @@ TEST(Gesture, PointingOnThePointingFramesOfBothViews) {
 
 // Every annotated frame of one view, each hand turned (in steps of 30 degrees) and scaled
 // (from 0.3 to 3) about an arbitrary point, keeps its gesture and its extended fingers.
-TEST(Gesture, SameAnswerAtAnyScaleAndTurn) {
+TEST(Gesture, SameAnswerAtAnyScaleAndTurn)
+{
     const std::vector<gc_test::ReferenceHand> reference = gc_test::load_reference(1);
     int compared = 0;
     for (int i = 0; i < int(reference.size()); i += 3) {
@@ -66,7 +69,8 @@ TEST(Gesture, SameAnswerAtAnyScaleAndTurn) {
     EXPECT_GT(compared, 1000);
 }
 
-TEST(Gesture, Names) {
+TEST(Gesture, Names)
+{
     EXPECT_EQ(gc::to_string(gc::Gesture::Pointing), "pointing");
     EXPECT_EQ(gc::to_string(gc::Gesture::Open), "open");
     EXPECT_EQ(gc::to_string(gc::Gesture::Fist), "fist");

@@ -36,11 +36,13 @@ struct Stretch {
 };
 constexpr Stretch kStretches[] = {{0, 20, 80}, {1, 190, 250}};
 
-cv::Point2f palm_centre(const std::array<cv::Point2f, 21>& hand) {
+cv::Point2f palm_centre(const std::array<cv::Point2f, 21>& hand)
+{
     return (hand[0] + hand[5] + hand[9] + hand[13] + hand[17]) / 5.0f;
 }
 
-bool crop_contains(const gc::HandCrop& crop, cv::Point2f p) {
+bool crop_contains(const gc::HandCrop& crop, cv::Point2f p)
+{
     cv::Matx23f to_crop;
     cv::invertAffineTransform(gc::crop_to_frame(crop, 1), to_crop);
     const cv::Vec2f q = to_crop * cv::Vec3f(p.x, p.y, 1.0f);
@@ -50,7 +52,8 @@ bool crop_contains(const gc::HandCrop& crop, cv::Point2f p) {
 // Both views decoded once, the frames the tests use kept, with the references and models.
 class RealPair : public ::testing::Test {
 protected:
-    static void SetUpTestSuite() {
+    static void SetUpTestSuite()
+    {
         std::set<int> keep;
         for (int i = 0; i <= kLastSpotFrame; i += kSpotFrameStep) keep.insert(i);
         for (int i = 0; i < kEmptyFrames; ++i) keep.insert(i);
@@ -63,7 +66,8 @@ protected:
         palm_ = std::make_unique<gc::PalmDetector>(gc::find_model(gc::kPalmModelFile));
         landmarks_ = std::make_unique<gc::LandmarkModel>(gc::find_model(gc::kLandmarkModelFile));
     }
-    static void TearDownTestSuite() {
+    static void TearDownTestSuite()
+    {
         palm_.reset();
         landmarks_.reset();
         views_ = {};
@@ -79,7 +83,8 @@ protected:
     static inline std::unique_ptr<gc::LandmarkModel> landmarks_;
 };
 
-TEST_F(RealPair, BothViewsDecodeToTheReferencesFrames) {
+TEST_F(RealPair, BothViewsDecodeToTheReferencesFrames)
+{
     for (int view = 0; view < 2; ++view) {
         EXPECT_EQ(views_[view].frame_count, gc_test::kRealPairFrames) << "view " << view;
         EXPECT_EQ(int(references_[view].size()), gc_test::kRealPairFrames) << "view " << view;
@@ -90,7 +95,8 @@ TEST_F(RealPair, BothViewsDecodeToTheReferencesFrames) {
 // the palm and the fingertip (the wrist lies at the crop's lower edge, sometimes just
 // outside), and the landmark model run on that crop finds the hand
 // with the index fingertip within 15 px of MediaPipe's.
-TEST_F(RealPair, PalmThenLandmarksFindTheFingertip) {
+TEST_F(RealPair, PalmThenLandmarksFindTheFingertip)
+{
     for (int view = 0; view < 2; ++view) {
         for (int i = kSpotFrameStep; i <= kLastSpotFrame; i += kSpotFrameStep) {
             SCOPED_TRACE("view " + std::to_string(view) + " frame " + std::to_string(i));
@@ -112,7 +118,8 @@ TEST_F(RealPair, PalmThenLandmarksFindTheFingertip) {
 // The hand followed from one palm detection by the landmark model alone, each crop from
 // the previous frame's points: the fingertip stays within 30 px of MediaPipe's on nearly
 // every frame, also while the pointing hand opens.
-TEST_F(RealPair, LandmarksFollowTheHandFrameToFrame) {
+TEST_F(RealPair, LandmarksFollowTheHandFrameToFrame)
+{
     for (const Stretch& s : kStretches) {
         SCOPED_TRACE("view " + std::to_string(s.view) + " frames " + std::to_string(s.first) + "-" +
                      std::to_string(s.last));
@@ -130,7 +137,8 @@ TEST_F(RealPair, LandmarksFollowTheHandFrameToFrame) {
     }
 }
 
-TEST_F(RealPair, NoPalmBeforeTheHandComesIntoView) {
+TEST_F(RealPair, NoPalmBeforeTheHandComesIntoView)
+{
     for (int i = 0; i < kEmptyFrames; ++i) {
         ASSERT_FALSE(reference(0, i).has_value()) << "frame " << i;
         EXPECT_TRUE(palm_->detect(frame(0, i), kMinPalmScore).empty()) << "frame " << i;
@@ -139,7 +147,8 @@ TEST_F(RealPair, NoPalmBeforeTheHandComesIntoView) {
 
 // The hand painted over with the frame's mean colour: no palm, and the landmark model at the
 // hand's own crop reports no hand.
-TEST_F(RealPair, BlankedHandGivesNoPalmAndNoPresence) {
+TEST_F(RealPair, BlankedHandGivesNoPalmAndNoPresence)
+{
     for (int view = 0; view < 2; ++view) {
         for (int i : {100, 200}) {
             SCOPED_TRACE("view " + std::to_string(view) + " frame " + std::to_string(i));
@@ -162,7 +171,8 @@ TEST_F(RealPair, BlankedHandGivesNoPalmAndNoPresence) {
 }
 
 // A plain random texture holds no hand: no palm, and a centred crop reports none.
-TEST_F(RealPair, TextureGivesNoPalmAndNoPresence) {
+TEST_F(RealPair, TextureGivesNoPalmAndNoPresence)
+{
     cv::Mat texture(720, 720, CV_8UC3);
     cv::RNG rng(7);
     rng.fill(texture, cv::RNG::UNIFORM, cv::Scalar::all(0), cv::Scalar::all(256));
@@ -173,7 +183,8 @@ TEST_F(RealPair, TextureGivesNoPalmAndNoPresence) {
 
 // The crop from a hand's points holds the whole hand, turned so that its wrist is below
 // its middle knuckle.
-TEST_F(RealPair, LandmarkCropHoldsTheHandUpright) {
+TEST_F(RealPair, LandmarkCropHoldsTheHandUpright)
+{
     for (int view = 0; view < 2; ++view) {
         gc::HandKeyPoints hand;
         hand.points = *reference(view, 100);
@@ -188,14 +199,16 @@ TEST_F(RealPair, LandmarkCropHoldsTheHandUpright) {
     }
 }
 
-TEST(HandModelFiles, BothModelsLoadFromTheSourceTree) {
+TEST(HandModelFiles, BothModelsLoadFromTheSourceTree)
+{
     EXPECT_NO_THROW(gc::PalmDetector{gc::find_model(gc::kPalmModelFile)});
     EXPECT_NO_THROW(gc::LandmarkModel{gc::find_model(gc::kLandmarkModelFile)});
 }
 
 // Expects `make` to throw std::runtime_error whose message names `path`.
 template <typename Make>
-void expect_refused_naming(const fs::path& path, Make make) {
+void expect_refused_naming(const fs::path& path, Make make)
+{
     try {
         make();
         ADD_FAILURE() << "no error for " << path;
@@ -204,14 +217,16 @@ void expect_refused_naming(const fs::path& path, Make make) {
     }
 }
 
-fs::path scratch_dir(const std::string& name) {
+fs::path scratch_dir(const std::string& name)
+{
     const fs::path dir = fs::temp_directory_path() / ("gesturecam_models_" + name + "_" + std::to_string(::getpid()));
     fs::remove_all(dir);
     fs::create_directories(dir);
     return dir;
 }
 
-TEST(HandModelFiles, TruncatedModelIsRefusedWithItsPath) {
+TEST(HandModelFiles, TruncatedModelIsRefusedWithItsPath)
+{
     const fs::path dir = scratch_dir("truncated");
     const fs::path source = gc::find_model(gc::kPalmModelFile);
     const fs::path cut = dir / gc::kPalmModelFile;
@@ -225,20 +240,23 @@ TEST(HandModelFiles, TruncatedModelIsRefusedWithItsPath) {
     fs::remove_all(dir);
 }
 
-TEST(HandModelFiles, MissingModelIsRefusedWithItsPath) {
+TEST(HandModelFiles, MissingModelIsRefusedWithItsPath)
+{
     const fs::path missing = scratch_dir("missing") / gc::kLandmarkModelFile;
     expect_refused_naming(missing, [&] { gc::LandmarkModel{missing}; });
     fs::remove_all(missing.parent_path());
 }
 
-TEST(HandModelFiles, TheOtherNetworkIsRefusedWithItsPath) {
+TEST(HandModelFiles, TheOtherNetworkIsRefusedWithItsPath)
+{
     const fs::path landmark_model = gc::find_model(gc::kLandmarkModelFile);
     expect_refused_naming(landmark_model, [&] { gc::PalmDetector{landmark_model}; });
 }
 
 // A named folder, then GESTURECAM_MODEL_DIR, is the only place looked at: a model missing
 // there is reported there, not taken silently from the source tree.
-TEST(HandModelFiles, NamedFolderAndEnvironmentComeFirst) {
+TEST(HandModelFiles, NamedFolderAndEnvironmentComeFirst)
+{
     const fs::path dir = scratch_dir("named");
     expect_refused_naming(dir / gc::kPalmModelFile, [&] { gc::find_model(gc::kPalmModelFile, dir); });
     fs::copy_file(gc::find_model(gc::kPalmModelFile), dir / gc::kPalmModelFile);

@@ -19,12 +19,14 @@
 
 namespace {
 
-std::string real_pair_dir() {
+std::string real_pair_dir()
+{
     const char* root = std::getenv("GESTURECAM_SOURCE_ROOT");
     return std::string(root ? root : ".") + "/tests/data/handpose3d";
 }
 
-gc::tools::RealPairFigures real_pair(int first, int last) {
+gc::tools::RealPairFigures real_pair(int first, int last)
+{
     gc::tools::RealPairOptions options;
     options.dir = real_pair_dir();
     options.first_frame = first;
@@ -33,7 +35,8 @@ gc::tools::RealPairFigures real_pair(int first, int last) {
 }
 
 // Frames 14-109: the hand points with its index finger and moves over the desk.
-TEST(LearnedTracker, FollowsARealPointingHandInBothViews) {
+TEST(LearnedTracker, FollowsARealPointingHandInBothViews)
+{
     const gc::tools::RealPairFigures f = real_pair(14, 110);
     ASSERT_EQ(f.pointing_frames, 96);
     for (const gc::tools::ViewFigures* view : {&f.left, &f.right}) {
@@ -46,7 +49,8 @@ TEST(LearnedTracker, FollowsARealPointingHandInBothViews) {
 }
 
 // Frames 230-329: an open hand and a fist; followed, but never reported as pointing.
-TEST(LearnedTracker, ClaimsNoPointingWhereTheRealHandDoesNotPoint) {
+TEST(LearnedTracker, ClaimsNoPointingWhereTheRealHandDoesNotPoint)
+{
     const gc::tools::RealPairFigures f = real_pair(230, 330);
     ASSERT_EQ(f.other_frames, 100);
     EXPECT_LE(f.false_pointing, 0.1);
@@ -54,7 +58,8 @@ TEST(LearnedTracker, ClaimsNoPointingWhereTheRealHandDoesNotPoint) {
     EXPECT_GE(f.right.within_30px, 0.8);
 }
 
-gc::sim::SceneConfig scene_config(gc::sim::Preset preset, std::uint64_t seed) {
+gc::sim::SceneConfig scene_config(gc::sim::Preset preset, std::uint64_t seed)
+{
     gc::sim::SceneConfig cfg;
     cfg.preset = preset;
     cfg.seed = seed;
@@ -63,7 +68,8 @@ gc::sim::SceneConfig scene_config(gc::sim::Preset preset, std::uint64_t seed) {
 
 // A dark hand in front of bookshelves: the palm detector alone misses it; the waving blob,
 // confirmed by the landmark model, is taken.
-TEST(LearnedTracker, AcquiresARenderedHandInClutter) {
+TEST(LearnedTracker, AcquiresARenderedHandInClutter)
+{
     const gc::sim::Scene scene(scene_config(gc::sim::Preset::Heavy, 1));
     gc::HandTracker tracker;
     cv::Mat frame;
@@ -80,7 +86,8 @@ TEST(LearnedTracker, AcquiresARenderedHandInClutter) {
 
 // On the renderer's stereo head the landmark model misplaces some key points of the rigid
 // rendered hand; the contour's fingertip and the hand's plane keep the ray right.
-TEST(LearnedTracker, PointsRightOnARenderedStereoHead) {
+TEST(LearnedTracker, PointsRightOnARenderedStereoHead)
+{
     for (const std::uint64_t seed : {1, 2}) {
         const gc::sim::Scene scene(scene_config(gc::sim::Preset::Clean, seed));
         gc::TrackerParams params;
@@ -110,7 +117,8 @@ TEST(LearnedTracker, PointsRightOnARenderedStereoHead) {
 }
 
 // A room without a hand: nothing is tracked, however long the models look.
-TEST(LearnedTracker, TracksNothingWhereThereIsNoHand) {
+TEST(LearnedTracker, TracksNothingWhereThereIsNoHand)
+{
     const gc::sim::Scene scene(scene_config(gc::sim::Preset::Heavy, 2));
     cv::Mat frame;
     gc::sim::EyeTruth truth;
@@ -125,7 +133,8 @@ TEST(LearnedTracker, TracksNothingWhereThereIsNoHand) {
     for (int f = 0; f < 20; ++f) EXPECT_FALSE(tracker.process(empty).valid()) << "frame " << f;
 }
 
-TEST(LearnedTracker, SurvivesAHeadJumpAndFindsTheHandAgain) {
+TEST(LearnedTracker, SurvivesAHeadJumpAndFindsTheHandAgain)
+{
     const gc::sim::Scene scene(scene_config(gc::sim::Preset::Clean, 1));
     gc::HandTracker tracker;
     cv::Mat frame;
@@ -148,11 +157,11 @@ TEST(LearnedTracker, SurvivesAHeadJumpAndFindsTheHandAgain) {
 
 // A model folder the user named but got wrong is an error that names the file, not a
 // silent fall-back to another copy.
-TEST(LearnedTracker, ABadModelFolderGivesAClearError) {
+TEST(LearnedTracker, ABadModelFolderGivesAClearError)
+{
     const std::filesystem::path dir = std::filesystem::temp_directory_path() / "gesturecam-bad-models";
     std::filesystem::create_directories(dir);
-    for (const char* name : {"palm_detection.onnx", "hand_landmark.onnx"})
-        std::ofstream(dir / name) << "not a network";
+    for (const char* name : {"palm_detection.onnx", "hand_landmark.onnx"}) std::ofstream(dir / name) << "not a network";
     gc::TrackerParams params;
     params.model_dir = dir.string();
     try {

@@ -19,7 +19,8 @@ namespace {
 
 // A horizontal membership profile: skin (255) for x < edge, background (0) beyond, with a
 // linear ramp over one pixel like an anti-aliased boundary.
-cv::Mat1b step_map(double edge) {
+cv::Mat1b step_map(double edge)
+{
     cv::Mat1b m(20, 60);
     for (int y = 0; y < m.rows; ++y)
         for (int x = 0; x < m.cols; ++x)
@@ -27,7 +28,8 @@ cv::Mat1b step_map(double edge) {
     return m;
 }
 
-TEST(EdgeSearch, FindsAStepAtTheRightSubPixelOffset) {
+TEST(EdgeSearch, FindsAStepAtTheRightSubPixelOffset)
+{
     for (double edge : {30.0, 30.25, 30.5, 30.8}) {
         const auto m = step_map(edge);
         float off = 0;
@@ -40,7 +42,8 @@ TEST(EdgeSearch, FindsAStepAtTheRightSubPixelOffset) {
     }
 }
 
-TEST(EdgeSearch, IgnoresSkinClutterBeyondTheEdge) {
+TEST(EdgeSearch, IgnoresSkinClutterBeyondTheEdge)
+{
     auto m = step_map(30.0);
     // A skin-coloured object just outside the hand, nearer the hypothesis than the true
     // edge is: the outward search stops at the hand's own edge.
@@ -54,7 +57,8 @@ TEST(EdgeSearch, IgnoresSkinClutterBeyondTheEdge) {
     EXPECT_NEAR(37.0 + off, 30.0, 0.2);
 }
 
-TEST(EdgeSearch, NoEdgeInsideOrOutsideOrOffTheImage) {
+TEST(EdgeSearch, NoEdgeInsideOrOutsideOrOffTheImage)
+{
     const auto m = step_map(30.0);
     float off = 0;
     EXPECT_FALSE(gc::find_skin_edge_fast(m, 10.0f, 10.0f, 1.0f, 0.0f, 5, off));  // all skin
@@ -65,7 +69,8 @@ TEST(EdgeSearch, NoEdgeInsideOrOutsideOrOffTheImage) {
     EXPECT_FALSE(gc::find_skin_edge_fast(m, -100.0f, -100.0f, 1.0f, 0.0f, 5, off));
 }
 
-TEST(EdgeSearch, TellsSkinRunningIntoSkinFromNoSkin) {
+TEST(EdgeSearch, TellsSkinRunningIntoSkinFromNoSkin)
+{
     const auto m = step_map(30.0);
     float off = 0;
     bool beyond = false;
@@ -76,14 +81,16 @@ TEST(EdgeSearch, TellsSkinRunningIntoSkinFromNoSkin) {
 }
 
 // Grey levels `inside` for x < edge and `outside` beyond, blurred like a lens.
-cv::Mat1b grey_step(int edge, int inside, int outside) {
+cv::Mat1b grey_step(int edge, int inside, int outside)
+{
     cv::Mat1b g(20, 60, uchar(outside));
     g.colRange(0, edge).setTo(inside);
     cv::GaussianBlur(g, g, cv::Size(5, 5), 0.8);
     return g;
 }
 
-TEST(EdgeSearch, FindsTheStrongestGreyStepAndIgnoresWeakOnes) {
+TEST(EdgeSearch, FindsTheStrongestGreyStepAndIgnoresWeakOnes)
+{
     float off = 0;
     // A darker hand rim (140) against a face (170): the step lies between x = 29 and 30.
     const auto g = grey_step(30, 140, 170);
@@ -105,7 +112,8 @@ TEST(EdgeSearch, FindsTheStrongestGreyStepAndIgnoresWeakOnes) {
 
 // The hand (140) with the learnt scene behind it blanked from x = 30: the scene's border
 // is an edge seen from the hand, never from inside the scene.
-TEST(EdgeSearch, TakesTheSceneBorderOnlyWithTheSceneOutside) {
+TEST(EdgeSearch, TakesTheSceneBorderOnlyWithTheSceneOutside)
+{
     float off = 0;
     cv::Mat1b g(20, 60, uchar(140));
     g.colRange(30, 60).setTo(gc::kSceneGreyLevel);
@@ -123,7 +131,8 @@ TEST(EdgeSearch, TakesTheSceneBorderOnlyWithTheSceneOutside) {
 
 // A vertical boundary at x = edge between `skin` (left) and `wall` (right), each pixel the
 // area-weighted mix of the two, then blurred like a lens.
-cv::Mat3b colour_step(double edge, cv::Vec3b skin, cv::Vec3b wall) {
+cv::Mat3b colour_step(double edge, cv::Vec3b skin, cv::Vec3b wall)
+{
     cv::Mat3b m(20, 60);
     for (int y = 0; y < m.rows; ++y)
         for (int x = 0; x < m.cols; ++x) {
@@ -134,7 +143,8 @@ cv::Mat3b colour_step(double edge, cv::Vec3b skin, cv::Vec3b wall) {
     return m;
 }
 
-TEST(EdgeSearch, ColourEdgeIsWhereTheHandCoversHalfAPixel) {
+TEST(EdgeSearch, ColourEdgeIsWhereTheHandCoversHalfAPixel)
+{
     const cv::Vec3b skin(90, 120, 190), wall(200, 205, 210);  // BGR: a light grey wall
     for (double edge : {30.0, 30.3, 30.6}) {
         const auto img = colour_step(edge, skin, wall);
@@ -151,7 +161,8 @@ TEST(EdgeSearch, ColourEdgeIsWhereTheHandCoversHalfAPixel) {
     }
 }
 
-TEST(EdgeSearch, ColourEdgeKeepsTheOffsetWithoutContrastOrImage) {
+TEST(EdgeSearch, ColourEdgeKeepsTheOffsetWithoutContrastOrImage)
+{
     const cv::Vec3b skin(90, 120, 190);
     const auto flat = colour_step(30.0, skin, cv::Vec3b(95, 124, 193));  // skin on skin
     EXPECT_DOUBLE_EQ(gc::colour_edge_offset(flat, {28.0, 10.0}, {1.0, 0.0}, 1.0), 1.0);
@@ -164,17 +175,17 @@ TEST(EdgeSearch, ColourEdgeKeepsTheOffsetWithoutContrastOrImage) {
 
 using gc_test::drawn_hand;
 
-TEST(ContourMeasurement, MisfitIsLowestAtTheTrueState) {
+TEST(ContourMeasurement, MisfitIsLowestAtTheTrueState)
+{
     const auto mask = drawn_hand({320, 240}, {150, 130}, 20.0, 1.0);
     const auto t = gc::HandTemplate::from_mask(mask, mask);
     const gc::ContourMeasurement meas;
     const gc::HandState truth{t.origin_px.x, t.origin_px.y, 0.0, 1.0};
     const double at_truth = meas.misfit(mask, t, truth);
     EXPECT_LT(at_truth, 0.02);
-    for (const gc::HandState off : {gc::HandState{truth.x + 4, truth.y, 0, 1},
-                                    gc::HandState{truth.x, truth.y - 4, 0, 1},
-                                    gc::HandState{truth.x, truth.y, 0.15, 1},
-                                    gc::HandState{truth.x, truth.y, 0, 1.12}})
+    for (const gc::HandState off :
+         {gc::HandState{truth.x + 4, truth.y, 0, 1}, gc::HandState{truth.x, truth.y - 4, 0, 1},
+          gc::HandState{truth.x, truth.y, 0.15, 1}, gc::HandState{truth.x, truth.y, 0, 1.12}})
         EXPECT_GT(meas.misfit(mask, t, off), at_truth + 0.03);
     // Nothing there at all: the cap.
     EXPECT_NEAR(meas.misfit(cv::Mat1b(mask.size(), uchar(0)), t, truth), 1.0, 1e-6);
@@ -186,7 +197,8 @@ TEST(ContourMeasurement, MisfitIsLowestAtTheTrueState) {
 // The hand in front of a skin-coloured patch that covers its right half: the plain misfit
 // pays the cap where the edge vanishes, the judged misfit leaves those normals out and still
 // tells the true state from a displaced one.
-TEST(ContourMeasurement, JudgedMisfitLeavesOutSkinAgainstSkin) {
+TEST(ContourMeasurement, JudgedMisfitLeavesOutSkinAgainstSkin)
+{
     const auto mask = drawn_hand({320, 240}, {150, 130}, 20.0, 1.0);
     const auto t = gc::HandTemplate::from_mask(mask, mask);
     const gc::ContourMeasurement meas;
@@ -215,7 +227,8 @@ TEST(ContourMeasurement, JudgedMisfitLeavesOutSkinAgainstSkin) {
 // The hand in front of a face that covers its right half, the hand's grey levels darker
 // than the face's: with the grey map the covered normals measure the hand's outline again,
 // so the true state scores as if nothing covered it and a displaced state scores worse.
-TEST(ContourMeasurement, GreyStepsMeasureTheHandInFrontOfSkin) {
+TEST(ContourMeasurement, GreyStepsMeasureTheHandInFrontOfSkin)
+{
     const auto mask = drawn_hand({320, 240}, {150, 130}, 20.0, 1.0);
     const auto t = gc::HandTemplate::from_mask(mask, mask);
     const gc::ContourMeasurement meas;
@@ -230,9 +243,9 @@ TEST(ContourMeasurement, GreyStepsMeasureTheHandInFrontOfSkin) {
     const double at_truth = meas.misfit(covered, grey, t, truth);
     EXPECT_GT(plain, 0.25);
     EXPECT_LT(at_truth, 0.05);
-    for (const gc::HandState off : {gc::HandState{truth.x + 4, truth.y, 0, 1},
-                                    gc::HandState{truth.x, truth.y - 4, 0, 1},
-                                    gc::HandState{truth.x, truth.y, 0.15, 1}})
+    for (const gc::HandState off :
+         {gc::HandState{truth.x + 4, truth.y, 0, 1}, gc::HandState{truth.x, truth.y - 4, 0, 1},
+          gc::HandState{truth.x, truth.y, 0.15, 1}})
         EXPECT_GT(meas.misfit(covered, grey, t, off), at_truth + 0.03);
     // Where the skin edge is seen the grey map changes nothing.
     EXPECT_NEAR(meas.misfit(mask, grey, t, truth), meas.misfit(mask, t, truth), 1e-6);
@@ -247,7 +260,8 @@ TEST(ContourMeasurement, GreyStepsMeasureTheHandInFrontOfSkin) {
     EXPECT_THROW(gc::ContourMeasurement{off_params}, std::invalid_argument);
 }
 
-TEST(ContourFit, RecoversAPerturbedState) {
+TEST(ContourFit, RecoversAPerturbedState)
+{
     const auto mask = drawn_hand({320, 240}, {150, 130}, 20.0, 1.0);
     const auto t = gc::HandTemplate::from_mask(mask, mask);
     // The same hand moved, turned and grown.
@@ -268,7 +282,8 @@ TEST(ContourFit, RecoversAPerturbedState) {
     EXPECT_EQ(none.state.x, start.x);
 }
 
-TEST(ContourFit, AgreementFallsWhereTheTemplateHasNoEdgeInTheImage) {
+TEST(ContourFit, AgreementFallsWhereTheTemplateHasNoEdgeInTheImage)
+{
     // A template captured with a skin-coloured box merged into its palm, fitted to an image
     // where the hand has moved off the box: the box's side of the outline finds no edge.
     const auto hand = drawn_hand({320, 240}, {150, 130}, 20.0, 1.0);
@@ -287,7 +302,8 @@ TEST(ContourFit, AgreementFallsWhereTheTemplateHasNoEdgeInTheImage) {
 
 // Placed by a squashed state, the normals stay unit, perpendicular to the placed outline's
 // tangents (the inverse transpose of the placement's linear part), and outward.
-TEST(ContourMeasurement, SquashedNormalsArePerpendicularToTheSquashedOutline) {
+TEST(ContourMeasurement, SquashedNormalsArePerpendicularToTheSquashedOutline)
+{
     const auto mask = drawn_hand({320, 240}, {150, 130}, 20.0, 1.0);
     const auto t = gc::HandTemplate::from_mask(mask, mask);
     const gc::HandState s{t.origin_px.x, t.origin_px.y, 0.4, 1.1, 0.7};
@@ -311,11 +327,11 @@ TEST(ContourMeasurement, SquashedNormalsArePerpendicularToTheSquashedOutline) {
 }
 
 // Unsquashed, the placement rounds exactly as the similarity it was before the squash.
-TEST(ContourMeasurement, UnsquashedPlacementIsTheSimilarityExactly) {
+TEST(ContourMeasurement, UnsquashedPlacementIsTheSimilarityExactly)
+{
     const gc::HandState s{123.4, -56.7, 0.73, 1.37};
     const double c = std::cos(s.rotation) * s.scale, sn = std::sin(s.rotation) * s.scale;
-    for (const cv::Point2f u : {cv::Point2f(3.1f, -7.9f), cv::Point2f(-41.3f, 12.7f),
-                                cv::Point2f(0.1f, 55.5f)}) {
+    for (const cv::Point2f u : {cv::Point2f(3.1f, -7.9f), cv::Point2f(-41.3f, 12.7f), cv::Point2f(0.1f, 55.5f)}) {
         const cv::Point2d p = gc::place(s, u);
         EXPECT_EQ(p.x, s.x + c * u.x - sn * u.y);
         EXPECT_EQ(p.y, s.y + sn * u.x + c * u.y);
@@ -325,7 +341,8 @@ TEST(ContourMeasurement, UnsquashedPlacementIsTheSimilarityExactly) {
 // The hand turned about the vertical axis narrows in the image: fitting the squash follows
 // it over a few frames (each call moves it by at most max_squash_step) and fits the outline
 // better than the similarity alone can.
-TEST(ContourFit, FollowsAHorizontalSquash) {
+TEST(ContourFit, FollowsAHorizontalSquash)
+{
     const auto mask = drawn_hand({320, 240}, {150, 130}, 20.0, 1.0);
     const auto t = gc::HandTemplate::from_mask(mask, mask);
     // The same hand narrowed to 0.85 of its width about the palm.
@@ -358,8 +375,8 @@ TEST(ContourFit, FollowsAHorizontalSquash) {
     const auto same = gc::refine_fit(mask, t, start, params);
     EXPECT_NEAR(same.state.squash, 1.0, 0.01);
     // A squash the placement cannot divide by is refused, by the fit and the measurement.
-    for (const double bad : {0.0, -1.0, std::numeric_limits<double>::infinity(),
-                             std::numeric_limits<double>::quiet_NaN()}) {
+    for (const double bad :
+         {0.0, -1.0, std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN()}) {
         gc::HandState s_bad = start;
         s_bad.squash = bad;
         EXPECT_THROW(gc::refine_fit(turned, t, s_bad, params), std::invalid_argument) << bad;

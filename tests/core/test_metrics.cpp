@@ -45,7 +45,8 @@ TEST(ContourMask, DegenerateAndOutOfFrameContoursGiveEmptyOrClippedMasks)
     EXPECT_EQ(cv::countNonZero(gc::contour_mask({{1, 1}, {5, 5}}, kSize)), 0);
     EXPECT_EQ(cv::countNonZero(gc::contour_mask({{-100, -100}, {-50, -100}, {-50, -50}}, kSize)), 0);
     // A diverged hypothesis with enormous coordinates covers the frame instead of crashing.
-    const cv::Mat1b huge = gc::contour_mask({{-1e12f, -1e12f}, {1e12f, -1e12f}, {1e12f, 1e12f}, {-1e12f, 1e12f}}, kSize);
+    const cv::Mat1b huge =
+        gc::contour_mask({{-1e12f, -1e12f}, {1e12f, -1e12f}, {1e12f, 1e12f}, {-1e12f, 1e12f}}, kSize);
     EXPECT_EQ(cv::countNonZero(huge), kSize.area());
 }
 
@@ -121,8 +122,8 @@ TEST(Snr, AccumulatesOverFrames)
 {
     const cv::Mat1b ref = rect_mask(kSize, {0, 0, 20, 10});
     gc::SnrAccumulator acc;
-    acc.add(ref, ref);                                  // signal 400, noise 0
-    acc.add(ref, rect_mask(kSize, {0, 0, 10, 10}));     // signal 400, noise 100
+    acc.add(ref, ref);                               // signal 400, noise 0
+    acc.add(ref, rect_mask(kSize, {0, 0, 10, 10}));  // signal 400, noise 100
     EXPECT_EQ(acc.signal(), 800u);
     EXPECT_EQ(acc.noise(), 100u);
     EXPECT_NEAR(acc.snr_db(), 10.0 * std::log10(8.0), 1e-12);
@@ -132,8 +133,7 @@ TEST(Snr, NothingAddedIsNaNAndBadInputThrows)
 {
     gc::SnrAccumulator acc;
     EXPECT_TRUE(std::isnan(acc.snr_db()));
-    EXPECT_THROW(acc.add(cv::Mat1b(4, 4, std::uint8_t{0}), cv::Mat1b(4, 5, std::uint8_t{0})),
-                 std::invalid_argument);
+    EXPECT_THROW(acc.add(cv::Mat1b(4, 4, std::uint8_t{0}), cv::Mat1b(4, 5, std::uint8_t{0})), std::invalid_argument);
     EXPECT_EQ(acc.signal(), 0u);
 }
 

@@ -20,13 +20,12 @@ using gc::tools::JsonValue;
 std::set<std::string> keys_of(const JsonValue& v)
 {
     std::set<std::string> keys;
-    for (const auto& [k, _] : v.object())
-        keys.insert(k);
+    for (const auto& [k, _] : v.object()) keys.insert(k);
     return keys;
 }
 
-const std::set<std::string> kEyeKeys{"x", "y", "rotation_deg", "scale", "confidence",
-                                     "bbox", "contour", "fingertip", "pointing_deg", "gesture"};
+const std::set<std::string> kEyeKeys{"x",    "y",       "rotation_deg", "scale",        "confidence",
+                                     "bbox", "contour", "fingertip",    "pointing_deg", "gesture"};
 
 gc::EyeEstimate sample_eye()
 {
@@ -74,7 +73,7 @@ TEST(JsonLine, MonoHasTheSchemaOfDesignWithoutRightOrPointing)
     EXPECT_EQ(v["state"].string(), "tracking");
     const JsonValue& left = v["left"];
     EXPECT_EQ(keys_of(left), kEyeKeys);
-    EXPECT_DOUBLE_EQ(left["x"].number(), 123.46);   // 0.01 px
+    EXPECT_DOUBLE_EQ(left["x"].number(), 123.46);  // 0.01 px
     EXPECT_DOUBLE_EQ(left["y"].number(), 45.68);
     EXPECT_DOUBLE_EQ(left["rotation_deg"].number(), 28.65);  // 0.5 rad, 0.01 deg
     EXPECT_DOUBLE_EQ(left["scale"].number(), 1.235);
@@ -121,14 +120,13 @@ TEST(JsonLine, ValidPointingIsWrittenInMillimetresAndDegrees)
     gc::direction_angles(r.pointing.direction, r.pointing.azimuth_deg, r.pointing.elevation_deg);
     const JsonValue v = JsonReader::parse(gc::to_json_line(r));
     const JsonValue& p = v["pointing"];
-    EXPECT_EQ(keys_of(p), (std::set<std::string>{"fingertip_mm", "palm_mm", "direction",
-                                                 "azimuth_deg", "elevation_deg"}));
+    EXPECT_EQ(keys_of(p),
+              (std::set<std::string>{"fingertip_mm", "palm_mm", "direction", "azimuth_deg", "elevation_deg"}));
     EXPECT_DOUBLE_EQ(p["fingertip_mm"][0].number(), 10.0);  // 0.1 mm
     EXPECT_DOUBLE_EQ(p["fingertip_mm"][1].number(), -20.1);
     EXPECT_DOUBLE_EQ(p["fingertip_mm"][2].number(), 1000.3);
     double norm2 = 0.0;
-    for (int i = 0; i < 3; ++i)
-        norm2 += p["direction"][i].number() * p["direction"][i].number();
+    for (int i = 0; i < 3; ++i) norm2 += p["direction"][i].number() * p["direction"][i].number();
     EXPECT_NEAR(norm2, 1.0, 1e-3);
     EXPECT_NEAR(p["azimuth_deg"].number(), r.pointing.azimuth_deg, 0.006);
     EXPECT_EQ(keys_of(v["right"]), kEyeKeys);
@@ -178,8 +176,7 @@ TEST(PointingTracker, RejectsBadFramesWithMessagesNamingTheProblem)
     params.particles = 50;
     gc::PointingTracker tracker(params);
     const cv::Mat3b frame(240, 320, cv::Vec3b(40, 40, 40));
-    EXPECT_NE(message_of<std::invalid_argument>([&] { tracker.process_stereo(cv::Mat(), frame); })
-                  .find("empty"),
+    EXPECT_NE(message_of<std::invalid_argument>([&] { tracker.process_stereo(cv::Mat(), frame); }).find("empty"),
               std::string::npos);
     const cv::Mat1b grey(240, 320, uchar(0));
     EXPECT_NE(message_of<std::invalid_argument>([&] { tracker.process_mono(grey); }).find("CV_8UC3"),
@@ -283,8 +280,7 @@ TEST_F(PipelineOnScene, StereoAcquiresTracksAndPoints)
             ASSERT_FALSE(r.pointing.valid) << "pointing needs both eyes, frame " << f;
             continue;
         }
-        if (first_tracking < 0)
-            first_tracking = f;
+        if (first_tracking < 0) first_tracking = f;
         ++tracking;
         pointing += r.pointing.valid ? 1 : 0;
         if (truth.visible) {

@@ -68,8 +68,8 @@ TEST(SimNames, RoundTrip)
         EXPECT_EQ(preset_from_string(to_string(p)), p);
     for (Variety v : {Variety::None, Variety::Wide}) EXPECT_EQ(variety_from_string(to_string(v)), v);
     EXPECT_FALSE(variety_from_string("some").has_value());
-    for (Motion m : {Motion::Static, Motion::Translate, Motion::Rotate, Motion::Scale, Motion::Yaw,
-                     Motion::Mixed, Motion::LeaveReturn})
+    for (Motion m : {Motion::Static, Motion::Translate, Motion::Rotate, Motion::Scale, Motion::Yaw, Motion::Mixed,
+                     Motion::LeaveReturn})
         EXPECT_EQ(motion_from_string(to_string(m)), m);
     EXPECT_FALSE(preset_from_string("cluttered").has_value());
     EXPECT_FALSE(motion_from_string("").has_value());
@@ -134,8 +134,12 @@ TEST(SimScene, EyesRenderConcurrentlyFromOneScene)
     cv::Mat seq[2], par[2];
     EyeTruth seq_t[2], par_t[2];
     for (int e = 0; e < 2; ++e) scene.render(90, Eye(e), {}, seq[e], &seq_t[e]);
-    std::thread left([&] { for (int i = 0; i < 5; ++i) scene.render(90, Eye::Left, {}, par[0], &par_t[0]); });
-    std::thread right([&] { for (int i = 0; i < 5; ++i) scene.render(90, Eye::Right, {}, par[1], &par_t[1]); });
+    std::thread left([&] {
+        for (int i = 0; i < 5; ++i) scene.render(90, Eye::Left, {}, par[0], &par_t[0]);
+    });
+    std::thread right([&] {
+        for (int i = 0; i < 5; ++i) scene.render(90, Eye::Right, {}, par[1], &par_t[1]);
+    });
     left.join();
     right.join();
     for (int e = 0; e < 2; ++e) {
@@ -176,10 +180,8 @@ TEST(SimScene, TruthProjectsConsistentlyInBothEyes)
         for (const HeadPose& head : heads)
             for (int frame : {0, 45, 120, 200}) {
                 const HandTruth t3 = scene.hand_truth(scene.hand_pose(frame));
-                const gc::RigidTransform head_to_left =
-                    gc::camera_to_head(cal.head, head, Eye::Left).inverse();
-                const gc::RigidTransform head_to_right =
-                    gc::camera_to_head(cal.head, head, Eye::Right).inverse();
+                const gc::RigidTransform head_to_left = gc::camera_to_head(cal.head, head, Eye::Left).inverse();
+                const gc::RigidTransform head_to_right = gc::camera_to_head(cal.head, head, Eye::Right).inverse();
                 for (Eye eye : {Eye::Left, Eye::Right}) {
                     cv::Mat img;
                     EyeTruth truth;
@@ -381,25 +383,25 @@ TEST(SimScene, FacePassTruthHoldsTheFacesSkin)
 TEST(SimScene, HandIsVisibleAndOfPlausibleSize)
 {
     for (Motion motion : {Motion::Translate, Motion::Scale, Motion::Mixed})
-    for (std::uint64_t seed : {1, 2, 3}) {
-        const Scene scene(config(Preset::Light, motion, seed));
-        int visible = 0, total = 0;
-        for (int frame = 0; frame < 900; frame += 30)
-            for (Eye eye : {Eye::Left, Eye::Right}) {
-                cv::Mat img;
-                EyeTruth t;
-                scene.render(frame, eye, {}, img, &t);
-                ++total;
-                if (!t.visible) continue;
-                ++visible;
-                const int area = cv::countNonZero(t.mask);
-                EXPECT_GT(area, 1500);
-                EXPECT_LT(area, 25000);
-                EXPECT_GT(std::max(t.bbox.width, t.bbox.height), 60);
-                EXPECT_LT(std::max(t.bbox.width, t.bbox.height), 260);
-            }
-        EXPECT_GE(visible, total * 9 / 10) << to_string(motion) << " seed " << seed;
-    }
+        for (std::uint64_t seed : {1, 2, 3}) {
+            const Scene scene(config(Preset::Light, motion, seed));
+            int visible = 0, total = 0;
+            for (int frame = 0; frame < 900; frame += 30)
+                for (Eye eye : {Eye::Left, Eye::Right}) {
+                    cv::Mat img;
+                    EyeTruth t;
+                    scene.render(frame, eye, {}, img, &t);
+                    ++total;
+                    if (!t.visible) continue;
+                    ++visible;
+                    const int area = cv::countNonZero(t.mask);
+                    EXPECT_GT(area, 1500);
+                    EXPECT_LT(area, 25000);
+                    EXPECT_GT(std::max(t.bbox.width, t.bbox.height), 60);
+                    EXPECT_LT(std::max(t.bbox.width, t.bbox.height), 260);
+                }
+            EXPECT_GE(visible, total * 9 / 10) << to_string(motion) << " seed " << seed;
+        }
 }
 
 TEST(SimScene, HandIsSkinColouredAndSleeveIsNot)
@@ -425,7 +427,8 @@ TEST(SimScene, HandIsSkinColouredAndSleeveIsNot)
         const gc::StereoCalibration cal = scene.calibration();
         const gc::RigidTransform to_left = gc::camera_to_head(cal.head, {}, Eye::Left).inverse();
         const cv::Point2d mid = project(cal.M1, to_left.apply(0.5 * (t3.palm_mm + t3.elbow_mm)));
-        const cv::Rect patch = cv::Rect(cvRound(mid.x) - 2, cvRound(mid.y) - 2, 5, 5) & cv::Rect(0, 0, img.cols, img.rows);
+        const cv::Rect patch =
+            cv::Rect(cvRound(mid.x) - 2, cvRound(mid.y) - 2, 5, 5) & cv::Rect(0, 0, img.cols, img.rows);
         ASSERT_FALSE(patch.empty()) << "seed " << seed;
         const gc::SkinModel skin = gc::SkinModel::fit(img, t.mask);
         EXPECT_EQ(cv::countNonZero(skin.segment(img)(patch)), 0) << "seed " << seed;
@@ -434,8 +437,8 @@ TEST(SimScene, HandIsSkinColouredAndSleeveIsNot)
 
 TEST(SimMotion, SpeedsArePlausibleAndTheWaveComesFirst)
 {
-    for (Motion motion : {Motion::Static, Motion::Translate, Motion::Rotate, Motion::Scale,
-                          Motion::Yaw, Motion::Mixed, Motion::LeaveReturn})
+    for (Motion motion : {Motion::Static, Motion::Translate, Motion::Rotate, Motion::Scale, Motion::Yaw, Motion::Mixed,
+                          Motion::LeaveReturn})
         for (std::uint64_t seed : {1, 2, 3}) {
             const Scene scene(config(Preset::Clean, motion, seed));
             const double dt = 1.0 / scene.config().fps;
@@ -443,17 +446,21 @@ TEST(SimMotion, SpeedsArePlausibleAndTheWaveComesFirst)
             HandTruth prev = scene.hand_truth(scene.hand_pose(0));
             for (int frame = 1; frame < 900; ++frame) {
                 const HandTruth cur = scene.hand_truth(scene.hand_pose(frame));
-                const double v = std::max(cv::norm(cur.fingertip_mm - prev.fingertip_mm),
-                                          cv::norm(cur.palm_mm - prev.palm_mm)) / dt;
-                if (frame <= 36) wave = std::max(wave, v);  // the wave: 1.2 s
-                else if (motion != Motion::LeaveReturn || frame > 270) peak = std::max(peak, v);
+                const double v =
+                    std::max(cv::norm(cur.fingertip_mm - prev.fingertip_mm), cv::norm(cur.palm_mm - prev.palm_mm)) / dt;
+                if (frame <= 36)
+                    wave = std::max(wave, v);  // the wave: 1.2 s
+                else if (motion != Motion::LeaveReturn || frame > 270)
+                    peak = std::max(peak, v);
                 prev = cur;
             }
             EXPECT_GT(wave, 100.0) << to_string(motion) << " seed " << seed;
             EXPECT_LT(wave, 550.0) << to_string(motion) << " seed " << seed;
             EXPECT_LT(peak, 550.0) << to_string(motion) << " seed " << seed;
-            if (motion == Motion::Static) EXPECT_EQ(peak, 0.0);
-            else EXPECT_GT(peak, 20.0) << to_string(motion) << " seed " << seed;
+            if (motion == Motion::Static)
+                EXPECT_EQ(peak, 0.0);
+            else
+                EXPECT_GT(peak, 20.0) << to_string(motion) << " seed " << seed;
         }
 }
 
@@ -555,7 +562,6 @@ TEST(SimScene, YawForeshortensTheHand)
     const double ratio = double(cv::countNonZero(turned.mask)) / cv::countNonZero(face_on.mask);
     EXPECT_NEAR(ratio, 0.5, 0.12);  // cos 60 deg, with some perspective
 }
-
 
 // FNV-1a over the bytes of the image, the hand mask and the face mask of one frame.
 std::uint64_t frame_hash(const cv::Mat& img, const EyeTruth& t)
@@ -757,8 +763,10 @@ TEST(SimVariety, MovingHandSmears)
         cv::cvtColor(diff, changed, cv::COLOR_BGR2GRAY);
         changed = changed > 10;
         changed.setTo(0, t.mask);
-        if (variety == Variety::None) EXPECT_EQ(cv::norm(diff, cv::NORM_L1), 0.0);
-        else smeared = cv::countNonZero(changed);
+        if (variety == Variety::None)
+            EXPECT_EQ(cv::norm(diff, cv::NORM_L1), 0.0);
+        else
+            smeared = cv::countNonZero(changed);
     }
     EXPECT_GT(smeared, 50);
 }

@@ -10,15 +10,16 @@
 namespace {
 
 // Converts a normalised colour and a brightness sum to a BGR pixel.
-cv::Vec3b pixel_from_rg(double r, double g, double sum) {
+cv::Vec3b pixel_from_rg(double r, double g, double sum)
+{
     const double b = 1.0 - r - g;
     return {cv::saturate_cast<std::uint8_t>(b * sum), cv::saturate_cast<std::uint8_t>(g * sum),
             cv::saturate_cast<std::uint8_t>(r * sum)};
 }
 
 // An image whose pixels are drawn from a known normal over (r, g).
-cv::Mat3b sample_image(const cv::Vec2d& mean, double sr, double sg, double rho, int n,
-                       std::uint32_t seed) {
+cv::Mat3b sample_image(const cv::Vec2d& mean, double sr, double sg, double rho, int n, std::uint32_t seed)
+{
     std::mt19937 rng(seed);
     std::normal_distribution<double> z;
     cv::Mat3b img(n, n);
@@ -31,7 +32,8 @@ cv::Mat3b sample_image(const cv::Vec2d& mean, double sr, double sg, double rho, 
     return img;
 }
 
-TEST(SkinModel, FitRecoversKnownMeanAndCovariance) {
+TEST(SkinModel, FitRecoversKnownMeanAndCovariance)
+{
     const cv::Vec2d mean{0.46, 0.31};
     const double sr = 0.02, sg = 0.012, rho = -0.4;
     const cv::Mat3b img = sample_image(mean, sr, sg, rho, 200, 7);
@@ -42,12 +44,12 @@ TEST(SkinModel, FitRecoversKnownMeanAndCovariance) {
     // Integer rounding of the pixels adds a little variance (~(1/480)^2 / 4).
     EXPECT_NEAR(std::sqrt(model.covariance()(0, 0)), sr, 0.1 * sr);
     EXPECT_NEAR(std::sqrt(model.covariance()(1, 1)), sg, 0.1 * sg);
-    const double fitted_rho = model.covariance()(0, 1) /
-                              std::sqrt(model.covariance()(0, 0) * model.covariance()(1, 1));
+    const double fitted_rho = model.covariance()(0, 1) / std::sqrt(model.covariance()(0, 0) * model.covariance()(1, 1));
     EXPECT_NEAR(fitted_rho, rho, 0.08);
 }
 
-TEST(SkinModel, FitIgnoresUnmaskedAndDarkPixels) {
+TEST(SkinModel, FitIgnoresUnmaskedAndDarkPixels)
+{
     cv::Mat3b img(100, 100, pixel_from_rg(0.2, 0.5, 400));  // green background
     cv::Mat1b mask(img.size(), 0);
     cv::rectangle(img, cv::Rect(20, 20, 40, 40), pixel_from_rg(0.5, 0.3, 500), cv::FILLED);
@@ -59,7 +61,8 @@ TEST(SkinModel, FitIgnoresUnmaskedAndDarkPixels) {
     EXPECT_NEAR(model.mean()[1], 0.3, 0.01);
 }
 
-TEST(SkinModel, ThresholdIsDensityAtThreeSigma) {
+TEST(SkinModel, ThresholdIsDensityAtThreeSigma)
+{
     const gc::SkinModel m({0.45, 0.3}, {4e-4, 0, 0, 1e-4});
     // 3 sigma along r: r = 0.45 + 3 * 0.02.
     EXPECT_NEAR(m.density(0.51, 0.3), m.threshold_density(), 1e-9 * m.threshold_density());
@@ -67,7 +70,8 @@ TEST(SkinModel, ThresholdIsDensityAtThreeSigma) {
     EXPECT_GT(m.density(0.45, 0.3), m.threshold_density());
 }
 
-TEST(SkinModel, MapsAgreeWithExactModel) {
+TEST(SkinModel, MapsAgreeWithExactModel)
+{
     const gc::SkinModel m({0.45, 0.3}, {4e-4, -1e-4, -1e-4, 2e-4});
     cv::Mat3b img(64, 64);
     std::mt19937 rng(3);
@@ -84,16 +88,20 @@ TEST(SkinModel, MapsAgreeWithExactModel) {
             const double s = p[0] + p[1] + p[2];
             const double d2 = m.mahalanobis2(p[2] / s, p[1] / s);
             // Table quantisation (1/255 in r and g) only matters right at the boundary.
-            if (std::abs(std::sqrt(d2) - 3.0) > 0.4)
-                disagreements += (seg(y, x) == 255) != (d2 <= 9.0);
+            if (std::abs(std::sqrt(d2) - 3.0) > 0.4) disagreements += (seg(y, x) == 255) != (d2 <= 9.0);
             EXPECT_NEAR(prob(y, x), 255.0 * std::exp(-0.5 * d2), 40.0);
-            if (d2 < 4.0) { EXPECT_GT(memb(y, x), 200); }
-            if (d2 > 25.0) { EXPECT_LT(memb(y, x), 10); }
+            if (d2 < 4.0) {
+                EXPECT_GT(memb(y, x), 200);
+            }
+            if (d2 > 25.0) {
+                EXPECT_LT(memb(y, x), 10);
+            }
         }
     EXPECT_EQ(disagreements, 0);
 }
 
-TEST(SkinModel, RoiMapWritesOnlyTheRoi) {
+TEST(SkinModel, RoiMapWritesOnlyTheRoi)
+{
     const auto m = gc::SkinModel::generic();
     cv::Mat3b img(50, 60, pixel_from_rg(0.45, 0.31, 450));
     cv::Mat1b out(img.size(), 7);
@@ -105,14 +113,16 @@ TEST(SkinModel, RoiMapWritesOnlyTheRoi) {
     EXPECT_GT(out(45, 55), 200);
 }
 
-TEST(SkinModel, DarkPixelsAreNeverSkin) {
+TEST(SkinModel, DarkPixelsAreNeverSkin)
+{
     const auto m = gc::SkinModel::generic();
     const cv::Mat3b img(8, 8, pixel_from_rg(0.45, 0.31, 40));
     EXPECT_EQ(cv::countNonZero(m.segment(img)), 0);
     EXPECT_FALSE(m.is_skin(img(0, 0)));
 }
 
-TEST(SkinModel, UpdateMeanFollowsLightingAndGatesOutliers) {
+TEST(SkinModel, UpdateMeanFollowsLightingAndGatesOutliers)
+{
     gc::SkinModel m({0.45, 0.30}, {4e-4, 0, 0, 2e-4});
     cv::Mat3b img(40, 40, pixel_from_rg(0.47, 0.30, 500));
     // A quarter of the masked area is background far from skin: gated out.
@@ -130,7 +140,8 @@ TEST(SkinModel, UpdateMeanFollowsLightingAndGatesOutliers) {
     EXPECT_FALSE(m.update_mean(img, empty, 0.2));
 }
 
-TEST(SkinModel, BrightnessBandSeparatesSameToneSkin) {
+TEST(SkinModel, BrightnessBandSeparatesSameToneSkin)
+{
     // The hand and a brighter object of exactly the same normalised colour.
     cv::Mat3b img(40, 80, pixel_from_rg(0.47, 0.31, 300));
     cv::rectangle(img, cv::Rect(40, 0, 40, 40), pixel_from_rg(0.47, 0.31, 520), cv::FILLED);
@@ -157,7 +168,8 @@ TEST(SkinModel, BrightnessBandSeparatesSameToneSkin) {
     EXPECT_THROW(p.set_brightness_band(300.0, 0.0), std::invalid_argument);
 }
 
-TEST(SkinModel, CopiesAreIndependent) {
+TEST(SkinModel, CopiesAreIndependent)
+{
     gc::SkinModel a({0.45, 0.30}, {4e-4, 0, 0, 2e-4});
     const gc::SkinModel b = a;
     const cv::Mat3b img(10, 10, pixel_from_rg(0.5, 0.30, 500));
@@ -168,7 +180,8 @@ TEST(SkinModel, CopiesAreIndependent) {
     EXPECT_GT(pa(0, 0), pb(0, 0));
 }
 
-TEST(SkinModel, BadInputsThrowClearErrors) {
+TEST(SkinModel, BadInputsThrowClearErrors)
+{
     const auto m = gc::SkinModel::generic();
     cv::Mat1b out;
     EXPECT_THROW(m.probability(cv::Mat(), out), std::invalid_argument);
@@ -188,7 +201,8 @@ TEST(SkinModel, BadInputsThrowClearErrors) {
 
 }  // namespace
 
-TEST(SkinModel, GenericModelTakesSkinTonesButNotNoisyGrey) {
+TEST(SkinModel, GenericModelTakesSkinTonesButNotNoisyGrey)
+{
     const auto m = gc::SkinModel::generic();
     cv::RNG rng(7);
     // Skin from fair to dark under white light, at several brightnesses.

@@ -20,21 +20,24 @@ const cv::Rect kBox{110, 140, 45, 45};  // a static skin-coloured box behind the
 // The hand's palm in frame k: it moves up and right, off the box.
 cv::Point2d palm_at(int k) { return {150.0 + 4.0 * k, 130.0 - 3.0 * k}; }
 
-cv::Mat1b skin_map(int k) {
+cv::Mat1b skin_map(int k)
+{
     cv::Mat1b m = drawn_hand(kSize, palm_at(k), 20.0, 1.0);
     cv::rectangle(m, kBox, 255, cv::FILLED);
     return m;
 }
 
-gc::HandState at(const gc::HandTemplate& t, int k) {
+gc::HandState at(const gc::HandTemplate& t, int k)
+{
     const cv::Point2d d = palm_at(k) - palm_at(0);
     return {t.origin_px.x + d.x, t.origin_px.y + d.y, 0.0, 1.0};
 }
 
 // Runs a trial of `candidate` beside `tracked` (both captured in frame 0) while the hand
 // moves off the box; the tracked template follows the hand exactly, as a filter would.
-gc::TemplateTrial::Verdict run_trial(const gc::HandTemplate& tracked,
-                                     const gc::HandTemplate& candidate, gc::HandState* final_state) {
+gc::TemplateTrial::Verdict run_trial(const gc::HandTemplate& tracked, const gc::HandTemplate& candidate,
+                                     gc::HandState* final_state)
+{
     gc::TemplateTrial trial(candidate, gc::SkinModel::generic(), at(candidate, 0));
     auto verdict = gc::TemplateTrial::Verdict::Running;
     for (int k = 1; verdict == gc::TemplateTrial::Verdict::Running; ++k) {
@@ -47,7 +50,8 @@ gc::TemplateTrial::Verdict run_trial(const gc::HandTemplate& tracked,
     return verdict;
 }
 
-TEST(TemplateTrial, MovedAlongAppliesTheSameSimilarityMotion) {
+TEST(TemplateTrial, MovedAlongAppliesTheSameSimilarityMotion)
+{
     const gc::HandState from{100, 100, 0.0, 1.0}, to{110, 95, std::numbers::pi / 2, 2.0};
     // A point 10 px right of `from` ends 20 px below `to` (turned a quarter, doubled).
     const auto s = gc::moved_along({110, 100, 0.3, 1.5}, from, to);
@@ -57,7 +61,8 @@ TEST(TemplateTrial, MovedAlongAppliesTheSameSimilarityMotion) {
     EXPECT_NEAR(s.scale, 3.0, 1e-9);
 }
 
-TEST(TemplateTrial, ACaptureOfTheHandAloneReplacesOneMergedWithAStaticObject) {
+TEST(TemplateTrial, ACaptureOfTheHandAloneReplacesOneMergedWithAStaticObject)
+{
     const cv::Mat1b first = skin_map(0);
     const auto merged = gc::HandTemplate::from_mask(first, first);
     const cv::Mat1b hand = drawn_hand(kSize, palm_at(0), 20.0, 1.0);
@@ -78,7 +83,8 @@ TEST(TemplateTrial, ACaptureOfTheHandAloneReplacesOneMergedWithAStaticObject) {
 // tracked template (TemplateTrial::clearly_better); the tracked one is placed at
 // `tracked_scale` about its palm, as a filter whose scale collapsed would place it.
 bool clearly_better_before_verdict(const gc::HandTemplate& tracked, double tracked_scale,
-                                   const gc::HandTemplate& candidate) {
+                                   const gc::HandTemplate& candidate)
+{
     const auto placed = [&](int k) {
         gc::HandState s = at(tracked, k);
         s.scale = tracked_scale;
@@ -96,7 +102,8 @@ bool clearly_better_before_verdict(const gc::HandTemplate& tracked, double track
     return trial.clearly_better();
 }
 
-TEST(TemplateTrial, TheWholeHandClearlyOutAgreesAContourShrunkOntoPartOfIt) {
+TEST(TemplateTrial, TheWholeHandClearlyOutAgreesAContourShrunkOntoPartOfIt)
+{
     const cv::Mat1b first = skin_map(0);
     const auto alone = gc::HandTemplate::from_mask(drawn_hand(kSize, palm_at(0), 20.0, 1.0), first);
     EXPECT_TRUE(clearly_better_before_verdict(alone, 0.5, alone));

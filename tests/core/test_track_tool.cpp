@@ -37,8 +37,7 @@ std::vector<std::string> lines_of(const std::string& text)
 {
     std::vector<std::string> lines;
     std::istringstream in(text);
-    for (std::string line; std::getline(in, line);)
-        lines.push_back(line);
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
     return lines;
 }
 
@@ -61,8 +60,7 @@ void truncate_file(const fs::path& p, double fraction)
 std::string big_endian(std::uint32_t v, int bytes)
 {
     std::string out;
-    for (int i = bytes - 1; i >= 0; --i)
-        out += static_cast<char>((v >> (8 * i)) & 0xFF);
+    for (int i = bytes - 1; i >= 0; --i) out += static_cast<char>((v >> (8 * i)) & 0xFF);
     return out;
 }
 
@@ -70,14 +68,15 @@ std::string big_endian(std::uint32_t v, int bytes)
 std::string png_claiming(std::uint32_t width, std::uint32_t height)
 {
     return std::string("\x89PNG\r\n\x1a\n", 8) + big_endian(13, 4) + "IHDR" + big_endian(width, 4) +
-           big_endian(height, 4) + std::string("\x08\x02\x00\x00\x00", 5) + big_endian(0, 4) +
-           big_endian(64, 4) + "IDAT" + std::string(64, '\x5a');
+           big_endian(height, 4) + std::string("\x08\x02\x00\x00\x00", 5) + big_endian(0, 4) + big_endian(64, 4) +
+           "IDAT" + std::string(64, '\x5a');
 }
 
 // A JPEG (SOI, a JFIF segment, a baseline frame header) that declares width x height.
 std::string jpeg_claiming(std::uint16_t width, std::uint16_t height)
 {
-    const std::string jfif = std::string("\xFF\xE0", 2) + big_endian(16, 2) + std::string("JFIF\0\x01\x01\0\0\x01\0\x01\0\0", 14);
+    const std::string jfif =
+        std::string("\xFF\xE0", 2) + big_endian(16, 2) + std::string("JFIF\0\x01\x01\0\0\x01\0\x01\0\0", 14);
     const std::string frame = std::string("\xFF\xC0", 2) + big_endian(17, 2) + "\x08" + big_endian(height, 2) +
                               big_endian(width, 2) + std::string("\x03\x01\x22\x00\x02\x11\x01\x03\x11\x01", 10);
     return std::string("\xFF\xD8", 2) + jfif + frame + std::string(64, '\x5a');
@@ -133,8 +132,7 @@ protected:
             if (f < kCorruptFrames) {
                 ASSERT_TRUE(write_png(dir_ / "corrupt" / name, frame));
             }
-            if (f < kVideoFrames)
-                video.write(frame);
+            if (f < kVideoFrames) video.write(frame);
             scene.render(f, gc::Eye::Right, {}, frame);
             ASSERT_TRUE(write_png(dir_ / "right" / name, frame));
             if (f < 5) {
@@ -213,8 +211,7 @@ TEST_F(TrackTool, StereoWritesOneValidLinePerFrameAndTracks)
         EXPECT_NEAR(v["pts_ns"].number(), i * 1e9 / 30.0, 1.0);
         const std::string& state = v["state"].string();
         ASSERT_TRUE(state == "tracking" || state == "acquiring" || state == "lost") << state;
-        if (state != "tracking")
-            continue;
+        if (state != "tracking") continue;
         first_tracking = first_tracking < 0 ? i : first_tracking;
         ++tracking;
         const JsonValue& b = v["left"]["bbox"];
@@ -273,8 +270,8 @@ TEST_F(TrackTool, MissingInputsAreNamed)
 TEST_F(TrackTool, MismatchedSizesAreAnError)
 {
     const fs::path out = dir_ / "mismatch.jsonl";
-    const RunResult r = run("--left " + quoted(pattern("left")) + " --right " + quoted(pattern("small")) +
-                            " --out " + quoted(out.string()));
+    const RunResult r = run("--left " + quoted(pattern("left")) + " --right " + quoted(pattern("small")) + " --out " +
+                            quoted(out.string()));
     EXPECT_EQ(r.status, 1);
     EXPECT_NE(r.err.find("640x480"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("320x240"), std::string::npos) << r.err;
@@ -302,8 +299,8 @@ TEST_F(TrackTool, CalibrationForAnotherSizeIsAnError)
 
 TEST_F(TrackTool, ShorterRightStopsWithAWarning)
 {
-    const RunResult r = run("--left " + quoted(pattern("left")) + " --right " + quoted(pattern("short")) +
-                            " --particles 50");
+    const RunResult r =
+        run("--left " + quoted(pattern("left")) + " --right " + quoted(pattern("short")) + " --particles 50");
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(lines_of(r.out).size(), 5u);
     EXPECT_NE(r.err.find("right input ended at frame 5"), std::string::npos) << r.err;
@@ -399,8 +396,8 @@ TEST_F(TrackTool, UndecodableImageIsAnErrorUnlessSkipped)
                                  " --particles 50 --max-frames 12 --skip-bad-frames");
     ASSERT_EQ(stereo.status, 0) << stereo.err;
     EXPECT_EQ(frame_numbers(stereo.out), expected);
-    const RunResult stereo_stopped = run("--left " + quoted(pattern("right")) + " --right " +
-                                         quoted(pattern("corrupt")) + " --particles 50");
+    const RunResult stereo_stopped =
+        run("--left " + quoted(pattern("right")) + " --right " + quoted(pattern("corrupt")) + " --particles 50");
     EXPECT_EQ(stereo_stopped.status, 1);
     EXPECT_NE(stereo_stopped.err.find("right input"), std::string::npos) << stereo_stopped.err;
     EXPECT_NE(stereo_stopped.err.find("frame 5 of 12"), std::string::npos) << stereo_stopped.err;
@@ -458,8 +455,7 @@ TEST_F(TrackTool, LinesAreWrittenWholeAsTheyAreMade)
     ASSERT_NE(exe, nullptr);
     const fs::path out = dir_ / "watched.jsonl";
     const gc::test::LineWatch w = gc::test::watch_lines(
-        {exe, "--left", pattern("left"), "--right", pattern("right"),
-         "--particles", "2000", "--out", out.string()},
+        {exe, "--left", pattern("left"), "--right", pattern("right"), "--particles", "2000", "--out", out.string()},
         out.string(), 8, std::chrono::seconds(60));
     ASSERT_TRUE(w.started);
     EXPECT_GT(w.looks, 0);
@@ -468,8 +464,7 @@ TEST_F(TrackTool, LinesAreWrittenWholeAsTheyAreMade)
                                    << "'";
     ASSERT_FALSE(w.final_content.empty());
     EXPECT_EQ(w.final_content.back(), '\n') << "terminated: " << w.terminated;
-    for (const std::string& line : lines_of(w.final_content))
-        EXPECT_NO_THROW((void)JsonReader::parse(line)) << line;
+    for (const std::string& line : lines_of(w.final_content)) EXPECT_NO_THROW((void)JsonReader::parse(line)) << line;
 }
 
 }  // namespace

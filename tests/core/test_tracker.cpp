@@ -18,7 +18,8 @@
 
 namespace {
 
-gc::sim::SceneConfig mixed_scene(gc::sim::Preset preset, std::uint64_t seed) {
+gc::sim::SceneConfig mixed_scene(gc::sim::Preset preset, std::uint64_t seed)
+{
     gc::sim::SceneConfig cfg;
     cfg.preset = preset;
     cfg.motion = gc::sim::Motion::Mixed;
@@ -28,13 +29,15 @@ gc::sim::SceneConfig mixed_scene(gc::sim::Preset preset, std::uint64_t seed) {
 
 // These tests hold the thesis's tracker to its figures: detection by motion and skin,
 // nothing learned (the learned detector has its own tests in test_learned_tracker.cpp).
-gc::TrackerParams thesis_params() {
+gc::TrackerParams thesis_params()
+{
     gc::TrackerParams params;
     params.detector = gc::HandDetector::Motion;
     return params;
 }
 
-gc::TrackerParams seeded_params(int particles, std::uint64_t seed) {
+gc::TrackerParams seeded_params(int particles, std::uint64_t seed)
+{
     gc::TrackerParams params = thesis_params();
     params.particles = particles;
     params.seed = seed;
@@ -47,10 +50,10 @@ struct DrawnScene {
     cv::Mat3b background;
     cv::Vec3b skin{105, 140, 205};  // BGR
 
-    explicit DrawnScene(std::uint32_t seed, cv::Size size = {320, 240}) : background(size) {
+    explicit DrawnScene(std::uint32_t seed, cv::Size size = {320, 240}) : background(size)
+    {
         std::mt19937 rng(seed);
-        std::uniform_int_distribution<int> c(30, 220), px(0, size.width - 1),
-            py(0, size.height - 1), sz(8, 50);
+        std::uniform_int_distribution<int> c(30, 220), px(0, size.width - 1), py(0, size.height - 1), sz(8, 50);
         background.setTo(cv::Vec3b(60, 70, 65));
         for (int i = 0; i < 40; ++i)
             cv::rectangle(background, cv::Rect(px(rng), py(rng), sz(rng), sz(rng)),
@@ -59,15 +62,15 @@ struct DrawnScene {
             cv::circle(background, {px(rng), py(rng)}, 4, cv::Scalar(skin), cv::FILLED);
     }
 
-    void render(cv::Point2d palm, double finger_deg, double s, cv::Mat3b& out,
-                cv::Mat1b& mask) const {
+    void render(cv::Point2d palm, double finger_deg, double s, cv::Mat3b& out, cv::Mat1b& mask) const
+    {
         mask = cv::Mat1b(background.size(), uchar(0));
         cv::circle(mask, palm, cvRound(22 * s), 255, cv::FILLED);
         const double a = finger_deg * std::numbers::pi / 180.0;
         const cv::Point2d dir(std::cos(a), -std::sin(a)), side(-dir.y, dir.x);
         const cv::Point2d base = palm + dir * (15.0 * s), tip = palm + dir * (62.0 * s);
-        std::vector<cv::Point> finger{base + side * (5.0 * s), tip + side * (5.0 * s),
-                                      tip - side * (5.0 * s), base - side * (5.0 * s)};
+        std::vector<cv::Point> finger{base + side * (5.0 * s), tip + side * (5.0 * s), tip - side * (5.0 * s),
+                                      base - side * (5.0 * s)};
         cv::fillConvexPoly(mask, finger, 255);
         cv::circle(mask, tip, cvRound(5 * s), 255, cv::FILLED);
         cv::circle(mask, palm + side * (26.0 * s) + dir * (6.0 * s), cvRound(7 * s), 255, cv::FILLED);
@@ -75,7 +78,8 @@ struct DrawnScene {
     }
 
     // The background with skin where `mask` is, plus sensor noise.
-    void paint(const cv::Mat1b& mask, cv::Mat3b& out) const {
+    void paint(const cv::Mat1b& mask, cv::Mat3b& out) const
+    {
         background.copyTo(out);
         out.setTo(skin, mask);
         cv::Mat3s o;
@@ -94,14 +98,17 @@ struct Pose {
 };
 
 // Waves for 8 frames, then moves, turns and scales smoothly.
-Pose scripted(int f) {
+Pose scripted(int f)
+{
     if (f < 8) return {{150.0 + (f % 2 ? 6.0 : -6.0), 130.0}, 30.0, 1.0};
     const double t = (f - 8) / 30.0;
     return {{150.0 + 40.0 * std::sin(1.3 * t), 130.0 + 25.0 * std::sin(0.9 * t)},
-            30.0 + 25.0 * std::sin(1.1 * t), 1.0 + 0.12 * std::sin(0.7 * t)};
+            30.0 + 25.0 * std::sin(1.1 * t),
+            1.0 + 0.12 * std::sin(0.7 * t)};
 }
 
-double iou(const std::vector<cv::Point2f>& contour, const cv::Mat1b& truth) {
+double iou(const std::vector<cv::Point2f>& contour, const cv::Mat1b& truth)
+{
     cv::Mat1b filled(truth.size(), uchar(0));
     std::vector<cv::Point> poly;
     for (const auto& p : contour) poly.emplace_back(cvRound(p.x), cvRound(p.y));
@@ -112,7 +119,8 @@ double iou(const std::vector<cv::Point2f>& contour, const cv::Mat1b& truth) {
     return double(cv::countNonZero(i)) / std::max(1, cv::countNonZero(u));
 }
 
-TEST(HandTracker, AcquiresAndFollowsAMovingHand) {
+TEST(HandTracker, AcquiresAndFollowsAMovingHand)
+{
     cv::setRNGSeed(7);
     DrawnScene scene(9);
     gc::TrackerParams params = thesis_params();
@@ -150,16 +158,17 @@ struct CleanInput {
     int jpeg_quality = 0;      // > 0: every frame passed through JPEG at this quality
 };
 struct CleanRun {
-    int first = -1;              // the first tracked frame
-    int tracked = 0;             // tracked frames
-    int on_hand_from_30 = 0;     // tracked frames from frame 30 at IoU >= 0.8
-    double worst = 1.0;          // the lowest IoU of a tracked frame
+    int first = -1;           // the first tracked frame
+    int tracked = 0;          // tracked frames
+    int on_hand_from_30 = 0;  // tracked frames from frame 30 at IoU >= 0.8
+    double worst = 1.0;       // the lowest IoU of a tracked frame
     double snr_db = 0.0;
 };
 constexpr int kCleanRunFrames = 120, kSettledFrame = 30;
 using FrameCheck = std::function<void(int, const gc::EyeEstimate&, const gc::sim::EyeTruth&)>;
 
-CleanRun track_clean(std::uint64_t seed, const CleanInput& input = {}, const FrameCheck& check = {}) {
+CleanRun track_clean(std::uint64_t seed, const CleanInput& input = {}, const FrameCheck& check = {})
+{
     gc::sim::SceneConfig cfg = mixed_scene(gc::sim::Preset::Clean, seed);
     cfg.noise_sigma = input.noise_sigma;
     const gc::sim::Scene scene(cfg);
@@ -177,8 +186,7 @@ CleanRun track_clean(std::uint64_t seed, const CleanInput& input = {}, const Fra
             bgr = cv::imdecode(encoded, cv::IMREAD_COLOR);
         }
         const auto& e = tracker.process(bgr);
-        const cv::Mat1b tracked = e.valid() ? gc::contour_mask(e.contour, bgr.size())
-                                            : cv::Mat1b(bgr.size(), uchar(0));
+        const cv::Mat1b tracked = e.valid() ? gc::contour_mask(e.contour, bgr.size()) : cv::Mat1b(bgr.size(), uchar(0));
         snr.add(truth.mask, tracked);
         if (!e.valid()) continue;
         if (run.first < 0) run.first = f;
@@ -192,7 +200,8 @@ CleanRun track_clean(std::uint64_t seed, const CleanInput& input = {}, const Fra
     return run;
 }
 
-TEST(HandTracker, FollowsARenderedSceneAcrossSeeds) {
+TEST(HandTracker, FollowsARenderedSceneAcrossSeeds)
+{
     for (std::uint64_t seed : {1u, 2u}) {
         const auto pointing = [&](int f, const gc::EyeEstimate& e, const gc::sim::EyeTruth& truth) {
             EXPECT_NEAR(e.pointing_deg, truth.pointing_deg, 10.0) << "seed " << seed << " frame " << f;
@@ -210,7 +219,8 @@ TEST(HandTracker, FollowsARenderedSceneAcrossSeeds) {
 // shifts its edges (docs/adr/0019); the tracker must still acquire the hand, keep it, and
 // outline it well once settled. The SNR bound is a dB below the uncompressed one: on seed 2
 // the first template is twisted at the finger until a clean capture replaces it.
-TEST(HandTracker, FollowsAJpegCompressedScene) {
+TEST(HandTracker, FollowsAJpegCompressedScene)
+{
     for (std::uint64_t seed : {1u, 2u}) {
         const CleanRun run = track_clean(seed, {.jpeg_quality = 80});
         ASSERT_GE(run.first, 0) << "seed " << seed;
@@ -224,7 +234,8 @@ TEST(HandTracker, FollowsAJpegCompressedScene) {
 // A sensor four times noisier than the scenes' own (8 grey levels per channel): at a fixed
 // difference threshold much of a still frame would count as moving and acquisition would
 // take the wrong thing; the threshold follows the noise instead (docs/adr/0019).
-TEST(HandTracker, FollowsTheHandThroughHeavySensorNoise) {
+TEST(HandTracker, FollowsTheHandThroughHeavySensorNoise)
+{
     for (std::uint64_t seed : {1u, 2u}) {
         const CleanRun run = track_clean(seed, {.noise_sigma = 8.0});
         ASSERT_GE(run.first, 0) << "seed " << seed;
@@ -240,7 +251,8 @@ struct FaceCrossing {
     int frames = 0, off = 0;
 };
 
-FaceCrossing track_face_pass(std::uint64_t seed, gc::Eye eye) {
+FaceCrossing track_face_pass(std::uint64_t seed, gc::Eye eye)
+{
     const gc::sim::Scene scene(mixed_scene(gc::sim::Preset::FacePass, seed));
     gc::HandTracker tracker(seeded_params(1000, seed));
     cv::Mat bgr;
@@ -266,13 +278,14 @@ FaceCrossing track_face_pass(std::uint64_t seed, gc::Eye eye) {
 // as the hand moves off (0009); on 44 a re-capture merges a strip of a table whose far end
 // could pass for the finger (0010); on 278 and 327 a shrinking contour could settle on the
 // face's eyes and brows (0018).
-TEST(HandTracker, KeepsTheHandWhileItCrossesAFace) {
-    for (std::uint64_t seed : {1u, 2u, 3u, 4u, 5u, 6u, 12u, 21u, 23u, 25u, 10u, 17u, 30u, 73u,
-                               22u, 96u, 75u, 44u, 278u, 327u}) {
+TEST(HandTracker, KeepsTheHandWhileItCrossesAFace)
+{
+    for (std::uint64_t seed :
+         {1u, 2u, 3u, 4u, 5u, 6u, 12u, 21u, 23u, 25u, 10u, 17u, 30u, 73u, 22u, 96u, 75u, 44u, 278u, 327u}) {
         const FaceCrossing c = track_face_pass(seed, gc::Eye::Left);
         EXPECT_GT(c.frames, 10) << "seed " << seed << ": the hand must cross the face";
-        EXPECT_EQ(c.off, 0) << "seed " << seed << ": lost or off the hand in " << c.off << " of "
-                            << c.frames << " crossing frames";
+        EXPECT_EQ(c.off, 0) << "seed " << seed << ": lost or off the hand in " << c.off << " of " << c.frames
+                            << " crossing frames";
     }
 }
 
@@ -280,7 +293,8 @@ TEST(HandTracker, KeepsTheHandWhileItCrossesAFace) {
 // the contour slides onto the box while the hand moves on by it. A contour lying on the
 // learnt scene must give way at once to a capture of the hand apart from it, before the
 // hand reaches the face (docs/adr/0016).
-TEST(HandTracker, LeavesTheLearntSceneForACaptureOfTheHand) {
+TEST(HandTracker, LeavesTheLearntSceneForACaptureOfTheHand)
+{
     const FaceCrossing c = track_face_pass(47, gc::Eye::Right);
     EXPECT_GT(c.frames, 10);
     EXPECT_EQ(c.off, 0) << "lost or off the hand in " << c.off << " of " << c.frames << " crossing frames";
@@ -288,7 +302,8 @@ TEST(HandTracker, LeavesTheLearntSceneForACaptureOfTheHand) {
 
 // A pointing hand of the proportions capture_quality() ranks as pointing (palm radius 22,
 // a finger 10 px wide reaching 2.5 palm radii, pointing up), with sensor noise.
-void draw_upright_hand(const DrawnScene& scene, cv::Point palm, cv::Mat3b& out, cv::Mat1b& mask) {
+void draw_upright_hand(const DrawnScene& scene, cv::Point palm, cv::Mat3b& out, cv::Mat1b& mask)
+{
     mask = cv::Mat1b(scene.background.size(), uchar(0));
     cv::circle(mask, palm, 22, 255, cv::FILLED);
     cv::rectangle(mask, cv::Rect(palm.x - 5, palm.y - 55, 10, 50), 255, cv::FILLED);
@@ -299,7 +314,8 @@ void draw_upright_hand(const DrawnScene& scene, cv::Point palm, cv::Mat3b& out, 
 // (not clean); then it moves away and leaves a static likeness of itself where it was,
 // which the template fits perfectly. The tracker must notice that nothing moves under its
 // contour and go to the hand that does.
-TEST(HandTracker, LeavesAStaticLikenessForTheHandThatMoves) {
+TEST(HandTracker, LeavesAStaticLikenessForTheHandThatMoves)
+{
     for (std::uint32_t background : {3u, 7u}) {
         cv::setRNGSeed(12);
         DrawnScene scene(background);
@@ -326,12 +342,13 @@ TEST(HandTracker, LeavesAStaticLikenessForTheHandThatMoves) {
             if (f >= 60) on_hand += e.valid() && iou(e.contour, truth) >= 0.8;
         }
         EXPECT_TRUE(acquired) << "background " << background;
-        EXPECT_EQ(on_hand, 30) << "background " << background << ": on the moving hand in "
-                               << on_hand << " of the last 30 frames";
+        EXPECT_EQ(on_hand, 30) << "background " << background << ": on the moving hand in " << on_hand
+                               << " of the last 30 frames";
     }
 }
 
-TEST(HandTracker, RecoversAfterTheHandLeavesAndReturns) {
+TEST(HandTracker, RecoversAfterTheHandLeavesAndReturns)
+{
     cv::setRNGSeed(8);
     DrawnScene scene(10);
     gc::TrackerParams params = thesis_params();
@@ -343,9 +360,12 @@ TEST(HandTracker, RecoversAfterTheHandLeavesAndReturns) {
     for (int f = 0; f < 90; ++f) {
         Pose p = scripted(std::min(f, 20));
         // Frames 25..45 slide out to the right and stay out; then slide back and hold.
-        if (f >= 25 && f < 35) p.palm.x += 30.0 * (f - 24);
-        else if (f >= 35 && f < 55) p.palm.x += 1000.0;
-        else if (f >= 55 && f < 65) p.palm.x += 30.0 * (65 - f);
+        if (f >= 25 && f < 35)
+            p.palm.x += 30.0 * (f - 24);
+        else if (f >= 35 && f < 55)
+            p.palm.x += 1000.0;
+        else if (f >= 55 && f < 65)
+            p.palm.x += 30.0 * (65 - f);
         scene.render(p.palm, p.deg, p.scale, frame, truth);
         const auto& e = tracker.process(frame);
         if (f >= 40 && f < 55) lost |= e.state == gc::TrackState::Lost;
@@ -360,7 +380,8 @@ TEST(HandTracker, RecoversAfterTheHandLeavesAndReturns) {
     EXPECT_TRUE(back) << "the returning hand must be tracked again";
 }
 
-TEST(HandTracker, IsDeterministicForASeed) {
+TEST(HandTracker, IsDeterministicForASeed)
+{
     DrawnScene scene(11);
     gc::TrackerParams params = thesis_params();
     params.particles = 200;
@@ -382,7 +403,8 @@ TEST(HandTracker, IsDeterministicForASeed) {
 
 // reset() returns a tracker to its initial state: on a fresh tracker it changes nothing, and
 // after tracking a while the reset tracker repeats a fresh one's output exactly.
-TEST(HandTracker, ResetGivesTheOutputOfAFreshTracker) {
+TEST(HandTracker, ResetGivesTheOutputOfAFreshTracker)
+{
     DrawnScene scene(12);
     gc::TrackerParams params = thesis_params();
     params.particles = 200;
@@ -418,7 +440,8 @@ TEST(HandTracker, ResetGivesTheOutputOfAFreshTracker) {
 // A head that jumps (a fast PTZ turn, a re-homing head) predicts every hypothesis out of
 // the frame: the tracker reports the hand lost, without an exception, and finds it again
 // once the view is steady.
-TEST(HandTracker, SurvivesAHeadJumpThatLeavesNothingToSearch) {
+TEST(HandTracker, SurvivesAHeadJumpThatLeavesNothingToSearch)
+{
     const gc::sim::Scene scene(mixed_scene(gc::sim::Preset::Clean, 1));
     gc::HandTracker tracker(seeded_params(1000, 1));
     cv::Mat frame;
@@ -443,7 +466,8 @@ TEST(HandTracker, SurvivesAHeadJumpThatLeavesNothingToSearch) {
     }
 }
 
-TEST(HandTracker, BadInputsGiveClearErrors) {
+TEST(HandTracker, BadInputsGiveClearErrors)
+{
     gc::HandTracker t;
     EXPECT_THROW(t.process(cv::Mat()), std::invalid_argument);
     EXPECT_THROW(t.process(cv::Mat1b(64, 64, uchar(0))), std::invalid_argument);
@@ -469,7 +493,8 @@ TEST(HandTracker, BadInputsGiveClearErrors) {
     EXPECT_THROW(gc::HandTracker{bad}, std::invalid_argument);
 }
 
-TEST(StereoHandTracker, TracksBothEyesLikeTwoMonoTrackers) {
+TEST(StereoHandTracker, TracksBothEyesLikeTwoMonoTrackers)
+{
     DrawnScene left_scene(12), right_scene(13);
     gc::TrackerParams params = thesis_params();
     params.particles = 200;

@@ -10,13 +10,15 @@ using namespace gc::headctl;
 
 namespace {
 
-void check(bool ok) {
+void check(bool ok)
+{
     if (!ok) std::abort();
 }
 
 }  // namespace
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
+{
     const std::string_view line(reinterpret_cast<const char*>(data), size);
     peek_request_id(line);
     try {

@@ -10,7 +10,8 @@
 
 using namespace gc::headctl;
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
+{
     const std::string text(reinterpret_cast<const char*>(data), size);
     const std::string shown = redact_uri(text);
     for (const TextSpan& value : token_values(shown))

@@ -12,8 +12,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
 {
     const std::string_view bytes(reinterpret_cast<const char*>(data), size);
     if (const auto declared = gc::tools::image_header_size(bytes)) {
-        if (declared->width <= 0 || declared->height <= 0)
-            std::abort();
+        if (declared->width <= 0 || declared->height <= 0) std::abort();
     }
     return 0;
 }

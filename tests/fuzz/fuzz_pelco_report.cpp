@@ -8,7 +8,8 @@
 
 using namespace gc::headctl;
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
+{
     if (size < 7) return 0;
     const std::span<const std::uint8_t, 7> m(data, 7);
     try {

@@ -9,7 +9,8 @@ using namespace gc::headctl;
 
 namespace {
 
-void parse(std::span<const std::uint8_t> bytes) {
+void parse(std::span<const std::uint8_t> bytes)
+{
     try {
         const visca::Reply r = visca::parse_reply(bytes);
         if (r.kind == visca::ReplyKind::Position) {
@@ -30,7 +31,8 @@ void parse(std::span<const std::uint8_t> bytes) {
 
 }  // namespace
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
+{
     const std::span<const std::uint8_t> bytes(data, size);
     parse(bytes);
     try {

@@ -27,8 +27,7 @@ int main(int argc, char** argv)
         return 2;
     }
     const std::vector<gc::chaos::RigJump> jumps = gc::chaos::random_jumps(frames, seed);
-    if (!gc::chaos::drive_rig(pipeline, jumps))
-        return 2;
+    if (!gc::chaos::drive_rig(pipeline, jumps)) return 2;
     const gc::chaos::Run run = gc::chaos::play(pipeline, {1, 1000, 5000, frames}, 3600 * GST_SECOND);
     gst_object_unref(pipeline);
     const std::vector<gc::chaos::Tracked> tracked = gc::chaos::read_tracked(json);
@@ -37,8 +36,7 @@ int main(int argc, char** argv)
     int judged = 0, found = 0;
     std::vector<int> delays;
     for (const gc::chaos::Outcome& o : gc::chaos::judge(jumps, run, tracked)) {
-        if (!o.judged())
-            continue;
+        if (!o.judged()) continue;
         ++judged;
         if (o.found()) {
             ++found;
@@ -47,25 +45,23 @@ int main(int argc, char** argv)
             // Frame by frame from the jump: T tracking on the hand, t tracking elsewhere, . not.
             std::string states;
             for (int f = o.frame; f < o.frame + gc::chaos::kJudgedVisibleFrames && f < int(tracked.size()); ++f)
-                states += !tracked[size_t(f)].tracking                                   ? '.'
+                states += !tracked[size_t(f)].tracking                                            ? '.'
                           : gc::chaos::overlap(tracked[size_t(f)].bbox, run.left[size_t(f)].bbox) ? 'T'
-                                                                                              : 't';
-            std::printf("jump at frame %d: not found again within %d frames: %s\n", o.frame,
-                        gc::chaos::kFoundWithin, states.c_str());
+                                                                                                  : 't';
+            std::printf("jump at frame %d: not found again within %d frames: %s\n", o.frame, gc::chaos::kFoundWithin,
+                        states.c_str());
         }
     }
     std::sort(delays.begin(), delays.end());
-    std::printf("%s after %.1f s (%.1f stereo fps), %zu JSON lines, %zu warnings%s%s\n",
-                run.eos ? "EOS" : "no EOS", run.seconds, frames / run.seconds, tracked.size(), run.warnings.size(),
+    std::printf("%s after %.1f s (%.1f stereo fps), %zu JSON lines, %zu warnings%s%s\n", run.eos ? "EOS" : "no EOS",
+                run.seconds, frames / run.seconds, tracked.size(), run.warnings.size(),
                 run.error.empty() ? "" : ", error: ", run.error.c_str());
     std::printf("%d frames, %zu jumps; %d left the hand in both views for %d+ frames, found again within %d frames "
                 "after %d (median %d, max %d frames)\n",
                 frames, jumps.size(), judged, gc::chaos::kJudgedVisibleFrames, gc::chaos::kFoundWithin, found,
                 delays.empty() ? -1 : delays[delays.size() / 2], delays.empty() ? -1 : delays.back());
-    for (const std::string& warning : run.warnings)
-        std::printf("warning: %s\n", warning.c_str());
-    for (const auto& [buffers, kib] : run.rss_kib)
-        std::printf("RSS after frame %d: %.1f MB\n", buffers, kib / 1024.0);
+    for (const std::string& warning : run.warnings) std::printf("warning: %s\n", warning.c_str());
+    for (const auto& [buffers, kib] : run.rss_kib) std::printf("RSS after frame %d: %.1f MB\n", buffers, kib / 1024.0);
     gst_deinit();  // lets GST_TRACERS=leaks report what is still alive
     return run.eos && run.error.empty() && found == judged && judged > 0 ? 0 : 1;
 }

@@ -53,8 +53,8 @@ inline GstClockTime frame_time(int frame) { return gst_util_uint64_scale(guint64
 inline std::string pipeline_description(int frames, unsigned seed, const std::string& json_path)
 {
     const std::string eye = " scene=light motion=mixed seed=" + std::to_string(seed) +
-                            " num-buffers=" + std::to_string(frames) + " ! video/x-raw,framerate=" +
-                            std::to_string(kFps) + "/1 ! ";
+                            " num-buffers=" + std::to_string(frames) +
+                            " ! video/x-raw,framerate=" + std::to_string(kFps) + "/1 ! ";
     return "handscenesrc name=l eye=left" + eye + "t.sink_left handscenesrc name=r eye=right" + eye +
            "t.sink_right handtracker name=t steer=off message-updates=none json-location=" + json_path +
            " ! fakesink name=sink";
@@ -78,8 +78,7 @@ inline bool drive_rig(GstElement* pipeline, const std::vector<RigJump>& jumps)
 {
     for (const char* name : {"l", "r"}) {
         GstElement* src = gst_bin_get_by_name(GST_BIN(pipeline), name);
-        if (!src)
-            return false;
+        if (!src) return false;
         drive(src, "head-pan", jumps, true);
         drive(src, "head-tilt", jumps, false);
         gst_object_unref(src);
@@ -96,7 +95,7 @@ struct Run {
     bool eos = false;
     std::string error;
     std::vector<std::string> warnings;
-    std::vector<EyeTruth> left, right;  // by frame
+    std::vector<EyeTruth> left, right;          // by frame
     std::vector<std::pair<int, long>> rss_kib;  // (output buffers so far, RSS) at the frames asked for
     double seconds = 0.0;
 };
@@ -105,8 +104,7 @@ inline long rss_kib()
 {
     std::ifstream status("/proc/self/status");
     for (std::string line; std::getline(status, line);)
-        if (line.rfind("VmRSS:", 0) == 0)
-            return std::atol(line.c_str() + 6);
+        if (line.rfind("VmRSS:", 0) == 0) return std::atol(line.c_str() + 6);
     return -1;
 }
 
@@ -138,8 +136,7 @@ inline GstBusSyncReply keep_truth(GstBus*, GstMessage* msg, gpointer data)
     const bool left = std::string(gst_structure_get_string(s, "eye")) == "left";
     std::lock_guard<std::mutex> lock(c->mutex);
     std::vector<EyeTruth>& eye = left ? c->run->left : c->run->right;
-    if (eye.size() <= frame)
-        eye.resize(frame + 1);
+    if (eye.size() <= frame) eye.resize(frame + 1);
     eye[frame] = t;
     gst_message_unref(msg);
     return GST_BUS_DROP;
@@ -216,18 +213,15 @@ inline std::vector<Tracked> read_tracked(const std::string& path)
     std::ifstream in(path);
     for (std::string line; std::getline(in, line);) {
         int frame = -1;
-        if (std::sscanf(line.c_str(), "{\"frame\":%d", &frame) != 1 || frame < 0)
-            continue;
+        if (std::sscanf(line.c_str(), "{\"frame\":%d", &frame) != 1 || frame < 0) continue;
         Tracked t;
         t.tracking = line.find("\"state\":\"tracking\"") != std::string::npos;
         const size_t left = line.find("\"left\":{");
         const size_t bbox = left == std::string::npos ? left : line.find("\"bbox\":[", left);
-        if (bbox == std::string::npos ||
-            std::sscanf(line.c_str() + bbox, "\"bbox\":[%d,%d,%d,%d]", &t.bbox[0], &t.bbox[1], &t.bbox[2],
-                        &t.bbox[3]) != 4)
+        if (bbox == std::string::npos || std::sscanf(line.c_str() + bbox, "\"bbox\":[%d,%d,%d,%d]", &t.bbox[0],
+                                                     &t.bbox[1], &t.bbox[2], &t.bbox[3]) != 4)
             t.tracking = false;
-        if (out.size() <= size_t(frame))
-            out.resize(size_t(frame) + 1);
+        if (out.size() <= size_t(frame)) out.resize(size_t(frame) + 1);
         out[size_t(frame)] = t;
     }
     return out;
@@ -248,7 +242,8 @@ struct Outcome {
 
 // For every jump: how long the hand stayed in view and how soon the tracker had it again
 // (tracking, its left box on the hand's), whatever later jumps did meanwhile.
-inline std::vector<Outcome> judge(const std::vector<RigJump>& jumps, const Run& run, const std::vector<Tracked>& tracked)
+inline std::vector<Outcome> judge(const std::vector<RigJump>& jumps, const Run& run,
+                                  const std::vector<Tracked>& tracked)
 {
     const size_t frames = std::min({run.left.size(), run.right.size(), tracked.size()});
     std::vector<Outcome> out;
@@ -257,8 +252,7 @@ inline std::vector<Outcome> judge(const std::vector<RigJump>& jumps, const Run& 
         o.frame = j.frame;
         for (size_t f = size_t(j.frame); f < frames && f - size_t(j.frame) < size_t(kJudgedVisibleFrames); ++f) {
             const bool visible = run.left[f].visible && run.right[f].visible;
-            if (!visible)
-                break;
+            if (!visible) break;
             ++o.visible_after;
             if (o.found_after < 0 && tracked[f].tracking && overlap(tracked[f].bbox, run.left[f].bbox))
                 o.found_after = int(f) - j.frame;

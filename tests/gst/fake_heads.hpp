@@ -84,8 +84,7 @@ private:
                     std::erase(clients_, fds[i].fd);
                     continue;
                 }
-                if (kind_ == Kind::Garbage)
-                    (void)send(fds[i].fd, junk, sizeof junk - 1, MSG_NOSIGNAL);
+                if (kind_ == Kind::Garbage) (void)send(fds[i].fd, junk, sizeof junk - 1, MSG_NOSIGNAL);
             }
         }
     }

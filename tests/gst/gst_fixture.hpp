@@ -40,12 +40,12 @@ using SamplePtr = std::unique_ptr<GstSample, SampleUnref>;
 // What a pipeline run left on the bus.
 struct RunResult {
     bool eos = false;
-    std::string error;                       // the first error's message, empty if none
-    std::vector<StructurePtr> messages;      // element messages, in posting order
-    std::vector<std::string> sources;        // the name of each message's element
-    std::vector<double> received_s;          // when each was read, seconds after PLAYING
-    std::vector<std::string> warnings;       // "element: message" of each warning
-    std::vector<double> warnings_s;          // when each warning was read
+    std::string error;                   // the first error's message, empty if none
+    std::vector<StructurePtr> messages;  // element messages, in posting order
+    std::vector<std::string> sources;    // the name of each message's element
+    std::vector<double> received_s;      // when each was read, seconds after PLAYING
+    std::vector<std::string> warnings;   // "element: message" of each warning
+    std::vector<double> warnings_s;      // when each warning was read
 
     std::vector<const GstStructure*> named(const char* name, const char* source = nullptr) const
     {
@@ -62,8 +62,7 @@ inline std::vector<std::string> read_lines(const std::string& path)
 {
     std::vector<std::string> lines;
     std::ifstream in(path);
-    for (std::string line; std::getline(in, line);)
-        lines.push_back(line);
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
     return lines;
 }
 
@@ -74,8 +73,7 @@ inline ElementPtr parse_pipeline(const std::string& description)
     if (error) {
         ADD_FAILURE() << "cannot parse '" << description << "': " << error->message;
         g_error_free(error);
-        if (pipeline)
-            gst_object_unref(pipeline);
+        if (pipeline) gst_object_unref(pipeline);
         return nullptr;
     }
     return ElementPtr(pipeline);
@@ -95,13 +93,11 @@ inline RunResult run_pipeline(GstElement* pipeline, GstClockTime timeout = 60 * 
         deadline = gst_util_get_timestamp() + 2 * GST_SECOND;
     for (bool stop = false; !stop;) {
         const GstClockTime now = gst_util_get_timestamp();
-        if (now >= deadline)
-            break;
+        if (now >= deadline) break;
         GstMessage* msg = gst_bus_timed_pop_filtered(
             bus, deadline - now,
             GstMessageType(GST_MESSAGE_EOS | GST_MESSAGE_ERROR | GST_MESSAGE_ELEMENT | GST_MESSAGE_WARNING));
-        if (!msg)
-            continue;
+        if (!msg) continue;
         const double received = double(gst_util_get_timestamp() - started_at) / GST_SECOND;
         switch (GST_MESSAGE_TYPE(msg)) {
         case GST_MESSAGE_EOS:
@@ -136,10 +132,8 @@ inline RunResult run_pipeline(GstElement* pipeline, GstClockTime timeout = 60 * 
         }
         gst_message_unref(msg);
     }
-    if (result.error.empty() && !result.eos)
-        result.error = started ? "timeout" : "state change to PLAYING failed";
-    if (at_end)
-        at_end();
+    if (result.error.empty() && !result.eos) result.error = started ? "timeout" : "state change to PLAYING failed";
+    if (at_end) at_end();
     gst_element_set_state(pipeline, GST_STATE_NULL);
     gst_object_unref(bus);
     return result;
@@ -165,8 +159,7 @@ inline std::vector<SamplePtr> drain(GstElement* pipeline, const char* appsink_na
         ADD_FAILURE() << "no element " << appsink_name;
         return out;
     }
-    while (GstSample* sample = gst_app_sink_try_pull_sample(GST_APP_SINK(sink), 0))
-        out.emplace_back(sample);
+    while (GstSample* sample = gst_app_sink_try_pull_sample(GST_APP_SINK(sink), 0)) out.emplace_back(sample);
     gst_object_unref(sink);
     return out;
 }
@@ -194,8 +187,7 @@ inline double get_double(const GstStructure* s, const char* field)
 inline const GstStructure* get_child(const GstStructure* s, const char* field)
 {
     const GValue* v = gst_structure_get_value(s, field);
-    if (!v || !GST_VALUE_HOLDS_STRUCTURE(v))
-        return nullptr;
+    if (!v || !GST_VALUE_HOLDS_STRUCTURE(v)) return nullptr;
     return gst_value_get_structure(v);
 }
 

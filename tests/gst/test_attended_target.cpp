@@ -31,8 +31,7 @@ cv::Vec3d vec3(const GstStructure* s, const char* field)
     const GValue* v = gst_structure_get_value(s, field);
     EXPECT_NE(v, nullptr) << field;
     cv::Vec3d out;
-    for (guint i = 0; v && i < 3; ++i)
-        out[int(i)] = g_value_get_double(gst_value_array_get_value(v, i));
+    for (guint i = 0; v && i < 3; ++i) out[int(i)] = g_value_get_double(gst_value_array_get_value(v, i));
     return out;
 }
 
@@ -41,10 +40,11 @@ TEST(AttendedTarget, AHeldPointingIsFramedWithinASecondOfTheDwell)
     gc::test::init_gstreamer();
     // The rendered hand points up and to the left; 200 mm along its ray stays in view.
     const std::string eye = " motion=static num-buffers=" + std::to_string(kFrames) + " ";
-    gc::test::ElementPtr pipeline = gc::test::parse_pipeline(
-        "handscenesrc name=l eye=left" + eye + "! t.sink_left handscenesrc eye=right" + eye + "! t.sink_right "
-        "handtracker name=t output=attended dwell=1.0 target-distance=200 target-region=500 ! "
-        "video/x-raw,width=640,height=360 ! fakesink sync=false");
+    gc::test::ElementPtr pipeline =
+        gc::test::parse_pipeline("handscenesrc name=l eye=left" + eye + "! t.sink_left handscenesrc eye=right" + eye +
+                                 "! t.sink_right "
+                                 "handtracker name=t output=attended dwell=1.0 target-distance=200 target-region=500 ! "
+                                 "video/x-raw,width=640,height=360 ! fakesink sync=false");
     ASSERT_TRUE(pipeline);
     std::vector<GstHandPointingMeta> metas;
     gc::test::probe_buffers(pipeline.get(), "t", "src", capture_meta, &metas);
@@ -63,20 +63,19 @@ TEST(AttendedTarget, AHeldPointingIsFramedWithinASecondOfTheDwell)
     for (int i = 0; i < kFrames; ++i) {
         const GstHandPointingMeta& m = metas[size_t(i)];
         tracked += m.state == GST_HAND_POINTING_STATE_TRACKING;
-        if (first_pointing < 0 && (m.flags & GST_HAND_POINTING_FLAG_HAS_3D))
-            first_pointing = i;
+        if (first_pointing < 0 && (m.flags & GST_HAND_POINTING_FLAG_HAS_3D)) first_pointing = i;
         ASSERT_TRUE(truth.count(guint64(i)));
-        const cv::Vec3d target = vec3(truth[guint64(i)], "fingertip-head-mm") + 200.0 * vec3(truth[guint64(i)], "direction-head");
+        const cv::Vec3d target =
+            vec3(truth[guint64(i)], "fingertip-head-mm") + 200.0 * vec3(truth[guint64(i)], "direction-head");
         const auto region = gc::region_in_left_view(target, 500.0, cal, gc::HeadPose{});
         ASSERT_TRUE(region);
         const double dx = (region->centre.x - m.view_x) / m.view_width;
         const double dy = (region->centre.y - m.view_y) / m.view_height;
         const double fill = region->width_px / m.view_width;
-        const bool framed = dx > 1.0 / 3 && dx < 2.0 / 3 && dy > 1.0 / 3 && dy < 2.0 / 3 && fill >= 0.75 && fill <= 1.25;
-        if (framed && framed_from < 0)
-            framed_from = i;
-        if (!framed)
-            framed_from = -1;  // framed means framed on every frame since
+        const bool framed =
+            dx > 1.0 / 3 && dx < 2.0 / 3 && dy > 1.0 / 3 && dy < 2.0 / 3 && fill >= 0.75 && fill <= 1.25;
+        if (framed && framed_from < 0) framed_from = i;
+        if (!framed) framed_from = -1;  // framed means framed on every frame since
     }
     EXPECT_GE(tracked, kFrames * 95 / 100);
     ASSERT_GE(first_pointing, 0);

@@ -26,8 +26,7 @@ void collect(GstDebugCategory* category, GstDebugLevel level, const gchar*, cons
              GstDebugMessage* message, gpointer)
 {
     const char* name = gst_debug_category_get_name(category);
-    if (std::strcmp(name, "handtracker") != 0 && std::strcmp(name, "gesturecam-head") != 0)
-        return;
+    if (std::strcmp(name, "handtracker") != 0 && std::strcmp(name, "gesturecam-head") != 0) return;
     std::lock_guard lock(log_mutex);
     log_lines.push_back({name, level, gst_debug_message_get(message)});
 }
@@ -64,11 +63,12 @@ protected:
 TEST_F(DebugLog, TrackerLogsTheHandAndEveryFrame)
 {
     const int frames = 60;
-    const std::string eye = " scene=light motion=mixed seed=5 truth-messages=false num-buffers=" +
-                            std::to_string(frames) + " ! ";
-    const auto result = gc::test::run_pipeline("handscenesrc eye=left" + eye + "t.sink_left handscenesrc eye=right" +
-                                               eye + "t.sink_right handtracker name=t message-updates=none ! "
-                                                     "fakesink sync=false");
+    const std::string eye =
+        " scene=light motion=mixed seed=5 truth-messages=false num-buffers=" + std::to_string(frames) + " ! ";
+    const auto result =
+        gc::test::run_pipeline("handscenesrc eye=left" + eye + "t.sink_left handscenesrc eye=right" + eye +
+                               "t.sink_right handtracker name=t message-updates=none ! "
+                               "fakesink sync=false");
     ASSERT_TRUE(result.eos) << result.error;
     EXPECT_GE(count("handtracker", GST_LEVEL_INFO, "left view acquired the hand"), 1);
     EXPECT_GE(count("handtracker", GST_LEVEL_INFO, "left view gesture unknown -> "), 1);
@@ -81,15 +81,17 @@ TEST_F(DebugLog, TrackerLogsTheHandAndEveryFrame)
 TEST_F(DebugLog, HeadLinkLogsConnectionAndCommands)
 {
     gc::closedloop_test::RunningHead head(gc::closedloop_test::loopback_head(0, 0.02));
-    const std::string eye = " is-live=true scene=light motion=translate seed=3 truth-messages=false head=" +
-                            head.uri() + " num-buffers=60 ! ";
-    const auto result = gc::test::run_pipeline("handscenesrc eye=left" + eye + "t.sink_left handscenesrc eye=right" +
-                                               eye + "t.sink_right handtracker name=t particles=500 head=" +
-                                               head.uri() + " steer=fixate message-updates=none ! fakesink");
+    const std::string eye =
+        " is-live=true scene=light motion=translate seed=3 truth-messages=false head=" + head.uri() +
+        " num-buffers=60 ! ";
+    const auto result =
+        gc::test::run_pipeline("handscenesrc eye=left" + eye + "t.sink_left handscenesrc eye=right" + eye +
+                               "t.sink_right handtracker name=t particles=500 head=" + head.uri() +
+                               " steer=fixate message-updates=none ! fakesink");
     ASSERT_TRUE(result.eos) << result.error;
-    EXPECT_GE(count("gesturecam-head", GST_LEVEL_INFO, "head tcp://127.0.0.1:" + std::to_string(head.port()) +
-                                                           " connected"),
-              1);
+    EXPECT_GE(
+        count("gesturecam-head", GST_LEVEL_INFO, "head tcp://127.0.0.1:" + std::to_string(head.port()) + " connected"),
+        1);
     EXPECT_GE(count("gesturecam-head", GST_LEVEL_DEBUG, "head command: "), 1);
 }
 
@@ -98,8 +100,8 @@ TEST_F(DebugLog, HeadLinkLogsAHeadThatCannotBeReached)
     const std::string uri = "tcp://127.0.0.1:" + std::to_string(gc::test::closed_port());
     const auto result = gc::test::run_pipeline(
         "handscenesrc eye=left num-buffers=15 truth-messages=false ! t.sink_left handscenesrc eye=right "
-        "num-buffers=15 truth-messages=false ! t.sink_right handtracker name=t particles=200 head=" + uri +
-        " steer=off message-updates=none ! fakesink");
+        "num-buffers=15 truth-messages=false ! t.sink_right handtracker name=t particles=200 head=" +
+        uri + " steer=off message-updates=none ! fakesink");
     ASSERT_TRUE(result.eos) << result.error;
     EXPECT_GE(count("gesturecam-head", GST_LEVEL_INFO, "head " + uri + " disconnected: "), 1);
 }

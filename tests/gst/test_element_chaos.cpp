@@ -16,8 +16,7 @@ namespace {
 constexpr int kFrames = 300;
 
 // Small turns the hand stays in view through, and one far enough that it leaves the view.
-const std::vector<gc::chaos::RigJump> kJumps = {
-    {40, 4.0, -3.0}, {110, 40.0, 0.0}, {150, -3.0, 2.0}, {230, 1.0, 5.0}};
+const std::vector<gc::chaos::RigJump> kJumps = {{40, 4.0, -3.0}, {110, 40.0, 0.0}, {150, -3.0, 2.0}, {230, 1.0, 5.0}};
 
 TEST(ElementChaos, TheTrackerFindsTheHandAgainAfterEachJump)
 {
@@ -39,8 +38,7 @@ TEST(ElementChaos, TheTrackerFindsTheHandAgainAfterEachJump)
 
     int judged = 0;
     for (const gc::chaos::Outcome& o : gc::chaos::judge(kJumps, run, tracked)) {
-        if (!o.judged())
-            continue;
+        if (!o.judged()) continue;
         ++judged;
         EXPECT_TRUE(o.found()) << "jump at frame " << o.frame << ": found after " << o.found_after << " frames";
     }

@@ -13,8 +13,7 @@ std::vector<std::string> plugin_elements()
     std::vector<std::string> names;
     GList* features = gst_registry_get_feature_list_by_plugin(gst_registry_get(), "gesturecam");
     for (GList* l = features; l; l = l->next)
-        if (GST_IS_ELEMENT_FACTORY(l->data))
-            names.emplace_back(GST_OBJECT_NAME(l->data));
+        if (GST_IS_ELEMENT_FACTORY(l->data)) names.emplace_back(GST_OBJECT_NAME(l->data));
     gst_plugin_feature_list_free(features);
     return names;
 }
@@ -43,8 +42,7 @@ TEST(Elements, StateChangesUpAndDown)
                 EXPECT_NE(gst_element_set_state(pipeline, state), GST_STATE_CHANGE_FAILURE)
                     << name << " to " << gst_element_state_get_name(state);
                 // Unlinked sources stop with not-linked on the bus; that is expected here.
-                EXPECT_NE(gst_element_get_state(pipeline, nullptr, nullptr, 5 * GST_SECOND),
-                          GST_STATE_CHANGE_FAILURE)
+                EXPECT_NE(gst_element_get_state(pipeline, nullptr, nullptr, 5 * GST_SECOND), GST_STATE_CHANGE_FAILURE)
                     << name;
             }
             gst_object_unref(pipeline);
@@ -61,8 +59,8 @@ TEST(Elements, InspectPrintsACleanDescription)
         gint status = -1;
         gchar* argv[] = {const_cast<gchar*>("gst-inspect-1.0"), const_cast<gchar*>(name.c_str()), nullptr};
         GError* error = nullptr;
-        ASSERT_TRUE(g_spawn_sync(nullptr, argv, nullptr, G_SPAWN_SEARCH_PATH, nullptr, nullptr, &out, &err, &status,
-                                 &error))
+        ASSERT_TRUE(
+            g_spawn_sync(nullptr, argv, nullptr, G_SPAWN_SEARCH_PATH, nullptr, nullptr, &out, &err, &status, &error))
             << (error ? error->message : "");
         EXPECT_TRUE(g_spawn_check_wait_status(status, nullptr)) << name;
         EXPECT_STREQ(err, "") << name;
@@ -78,10 +76,9 @@ TEST(Elements, InspectPrintsACleanDescription)
 TEST(Elements, BadCalibrationFailsTheStateChangeWithTheReason)
 {
     gc::test::init_gstreamer();
-    const gc::test::RunResult r =
-        gc::test::run_pipeline("videotestsrc num-buffers=2 ! t.sink_left handtracker name=t "
-                               "calibration=/nonexistent/rig.yml ! fakesink",
-                               10 * GST_SECOND);
+    const gc::test::RunResult r = gc::test::run_pipeline("videotestsrc num-buffers=2 ! t.sink_left handtracker name=t "
+                                                         "calibration=/nonexistent/rig.yml ! fakesink",
+                                                         10 * GST_SECOND);
     EXPECT_FALSE(r.eos);
     EXPECT_NE(r.error.find("/nonexistent/rig.yml"), std::string::npos) << r.error;
 }

@@ -39,13 +39,16 @@ cv::Mat bgr_of(GstSample* sample)
 // largest difference, in grey levels, between their BGR results.
 int difference(const std::string& source_caps, const std::string& branch, const std::string& reference)
 {
-    const std::string description =
-        "videotestsrc num-buffers=2 pattern=smpte ! " + source_caps + " ! tee name=s "
-        "s. ! queue ! " + branch + " ! video/x-raw,format=BGR ! appsink name=out sync=false wait-on-eos=false "
-        "s. ! queue ! " + reference + " ! video/x-raw,format=BGR ! appsink name=ref sync=false wait-on-eos=false";
+    const std::string description = "videotestsrc num-buffers=2 pattern=smpte ! " + source_caps +
+                                    " ! tee name=s "
+                                    "s. ! queue ! " +
+                                    branch +
+                                    " ! video/x-raw,format=BGR ! appsink name=out sync=false wait-on-eos=false "
+                                    "s. ! queue ! " +
+                                    reference +
+                                    " ! video/x-raw,format=BGR ! appsink name=ref sync=false wait-on-eos=false";
     gc::test::ElementPtr pipeline = gc::test::parse_pipeline(description);
-    if (!pipeline)
-        return 1000;
+    if (!pipeline) return 1000;
     std::vector<gc::test::SamplePtr> out, ref;
     const gc::test::RunResult r = run_pipeline(pipeline.get(), 30 * GST_SECOND, [&] {
         out = drain(pipeline.get(), "out");
@@ -59,8 +62,7 @@ int difference(const std::string& source_caps, const std::string& branch, const 
         const cv::Mat a = bgr_of(out[i].get());
         const cv::Mat b = bgr_of(ref[i].get());
         EXPECT_EQ(a.size(), b.size());
-        if (a.size() != b.size())
-            return 1000;
+        if (a.size() != b.size()) return 1000;
         worst = std::max(worst, cv::norm(a, b, cv::NORM_INF));
     }
     return int(worst);
@@ -81,8 +83,8 @@ TEST_P(InputFormat, MatchesVideoconvert)
 }
 
 INSTANTIATE_TEST_SUITE_P(Handtracker, InputFormat,
-                         ::testing::Values("YUY2", "NV12", "I420", "RGB", "BGR", "RGBx", "BGRx", "xRGB", "xBGR",
-                                           "RGBA", "BGRA"));
+                         ::testing::Values("YUY2", "NV12", "I420", "RGB", "BGR", "RGBx", "BGRx", "xRGB", "xBGR", "RGBA",
+                                           "BGRA"));
 
 // HD cameras send BT.709, webcams' MJPEG full-range BT.601 ("1:4:0:0"): each is read as its
 // caps say, not as limited-range BT.601 always.
@@ -116,10 +118,10 @@ TEST_P(OutputFormat, MatchesVideoconvert)
     const bool yuv = std::string(GetParam()) == "I420" || std::string(GetParam()) == "NV12";
     if (yuv)
         EXPECT_LE(difference(std::string("video/x-raw,format=BGR,") + kSize,
-                         "handtracker output=left ! " + format + ",colorimetry=bt709 ! videoconvert",
-                         "videoconvert ! " + format + ",colorimetry=bt709 ! videoconvert"),
-              1)
-        << GetParam() << " bt709";
+                             "handtracker output=left ! " + format + ",colorimetry=bt709 ! videoconvert",
+                             "videoconvert ! " + format + ",colorimetry=bt709 ! videoconvert"),
+                  1)
+            << GetParam() << " bt709";
 }
 
 INSTANTIATE_TEST_SUITE_P(Handtracker, OutputFormat,
@@ -165,7 +167,8 @@ TEST(Colorimetry, Bt709TracksLikeRgb)
     for (size_t i = 0; i < rgb.size(); ++i) {
         same_state += rgb[i].state == yuv[i].state;
         if (rgb[i].state == "tracking" && yuv[i].state == "tracking")
-            apart.push_back(std::hypot(rgb[i].fingertip_x - yuv[i].fingertip_x, rgb[i].fingertip_y - yuv[i].fingertip_y));
+            apart.push_back(
+                std::hypot(rgb[i].fingertip_x - yuv[i].fingertip_x, rgb[i].fingertip_y - yuv[i].fingertip_y));
     }
     EXPECT_GE(same_state, 89) << "of 90 frames";
     ASSERT_GE(apart.size(), 60u);
@@ -176,11 +179,11 @@ TEST(Colorimetry, Bt709TracksLikeRgb)
 TEST(Negotiation, MismatchedViewsFailWithBothSizes)
 {
     gc::test::init_gstreamer();
-    const gc::test::RunResult r = run_pipeline(
-        "videotestsrc num-buffers=5 ! video/x-raw,format=BGR,width=640,height=480 ! t.sink_left "
-        "videotestsrc num-buffers=5 ! video/x-raw,format=BGR,width=320,height=240 ! t.sink_right "
-        "handtracker name=t ! fakesink",
-        20 * GST_SECOND);
+    const gc::test::RunResult r =
+        run_pipeline("videotestsrc num-buffers=5 ! video/x-raw,format=BGR,width=640,height=480 ! t.sink_left "
+                     "videotestsrc num-buffers=5 ! video/x-raw,format=BGR,width=320,height=240 ! t.sink_right "
+                     "handtracker name=t ! fakesink",
+                     20 * GST_SECOND);
     EXPECT_FALSE(r.eos);
     EXPECT_NE(r.error.find("sink_left is 640x480 but sink_right is 320x240"), std::string::npos) << r.error;
 }
@@ -196,8 +199,9 @@ TEST(Negotiation, FramesOverTheSizeLimitAreRefusedWithTheirSize)
     ASSERT_TRUE(cv::imwrite(wide, cv::Mat(32, 8193, CV_8UC3, cv::Scalar(40, 90, 160))));
     ASSERT_TRUE(cv::imwrite(largest, cv::Mat(32, 8192, CV_8UC3, cv::Scalar(40, 90, 160))));
     const auto decoded = [](const std::string& png) {
-        return run_pipeline("filesrc location=" + png + " ! pngdec ! t.sink_left handtracker name=t particles=50 ! "
-                            "fakesink",
+        return run_pipeline("filesrc location=" + png +
+                                " ! pngdec ! t.sink_left handtracker name=t particles=50 ! "
+                                "fakesink",
                             20 * GST_SECOND);
     };
     const gc::test::RunResult refused = decoded(wide);
@@ -218,7 +222,8 @@ TEST(Negotiation, DownstreamChoosesTheOutputSize)
     gc::test::ElementPtr pipeline = gc::test::parse_pipeline(
         "videotestsrc num-buffers=6 ! video/x-raw,format=BGR,width=160,height=120 ! t.sink_left "
         "videotestsrc num-buffers=6 ! video/x-raw,format=BGR,width=160,height=120 ! t.sink_right "
-        "handtracker name=t output=attended ! video/x-raw,width=96,height=64 ! appsink name=out sync=false wait-on-eos=false");
+        "handtracker name=t output=attended ! video/x-raw,width=96,height=64 ! appsink name=out sync=false "
+        "wait-on-eos=false");
     ASSERT_TRUE(pipeline);
     std::vector<gc::test::SamplePtr> out;
     const gc::test::RunResult r =

@@ -34,19 +34,18 @@ std::pair<cv::Mat, cv::Mat> source_and_left_view(const std::string& properties)
     gc::test::ElementPtr pipeline = gc::test::parse_pipeline(
         "videotestsrc num-buffers=1 pattern=smpte ! video/x-raw,format=BGR,width=640,height=240,framerate=30/1 ! "
         "tee name=s s. ! queue ! t.sink handtracker name=t output=left particles=50 detector=motion " +
-        properties + " ! video/x-raw,format=BGR ! appsink name=out sync=false wait-on-eos=false "
+        properties +
+        " ! video/x-raw,format=BGR ! appsink name=out sync=false wait-on-eos=false "
         "s. ! queue ! appsink name=src sync=false wait-on-eos=false");
     EXPECT_TRUE(pipeline);
-    if (!pipeline)
-        return {};
+    if (!pipeline) return {};
     std::vector<gc::test::SamplePtr> out, src;
     const gc::test::RunResult r = run_pipeline(pipeline.get(), 30 * GST_SECOND, [&] {
         out = drain(pipeline.get(), "out");
         src = drain(pipeline.get(), "src");
     });
     EXPECT_TRUE(r.eos) << r.error;
-    if (out.empty() || src.empty())
-        return {};
+    if (out.empty() || src.empty()) return {};
     return {bgr_of(src[0].get()), bgr_of(out[0].get())};
 }
 
@@ -102,10 +101,10 @@ TEST(Multiview, TopBottomCapsAreSplitByRows)
 TEST(Multiview, TwoUnnamedLinksBecomeLeftAndRight)
 {
     gc::test::init_gstreamer();
-    const gc::test::RunResult r = run_pipeline(
-        "handscenesrc eye=left num-buffers=5 ! t. handscenesrc eye=right num-buffers=5 ! t. "
-        "handtracker name=t particles=50 detector=motion ! fakesink",
-        30 * GST_SECOND);
+    const gc::test::RunResult r =
+        run_pipeline("handscenesrc eye=left num-buffers=5 ! t. handscenesrc eye=right num-buffers=5 ! t. "
+                     "handtracker name=t particles=50 detector=motion ! fakesink",
+                     30 * GST_SECOND);
     EXPECT_TRUE(r.eos) << r.error;
     const auto messages = r.named("hand-pointing", "t");
     ASSERT_EQ(messages.size(), 5u);

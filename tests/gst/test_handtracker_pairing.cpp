@@ -48,10 +48,8 @@ protected:
     }
     void TearDown() override
     {
-        if (right_)
-            gst_harness_teardown(right_);
-        if (left_)
-            gst_harness_teardown(left_);
+        if (right_) gst_harness_teardown(right_);
+        if (left_) gst_harness_teardown(left_);
     }
 
     // Pulls one output buffer and checks its view and flags.
@@ -67,8 +65,7 @@ protected:
         if (!incomplete) {
             EXPECT_NE(meta->flags & GST_HAND_POINTING_FLAG_STEREO, 0u);
         }
-        if (frame)
-            *frame = meta->frame;
+        if (frame) *frame = meta->frame;
         gst_buffer_unref(out);
     }
 
@@ -208,7 +205,7 @@ TEST(Pads, SideBySidePadExcludesTheEyePads)
     ASSERT_NE(tracker, nullptr);
     GstPad* left = gst_element_request_pad_simple(tracker, "sink_left");
     ASSERT_NE(left, nullptr);
-    EXPECT_EQ(gst_element_request_pad_simple(tracker, "sink"), nullptr);       // not with eyes
+    EXPECT_EQ(gst_element_request_pad_simple(tracker, "sink"), nullptr);  // not with eyes
     gst_element_release_request_pad(tracker, left);
     gst_object_unref(left);
     GstPad* packed = gst_element_request_pad_simple(tracker, "sink");

@@ -28,9 +28,9 @@ std::string loop_pipeline(const std::string& uri, const char* steer, int frames)
 {
     const std::string common = " is-live=true scene=light motion=translate seed=3 head=" + uri +
                                " num-buffers=" + std::to_string(frames) + " ";
-    return "handscenesrc name=l eye=left" + common + "! t.sink_left handscenesrc name=r eye=right truth-messages=false" +
-           common + "! t.sink_right handtracker name=t particles=500 seed=7 head=" + uri + " steer=" + steer +
-           " ! fakesink";
+    return "handscenesrc name=l eye=left" + common +
+           "! t.sink_left handscenesrc name=r eye=right truth-messages=false" + common +
+           "! t.sink_right handtracker name=t particles=500 seed=7 head=" + uri + " steer=" + steer + " ! fakesink";
 }
 
 GstClockTime timestamp_of(const GstStructure* s)
@@ -60,20 +60,17 @@ LoopFigures figures(const gc::test::RunResult& r, const char* steer)
             break;
         }
     }
-    if (!GST_CLOCK_TIME_IS_VALID(f.acquired))
-        return f;
+    if (!GST_CLOCK_TIME_IS_VALID(f.acquired)) return f;
     const GstClockTime from = f.acquired + GST_SECOND;
     for (const GstStructure* m : outputs) {
-        if (timestamp_of(m) < from)
-            continue;
+        if (timestamp_of(m) < from) continue;
         ++f.outputs;
         const GstStructure* left = gc::test::get_child(m, "left");
         f.tracked += left && g_str_equal(gst_structure_get_string(left, "state"), "tracking");
     }
     for (const GstStructure* t : r.named("hand-truth", "l")) {
         f.max_pan_deg = std::max(f.max_pan_deg, std::abs(gc::test::get_double(t, "head-pan-deg")));
-        if (timestamp_of(t) < from)
-            continue;
+        if (timestamp_of(t) < from) continue;
         ++f.scored;
         gboolean visible = FALSE;
         gst_structure_get_boolean(t, "visible", &visible);
@@ -135,10 +132,8 @@ TEST(HeadLoop, AHeadRestartedMidStreamIsBackWithinTwoSeconds)
     EXPECT_GE(outputs.size(), size_t(8 * kFps - 2));
     double largest_gap_s = 0.0, previous_s = -1.0;
     for (size_t i = 0; i < r.messages.size(); ++i) {
-        if (r.sources[i] != "t" || !gst_structure_has_name(r.messages[i].get(), "hand-pointing"))
-            continue;
-        if (previous_s >= 0.0)
-            largest_gap_s = std::max(largest_gap_s, r.received_s[i] - previous_s);
+        if (r.sources[i] != "t" || !gst_structure_has_name(r.messages[i].get(), "hand-pointing")) continue;
+        if (previous_s >= 0.0) largest_gap_s = std::max(largest_gap_s, r.received_s[i] - previous_s);
         previous_s = r.received_s[i];
     }
     EXPECT_LT(largest_gap_s, 0.5);
@@ -146,8 +141,7 @@ TEST(HeadLoop, AHeadRestartedMidStreamIsBackWithinTwoSeconds)
     // One warning from the tracker for the outage, naming the head, after the kill.
     int tracker_warnings = 0;
     for (size_t i = 0; i < r.warnings.size(); ++i) {
-        if (r.warnings[i].rfind("t: ", 0) != 0)
-            continue;
+        if (r.warnings[i].rfind("t: ", 0) != 0) continue;
         ++tracker_warnings;
         EXPECT_NE(r.warnings[i].find(uri), std::string::npos) << r.warnings[i];
         EXPECT_GE(r.warnings_s[i], killed_s - 0.1);
@@ -191,8 +185,7 @@ TEST(HeadLoop, AHeadTurnedPastTheSimulatedRoomDoesNotStopTheScene)
     const auto truths = r.named("hand-truth", "l");
     EXPECT_EQ(truths.size(), 75u);
     double largest_pan = 0.0;
-    for (const GstStructure* t : truths)
-        largest_pan = std::max(largest_pan, gc::test::get_double(t, "head-pan-deg"));
+    for (const GstStructure* t : truths) largest_pan = std::max(largest_pan, gc::test::get_double(t, "head-pan-deg"));
     EXPECT_GT(largest_pan, 20.0);  // it did follow the head
     EXPECT_LT(largest_pan, 90.0);  // but only as far as the room can be shown
     ASSERT_EQ(r.warnings.size(), 1u);

@@ -36,10 +36,9 @@ TrackRun track(const std::string& head_uri, int frames = kFrames, bool live = fa
     const std::string common = std::string(" scene=light motion=translate seed=3 truth-messages=false is-live=") +
                                (live ? "true" : "false") + " num-buffers=" + std::to_string(frames) + " ";
     std::string tracker = "handtracker name=t particles=300 message-updates=none json-location=" + json;
-    if (!head_uri.empty())
-        tracker += " head=" + head_uri + " steer=fixate";
-    const std::string description = "handscenesrc eye=left" + common + "! t.sink_left handscenesrc eye=right" +
-                                    common + "! t.sink_right " + tracker + " ! fakesink";
+    if (!head_uri.empty()) tracker += " head=" + head_uri + " steer=fixate";
+    const std::string description = "handscenesrc eye=left" + common + "! t.sink_left handscenesrc eye=right" + common +
+                                    "! t.sink_right " + tracker + " ! fakesink";
     TrackRun run;
     const auto start = std::chrono::steady_clock::now();
     run.bus = gc::test::run_pipeline(description);
@@ -87,10 +86,9 @@ TEST(HeadProperties, ABadUriFailsTheStartAndSaysWhy)
 {
     gc::test::init_gstreamer();
     for (const char* element : {"handtracker", "handscenesrc"}) {
-        const std::string pipeline =
-            std::string(element) == "handtracker"
-                ? "handscenesrc num-buffers=3 ! handtracker head=ftp://127.0.0.1:21 ! fakesink"
-                : "handscenesrc num-buffers=3 head=tcp://127.0.0.1:notaport ! fakesink";
+        const std::string pipeline = std::string(element) == "handtracker"
+                                         ? "handscenesrc num-buffers=3 ! handtracker head=ftp://127.0.0.1:21 ! fakesink"
+                                         : "handscenesrc num-buffers=3 head=tcp://127.0.0.1:notaport ! fakesink";
         const gc::test::RunResult r = gc::test::run_pipeline(pipeline, 10 * GST_SECOND);
         EXPECT_FALSE(r.eos) << element;
         EXPECT_NE(r.error.find("Invalid head URI"), std::string::npos) << element << ": " << r.error;
@@ -167,8 +165,9 @@ GstPadProbeReturn record_pts(GstPad*, GstPadProbeInfo* info, gpointer data)
 TEST(HeadProperties, ALiveFrameIsStampedWithTheTimeItsPoseWasReadAt)
 {
     gc::test::init_gstreamer();
-    gc::test::ElementPtr pipeline = gc::test::parse_pipeline(
-        "handscenesrc name=l is-live=true num-buffers=6 ! video/x-raw,width=320,height=240 ! fakesink name=k async=false");
+    gc::test::ElementPtr pipeline =
+        gc::test::parse_pipeline("handscenesrc name=l is-live=true num-buffers=6 ! video/x-raw,width=320,height=240 ! "
+                                 "fakesink name=k async=false");
     ASSERT_TRUE(pipeline);
     std::vector<GstClockTime> seen;
     gc::test::probe_buffers(pipeline.get(), "k", "sink", record_pts, &seen);

@@ -37,11 +37,9 @@ BusText play(GstElement* pipeline, GstClockTime timeout = 20 * GST_SECOND)
     const GstClockTime deadline = gst_util_get_timestamp() + timeout;
     for (bool stop = false; !stop;) {
         const GstClockTime now = gst_util_get_timestamp();
-        if (now >= deadline)
-            break;
+        if (now >= deadline) break;
         GstMessage* msg = gst_bus_timed_pop(bus, deadline - now);
-        if (!msg)
-            continue;
+        if (!msg) continue;
         GError* err = nullptr;
         gchar* debug = nullptr;
         switch (GST_MESSAGE_TYPE(msg)) {
@@ -71,8 +69,7 @@ BusText play(GstElement* pipeline, GstClockTime timeout = 20 * GST_SECOND)
         default:
             break;
         }
-        if (err)
-            r.text += std::string(err->message) + "\n" + (debug ? debug : "") + "\n";
+        if (err) r.text += std::string(err->message) + "\n" + (debug ? debug : "") + "\n";
         g_clear_error(&err);
         g_free(debug);
         gst_message_unref(msg);
@@ -91,10 +88,7 @@ ElementPtr tracker_pipeline()
                                     "! fakesink");
 }
 
-ElementPtr tracker_of(GstElement* pipeline)
-{
-    return ElementPtr(gst_bin_get_by_name(GST_BIN(pipeline), "t"));
-}
+ElementPtr tracker_of(GstElement* pipeline) { return ElementPtr(gst_bin_get_by_name(GST_BIN(pipeline), "t")); }
 
 // One live synthetic eye for 1 s; the caller sets handscenesrc's head properties.
 ElementPtr scene_source_pipeline()
@@ -102,10 +96,7 @@ ElementPtr scene_source_pipeline()
     return gc::test::parse_pipeline("handscenesrc name=s is-live=true truth-messages=false num-buffers=30 ! fakesink");
 }
 
-ElementPtr scene_source_of(GstElement* pipeline)
-{
-    return ElementPtr(gst_bin_get_by_name(GST_BIN(pipeline), "s"));
-}
+ElementPtr scene_source_of(GstElement* pipeline) { return ElementPtr(gst_bin_get_by_name(GST_BIN(pipeline), "s")); }
 
 std::string string_property(GstElement* element, const char* name)
 {
@@ -190,8 +181,8 @@ TEST(HeadToken, AFileAuthenticatesAndACopyOfThePropertiesStillDoes)
     ElementPtr second = tracker_pipeline();
     ASSERT_TRUE(second);
     for (const char* name : {"head", "head-token-file"})
-        g_object_set(tracker_of(second.get()).get(), name,
-                     string_property(tracker_of(first.get()).get(), name).c_str(), nullptr);
+        g_object_set(tracker_of(second.get()).get(), name, string_property(tracker_of(first.get()).get(), name).c_str(),
+                     nullptr);
     const BusText copied = play(second.get());
     EXPECT_EQ(copied.connection_states, std::vector<std::string>{"connected"}) << copied.text;
 

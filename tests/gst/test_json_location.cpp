@@ -31,10 +31,7 @@ GstPadProbeReturn record_file(GstPad*, GstPadProbeInfo*, gpointer data)
     return GST_PAD_PROBE_OK;
 }
 
-bool is_json_object_line(const std::string& line)
-{
-    return line.rfind("{\"frame\":", 0) == 0 && line.back() == '}';
-}
+bool is_json_object_line(const std::string& line) { return line.rfind("{\"frame\":", 0) == 0 && line.back() == '}'; }
 
 TEST(JsonLocation, EachLineIsInTheFileWhenItsFrameLeaves)
 {
@@ -42,7 +39,8 @@ TEST(JsonLocation, EachLineIsInTheFileWhenItsFrameLeaves)
     Seen seen{temp_path("live.jsonl"), {}};
     gc::test::ElementPtr pipeline = gc::test::parse_pipeline(
         "handscenesrc eye=left num-buffers=8 ! t.sink_left handtracker name=t particles=200 message-updates=none "
-        "json-location=" + seen.path + " ! fakesink name=sink");
+        "json-location=" +
+        seen.path + " ! fakesink name=sink");
     ASSERT_TRUE(pipeline);
     gc::test::probe_buffers(pipeline.get(), "sink", "sink", record_file, &seen);
     const gc::test::RunResult r = gc::test::run_pipeline(pipeline.get(), 30 * GST_SECOND);
@@ -70,8 +68,7 @@ TEST(JsonLocation, TerminatedPartWayLeavesWholeLines)
                                    << "'";
     ASSERT_FALSE(w.final_content.empty());
     EXPECT_EQ(w.final_content.back(), '\n');
-    for (const std::string& line : gc::test::read_lines(path))
-        EXPECT_TRUE(is_json_object_line(line)) << line;
+    for (const std::string& line : gc::test::read_lines(path)) EXPECT_TRUE(is_json_object_line(line)) << line;
     g_remove(path.c_str());
 }
 

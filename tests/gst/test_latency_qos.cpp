@@ -37,9 +37,9 @@ guint64 uint64_field(const GstStructure* s, const char* name)
 TEST(Latency, LiveStereoThroughAnEncoderNeedsNoQueues)
 {
     gc::test::init_gstreamer();
-    const auto result = gc::test::run_pipeline(
-        kLiveEyes + "handtracker name=t message-updates=none ! videoconvert ! "
-                    "x264enc tune=zerolatency speed-preset=ultrafast ! fakesink sync=true");
+    const auto result =
+        gc::test::run_pipeline(kLiveEyes + "handtracker name=t message-updates=none ! videoconvert ! "
+                                           "x264enc tune=zerolatency speed-preset=ultrafast ! fakesink sync=true");
     EXPECT_TRUE(result.eos) << result.error;
     for (const auto& warning : result.warnings)
         EXPECT_EQ(warning.find("please add queues"), std::string::npos) << warning;
@@ -59,8 +59,7 @@ TEST(Latency, TrackerReportsItsProcessingTime)
         ElementPtr tracker(gst_bin_get_by_name(GST_BIN(pipeline.get()), "t"));
         GstQuery* query = gst_query_new_latency();
         GstPad* src = gst_element_get_static_pad(tracker.get(), "src");
-        if (gst_pad_query(src, query))
-            gst_query_parse_latency(query, nullptr, &min_latency, nullptr);
+        if (gst_pad_query(src, query)) gst_query_parse_latency(query, nullptr, &min_latency, nullptr);
         gst_object_unref(src);
         gst_query_unref(query);
     });
@@ -86,13 +85,14 @@ TEST(Qos, SkippedFramesAreCounted)
     const std::string eyes = " scene=light truth-messages=false num-buffers=" + std::to_string(frames) +
                              " ! video/x-raw,width=320,height=240 ! ";
     // identity sleeps 60 ms per frame: at 30 frames/s every frame reaches the sink late.
-    ElementPtr pipeline = gc::test::parse_pipeline(
-        "handscenesrc eye=left" + eyes + "t.sink_left handscenesrc eye=right" + eyes +
-        "t.sink_right handtracker name=t message-updates=every-frame json-location=" + json +
-        " ! identity sleep-time=60000 ! fakesink sync=true qos=true");
+    ElementPtr pipeline =
+        gc::test::parse_pipeline("handscenesrc eye=left" + eyes + "t.sink_left handscenesrc eye=right" + eyes +
+                                 "t.sink_right handtracker name=t message-updates=every-frame json-location=" + json +
+                                 " ! identity sleep-time=60000 ! fakesink sync=true qos=true");
     ASSERT_TRUE(pipeline);
     StructurePtr stats;
-    const auto result = gc::test::run_pipeline(pipeline.get(), 60 * GST_SECOND, [&] { stats = stats_of(pipeline.get()); });
+    const auto result =
+        gc::test::run_pipeline(pipeline.get(), 60 * GST_SECOND, [&] { stats = stats_of(pipeline.get()); });
     EXPECT_TRUE(result.eos) << result.error;
     ASSERT_TRUE(stats);
     const guint64 skipped = uint64_field(stats.get(), "skipped-qos");
@@ -105,8 +105,7 @@ TEST(Qos, SkippedFramesAreCounted)
     guint64 named = 0;
     for (const auto& line : lines) {
         std::smatch m;
-        if (std::regex_search(line, m, field))
-            named += std::stoull(m[1]);
+        if (std::regex_search(line, m, field)) named += std::stoull(m[1]);
     }
     EXPECT_GT(named, 0u);
     EXPECT_LE(named, skipped);

@@ -37,7 +37,8 @@ TEST(Meta, RegistersUnderItsApiName)
 {
     gc::test::init_gstreamer();
     EXPECT_STREQ(g_type_name(GST_HAND_POINTING_META_API_TYPE), "GstHandPointingMetaAPI");
-    EXPECT_TRUE(gst_meta_api_type_has_tag(GST_HAND_POINTING_META_API_TYPE, g_quark_from_static_string(GST_META_TAG_VIDEO_STR)));
+    EXPECT_TRUE(
+        gst_meta_api_type_has_tag(GST_HAND_POINTING_META_API_TYPE, g_quark_from_static_string(GST_META_TAG_VIDEO_STR)));
     EXPECT_STREQ(gst_hand_pointing_state_to_string(GST_HAND_POINTING_STATE_LOST), "lost");
 }
 
@@ -172,7 +173,8 @@ TEST(Meta, AccessorsReadTheFields)
     ASSERT_TRUE(gst_hand_pointing_meta_get_fingertip_mm(meta, nullptr, nullptr, &z));
     EXPECT_EQ(z, 900.0);
     EXPECT_FALSE(gst_hand_pointing_meta_get_head_pose(meta, nullptr, nullptr, nullptr, nullptr));
-    EXPECT_EQ(gst_hand_pointing_meta_get_gesture(meta, GST_HAND_POINTING_VIEW_LEFT), GST_HAND_POINTING_GESTURE_POINTING);
+    EXPECT_EQ(gst_hand_pointing_meta_get_gesture(meta, GST_HAND_POINTING_VIEW_LEFT),
+              GST_HAND_POINTING_GESTURE_POINTING);
     ASSERT_TRUE(gst_hand_pointing_meta_get_fingertip(meta, GST_HAND_POINTING_VIEW_LEFT, &x, &y, &angle));
     EXPECT_EQ(x, 130.0);
     EXPECT_EQ(y, 20.0);
@@ -194,7 +196,8 @@ TEST(Meta, AccessorsSayWhatIsUnknown)
     gdouble azimuth = 99.0;
     EXPECT_FALSE(gst_hand_pointing_meta_get_direction(meta, &azimuth, nullptr));
     EXPECT_EQ(azimuth, 99.0);
-    EXPECT_EQ(gst_hand_pointing_meta_get_view_state(meta, GST_HAND_POINTING_VIEW_RIGHT), GST_HAND_POINTING_STATE_ACQUIRING);
+    EXPECT_EQ(gst_hand_pointing_meta_get_view_state(meta, GST_HAND_POINTING_VIEW_RIGHT),
+              GST_HAND_POINTING_STATE_ACQUIRING);
     EXPECT_FALSE(gst_hand_pointing_meta_get_fingertip(meta, GST_HAND_POINTING_VIEW_RIGHT, nullptr, nullptr, nullptr));
     guint n = 5;
     gst_hand_pointing_meta_get_contour(meta, GST_HAND_POINTING_VIEW_RIGHT, &n);

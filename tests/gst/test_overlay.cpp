@@ -30,8 +30,7 @@ protected:
     }
     void TearDown() override
     {
-        if (h_)
-            gst_harness_teardown(h_);
+        if (h_) gst_harness_teardown(h_);
     }
 
     static GstBuffer* grey_buffer()
@@ -95,8 +94,7 @@ bool untouched(const cv::Mat& image, const cv::Rect& r)
 {
     for (int y = r.y; y < r.y + r.height; ++y)
         for (int x = r.x; x < r.x + r.width; ++x)
-            if (changed(image, x, y))
-                return false;
+            if (changed(image, x, y)) return false;
     return true;
 }
 
@@ -138,8 +136,7 @@ TEST_F(Overlay, BufferWithoutMetaPassesUnchanged)
     // A pattern, so a reordering of channels or rows would show too.
     GstMapInfo map;
     ASSERT_TRUE(gst_buffer_map(in, &map, GST_MAP_WRITE));
-    for (gsize i = 0; i < map.size; ++i)
-        map.data[i] = guint8(i * 7 + i / kStride);
+    for (gsize i = 0; i < map.size; ++i) map.data[i] = guint8(i * 7 + i / kStride);
     const std::string before(reinterpret_cast<const char*>(map.data), map.size);
     gst_buffer_unmap(in, &map);
     const cv::Mat out = push_and_read(in);
@@ -189,8 +186,7 @@ TEST(OverlayPipeline, TeeGivesACleanAndAnAnnotatedStream)
         std::string pa(size, '\0'), pb(size, '\0');
         gst_buffer_extract(a, 0, pa.data(), size);
         gst_buffer_extract(b, 0, pb.data(), size);
-        if (meta->left.state != GST_HAND_POINTING_STATE_TRACKING)
-            continue;
+        if (meta->left.state != GST_HAND_POINTING_STATE_TRACKING) continue;
         ++tracked;
         EXPECT_NE(pa, pb) << "frame " << i;
         // The fingertip's ring (radius 5) passes 5 pixels to its right.

@@ -29,13 +29,11 @@ GstPadProbeReturn capture_meta(GstPad*, GstPadProbeInfo* info, gpointer data)
 {
     auto* captured = static_cast<Captured*>(data);
     GstBuffer* buffer = GST_PAD_PROBE_INFO_BUFFER(info);
-    if (const GstHandPointingMeta* meta = gst_buffer_get_hand_pointing_meta(buffer))
-        captured->metas.push_back(*meta);
+    if (const GstHandPointingMeta* meta = gst_buffer_get_hand_pointing_meta(buffer)) captured->metas.push_back(*meta);
     if (GstVideoRegionOfInterestMeta* roi = gst_buffer_get_video_region_of_interest_meta(buffer)) {
         ++captured->with_roi;
         EXPECT_EQ(roi->roi_type, g_quark_from_string("hand"));
-        if (gst_video_region_of_interest_meta_get_param(roi, "hand-pointing"))
-            ++captured->roi_with_params;
+        if (gst_video_region_of_interest_meta_get_param(roi, "hand-pointing")) ++captured->roi_with_params;
     }
     return GST_PAD_PROBE_OK;
 }
@@ -43,8 +41,10 @@ GstPadProbeReturn capture_meta(GstPad*, GstPadProbeInfo* info, gpointer data)
 std::string scene_sources(const std::string& extra)
 {
     const std::string common = " scene=light motion=translate seed=3 num-buffers=" + std::to_string(kFrames) + " ";
-    return "handscenesrc name=l eye=left" + common + extra + " ! t.sink_left "
-           "handscenesrc name=r eye=right" + common + extra + " ! t.sink_right ";
+    return "handscenesrc name=l eye=left" + common + extra +
+           " ! t.sink_left "
+           "handscenesrc name=r eye=right" +
+           common + extra + " ! t.sink_right ";
 }
 
 TEST(ScenePipeline, MetaAndMessagesFollowTheGroundTruth)
@@ -127,12 +127,12 @@ std::vector<gc::test::SamplePtr> render_eye(const char* eye)
 {
     gc::test::ElementPtr pipeline = gc::test::parse_pipeline(
         std::string("handscenesrc scene=light motion=translate seed=3 truth-messages=false num-buffers=") +
-        std::to_string(kFrames) + " eye=" + eye + " ! video/x-raw,format=BGR ! appsink name=out sync=false wait-on-eos=false");
+        std::to_string(kFrames) + " eye=" + eye +
+        " ! video/x-raw,format=BGR ! appsink name=out sync=false wait-on-eos=false");
     std::vector<gc::test::SamplePtr> samples;
-    if (!pipeline)
-        return samples;
-    const gc::test::RunResult r =
-        gc::test::run_pipeline(pipeline.get(), 60 * GST_SECOND, [&] { samples = gc::test::drain(pipeline.get(), "out"); });
+    if (!pipeline) return samples;
+    const gc::test::RunResult r = gc::test::run_pipeline(pipeline.get(), 60 * GST_SECOND,
+                                                         [&] { samples = gc::test::drain(pipeline.get(), "out"); });
     EXPECT_TRUE(r.eos) << r.error;
     return samples;
 }
@@ -188,8 +188,7 @@ TEST(ScenePipeline, SideBySideFramesTrackLikeTwoViews)
     const auto actual = gc::test::read_lines(packed);
     ASSERT_EQ(expected.size(), size_t(kFrames));
     ASSERT_EQ(actual.size(), expected.size());
-    for (size_t i = 0; i < expected.size(); ++i)
-        ASSERT_EQ(actual[i], expected[i]) << "frame " << i;
+    for (size_t i = 0; i < expected.size(); ++i) ASSERT_EQ(actual[i], expected[i]) << "frame " << i;
 }
 
 // Pixels of the overlay's marginal colour (BGR 255, 160, 0) in the bottom and right bands of
@@ -198,25 +197,22 @@ int marginal_pixels_in_mono_output(bool draw)
 {
     gc::test::ElementPtr pipeline = gc::test::parse_pipeline(
         "handscenesrc eye=left scene=clean motion=translate seed=3 truth-messages=false num-buffers=40 ! "
-        "t.sink_left handtracker name=t message-updates=none draw=" + std::string(draw ? "true" : "false") +
+        "t.sink_left handtracker name=t message-updates=none draw=" +
+        std::string(draw ? "true" : "false") +
         " ! video/x-raw,format=BGR,width=640,height=480 ! appsink name=out sync=false wait-on-eos=false");
-    if (!pipeline)
-        return -1;
+    if (!pipeline) return -1;
     std::vector<gc::test::SamplePtr> samples;
-    const gc::test::RunResult r =
-        gc::test::run_pipeline(pipeline.get(), 60 * GST_SECOND, [&] { samples = gc::test::drain(pipeline.get(), "out"); });
+    const gc::test::RunResult r = gc::test::run_pipeline(pipeline.get(), 60 * GST_SECOND,
+                                                         [&] { samples = gc::test::drain(pipeline.get(), "out"); });
     EXPECT_TRUE(r.eos) << r.error;
-    if (samples.empty())
-        return -1;
+    if (samples.empty()) return -1;
     GstBuffer* last = gst_sample_get_buffer(samples.back().get());
     GstMapInfo m;
-    if (!gst_buffer_map(last, &m, GST_MAP_READ))
-        return -1;
+    if (!gst_buffer_map(last, &m, GST_MAP_READ)) return -1;
     int count = 0;
     for (int y = 0; y < 480; ++y)
         for (int x = 0; x < 640; ++x) {
-            if (y < 400 && x < 560)
-                continue;
+            if (y < 400 && x < 560) continue;
             const guint8* p = m.data + (y * 640 + x) * 3;
             count += p[0] == 255 && p[1] == 160 && p[2] == 0;
         }

@@ -24,7 +24,8 @@ class PtyPeer {
 public:
     using Respond = std::function<std::vector<std::uint8_t>(std::span<const std::uint8_t>)>;
 
-    explicit PtyPeer(Respond respond) : respond_(std::move(respond)) {
+    explicit PtyPeer(Respond respond) : respond_(std::move(respond))
+    {
         master_ = ::posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC);
         EXPECT_GE(master_, 0);
         EXPECT_EQ(::grantpt(master_), 0);
@@ -32,7 +33,8 @@ public:
         path_ = ::ptsname(master_);
         thread_ = std::thread([this] { serve(); });
     }
-    ~PtyPeer() {
+    ~PtyPeer()
+    {
         stop_ = true;
         thread_.join();
         ::close(master_);
@@ -42,7 +44,8 @@ public:
     const std::string& path() const { return path_; }
 
 private:
-    void serve() {
+    void serve()
+    {
         while (!stop_) {
             pollfd p{master_, POLLIN, 0};
             if (::poll(&p, 1, 20) <= 0 || !(p.revents & POLLIN)) continue;
@@ -50,7 +53,8 @@ private:
             const ssize_t n = ::read(master_, buf, sizeof buf);
             if (n <= 0) continue;
             const auto out = respond_(std::span<const std::uint8_t>(buf, static_cast<std::size_t>(n)));
-            if (!out.empty()) [[maybe_unused]] auto w = ::write(master_, out.data(), out.size());
+            if (!out.empty()) [[maybe_unused]]
+                auto w = ::write(master_, out.data(), out.size());
         }
     }
 

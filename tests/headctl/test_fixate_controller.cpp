@@ -16,18 +16,21 @@ constexpr double kFrame = 1.0 / 30.0;
 // A target fixed in the world at (pan, tilt); the camera sees it relative to the head's
 // pose one frame late (capture + processing), and the head obeys after its own latency.
 struct Loop {
-    explicit Loop(FixateConfig config = {}, double latency_s = 0.02) : controller(with_limits(config)) {
+    explicit Loop(FixateConfig config = {}, double latency_s = 0.02) : controller(with_limits(config))
+    {
         HeadModelConfig m;
         m.latency_s = latency_s;
         head = std::make_unique<HeadModel>(m);
     }
-    static FixateConfig with_limits(FixateConfig c) {
+    static FixateConfig with_limits(FixateConfig c)
+    {
         c.limits = default_simulated_limits();
         return c;
     }
 
     // Runs n frames; returns the pan/tilt poses seen at each.
-    std::vector<HeadPose> run(int frames, double target_pan, double target_tilt, bool visible = true) {
+    std::vector<HeadPose> run(int frames, double target_pan, double target_tilt, bool visible = true)
+    {
         std::vector<HeadPose> poses;
         for (int i = 0; i < frames; ++i) {
             const HeadPose now = head->state(t).pose;
@@ -57,7 +60,8 @@ struct Loop {
     std::vector<HeadCommand> commands;
 };
 
-TEST(FixateController, StepResponseSettlesWithoutOvershootOrOscillation) {
+TEST(FixateController, StepResponseSettlesWithoutOvershootOrOscillation)
+{
     for (double step : {5.0, 20.0, -40.0}) {
         Loop loop;
         const auto poses = loop.run(150, step, step / 4.0);  // 5 s
@@ -85,7 +89,8 @@ TEST(FixateController, StepResponseSettlesWithoutOvershootOrOscillation) {
     }
 }
 
-TEST(FixateController, CommandsAreRateLimited) {
+TEST(FixateController, CommandsAreRateLimited)
+{
     FixateConfig config;
     config.max_acceleration_dps2 = 100.0;
     Loop loop(config);
@@ -99,7 +104,8 @@ TEST(FixateController, CommandsAreRateLimited) {
     }
 }
 
-TEST(FixateController, StopsInsideTheSoftLimits) {
+TEST(FixateController, StopsInsideTheSoftLimits)
+{
     Loop loop;
     const auto poses = loop.run(300, 200.0, 80.0);  // far beyond pan 170, tilt 45
     // It aims 1 deg (the margin) inside; the head's own lag may carry it a little further.
@@ -110,7 +116,8 @@ TEST(FixateController, StopsInsideTheSoftLimits) {
     EXPECT_NEAR(poses.back().pan_deg, 169.0, 0.5);
 }
 
-TEST(FixateController, HoldsThenHomesWhenTheHandIsLost) {
+TEST(FixateController, HoldsThenHomesWhenTheHandIsLost)
+{
     FixateConfig config;
     config.hold_s = 1.0;
     Loop loop(config);
@@ -133,7 +140,8 @@ TEST(FixateController, HoldsThenHomesWhenTheHandIsLost) {
     EXPECT_NEAR(later.back().pan_deg, 0.0, 1e-6);
 }
 
-TEST(FixateController, ReturnsToTheHomePresetWhenOneIsSet) {
+TEST(FixateController, ReturnsToTheHomePresetWhenOneIsSet)
+{
     FixateConfig config;
     config.hold_s = 0.5;
     config.home_preset = 7;
@@ -153,7 +161,8 @@ TEST(FixateController, ReturnsToTheHomePresetWhenOneIsSet) {
     EXPECT_NEAR(later.back().tilt_deg, 5.0, 1e-6);
 }
 
-TEST(FixateController, ZoomsOutWhileTheHandIsLostAndStopsWhenItIsFoundAgain) {
+TEST(FixateController, ZoomsOutWhileTheHandIsLostAndStopsWhenItIsFoundAgain)
+{
     FixateConfig config;
     config.widen_after_s = 0.5;
     config.widen_rate = 3.0;
@@ -165,9 +174,9 @@ TEST(FixateController, ZoomsOutWhileTheHandIsLostAndStopsWhenItIsFoundAgain) {
     loop.t = 3.0;
     loop.run(30, 0.0, 0.0);
     EXPECT_DOUBLE_EQ(loop.head->state(loop.t).pose.zoom, 6.0);  // tracking: the lens is left alone
-    const auto lost = loop.run(15, 0.0, 0.0, false);              // 0.5 s: holding
+    const auto lost = loop.run(15, 0.0, 0.0, false);            // 0.5 s: holding
     EXPECT_DOUBLE_EQ(lost.back().zoom, 6.0);
-    const auto widening = loop.run(30, 0.0, 0.0, false);          // 1 s more: about 3 wider
+    const auto widening = loop.run(30, 0.0, 0.0, false);  // 1 s more: about 3 wider
     EXPECT_LT(widening.back().zoom, 4.0);
     EXPECT_GT(widening.back().zoom, 2.0);
     loop.run(1, 0.0, 0.0);  // found again
@@ -177,7 +186,8 @@ TEST(FixateController, ZoomsOutWhileTheHandIsLostAndStopsWhenItIsFoundAgain) {
     EXPECT_GT(loop.head->state(loop.t).pose.zoom, 1.5);
 }
 
-TEST(FixateController, FeedForwardFollowsAMovingTarget) {
+TEST(FixateController, FeedForwardFollowsAMovingTarget)
+{
     FixateConfig with;
     FixateConfig without;
     without.feed_forward = 0.0;
@@ -203,7 +213,8 @@ TEST(FixateController, FeedForwardFollowsAMovingTarget) {
     EXPECT_GT(lag(without), lag(with));
 }
 
-TEST(FixateController, ImageOffsetsBecomeAnglesInTheHeadsSense) {
+TEST(FixateController, ImageOffsetsBecomeAnglesInTheHeadsSense)
+{
     const FixateObservation o = offset_from_image(100.0, -100.0, 100.0, 100.0);
     EXPECT_NEAR(o.offset_pan_deg, 45.0, 1e-9);   // right of centre: pan right
     EXPECT_NEAR(o.offset_tilt_deg, 45.0, 1e-9);  // above centre: tilt up
@@ -211,7 +222,8 @@ TEST(FixateController, ImageOffsetsBecomeAnglesInTheHeadsSense) {
     EXPECT_THROW(offset_from_image(std::nan(""), 1.0, 100.0, 100.0), std::invalid_argument);
 }
 
-TEST(FixateController, RejectsBadConfigurationAndInput) {
+TEST(FixateController, RejectsBadConfigurationAndInput)
+{
     FixateConfig config;
     config.release_band_deg = 0.5;  // below the dead band
     EXPECT_THROW(FixateController{config}, std::invalid_argument);

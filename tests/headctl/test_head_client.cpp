@@ -21,7 +21,8 @@ namespace {
 
 // Polls cond every 5 ms for at most `limit`.
 template <typename Cond>
-bool eventually(Cond cond, std::chrono::milliseconds limit = 5000ms) {
+bool eventually(Cond cond, std::chrono::milliseconds limit = 5000ms)
+{
     const auto end = std::chrono::steady_clock::now() + limit;
     while (std::chrono::steady_clock::now() < end) {
         if (cond()) return true;
@@ -30,14 +31,16 @@ bool eventually(Cond cond, std::chrono::milliseconds limit = 5000ms) {
     return cond();
 }
 
-HeadCommand absolute_pan(double deg) {
+HeadCommand absolute_pan(double deg)
+{
     HeadCommand c{CommandKind::Absolute, {}};
     c.values.set(Axis::Pan, deg);
     return c;
 }
 
 // A client that samples every 10 ms and retries after 20 ms, doubling up to 160 ms.
-HeadClientConfig config_for(const std::string& uri) {
+HeadClientConfig config_for(const std::string& uri)
+{
     HeadClientConfig c;
     c.uri = uri;
     c.status_interval = 10ms;
@@ -51,13 +54,15 @@ HeadClientConfig config_for(const RunningServer& server) { return config_for(ser
 // The state changes a client reports, as its callback records them.
 class StateLog {
 public:
-    std::function<void(ConnectionState, const std::string&)> recorder() {
+    std::function<void(ConnectionState, const std::string&)> recorder()
+    {
         return [this](ConnectionState s, const std::string&) {
             std::lock_guard lock(mutex_);
             seen_.push_back(s);
         };
     }
-    std::vector<ConnectionState> seen() const {
+    std::vector<ConnectionState> seen() const
+    {
         std::lock_guard lock(mutex_);
         return seen_;
     }
@@ -67,7 +72,8 @@ private:
     std::vector<ConnectionState> seen_;
 };
 
-TEST(HeadClient, ConnectsSamplesAndInterpolates) {
+TEST(HeadClient, ConnectsSamplesAndInterpolates)
+{
     RunningServer server;
     HeadClient client(config_for(server));
     ASSERT_TRUE(eventually([&] { return client.stats().state_samples >= 5; }));
@@ -84,7 +90,8 @@ TEST(HeadClient, ConnectsSamplesAndInterpolates) {
     EXPECT_NEAR(pose->pan_deg, 20.0, 1e-9);
 }
 
-TEST(HeadClient, StampsSamplesWithTheCallersClock) {
+TEST(HeadClient, StampsSamplesWithTheCallersClock)
+{
     RunningServer server;
     HeadClientConfig config = config_for(server);
     const auto offset = std::chrono::hours(1000);
@@ -96,7 +103,8 @@ TEST(HeadClient, StampsSamplesWithTheCallersClock) {
     EXPECT_LT(age, 2000ms);
 }
 
-TEST(HeadClient, LatestCommandWins) {
+TEST(HeadClient, LatestCommandWins)
+{
     RunningServer server;
     HeadClientConfig config = config_for(server);
     config.min_command_interval = 300ms;
@@ -113,7 +121,8 @@ TEST(HeadClient, LatestCommandWins) {
     EXPECT_EQ(stats.commands_sent + stats.commands_superseded, 50u);
 }
 
-TEST(HeadClient, RateLimitsCommands) {
+TEST(HeadClient, RateLimitsCommands)
+{
     RunningServer server;
     HeadClientConfig config = config_for(server);
     config.min_command_interval = 50ms;
@@ -128,7 +137,8 @@ TEST(HeadClient, RateLimitsCommands) {
         ++submitted;
         std::this_thread::sleep_for(2ms);
     }
-    const double elapsed_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    const double elapsed_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     std::this_thread::sleep_for(100ms);
     const HeadClientStats stats = client.stats();
     EXPECT_GT(submitted, 50);
@@ -136,7 +146,8 @@ TEST(HeadClient, RateLimitsCommands) {
     EXPECT_GE(stats.commands_sent, 5u);
 }
 
-TEST(HeadClient, ReportsRefusedCommandsAndStaysConnected) {
+TEST(HeadClient, ReportsRefusedCommandsAndStaysConnected)
+{
     RunningServer server;
     HeadClient client(config_for(server));
     ASSERT_TRUE(eventually([&] { return client.state() == ConnectionState::Connected; }));
@@ -146,7 +157,8 @@ TEST(HeadClient, ReportsRefusedCommandsAndStaysConnected) {
     EXPECT_EQ(client.state(), ConnectionState::Connected);
 }
 
-TEST(HeadClient, ReconnectsWithExponentialBackoff) {
+TEST(HeadClient, ReconnectsWithExponentialBackoff)
+{
     std::uint16_t port = 0;
     {
         RunningServer probe;  // a port that was free a moment ago
@@ -181,7 +193,8 @@ TEST(HeadClient, ReconnectsWithExponentialBackoff) {
 
 // A head that greets and then hangs up, every time: each connection "succeeds", so a client
 // that forgets its backoff on connecting would call again every initial backoff.
-TEST(HeadClient, BackoffGrowsAcrossConnectThenFailCycles) {
+TEST(HeadClient, BackoffGrowsAcrossConnectThenFailCycles)
+{
     ScriptedServer flaky("HELLO GCHP/1 axes=pan,tilt,verge_l,verge_r caps=abs,rel,vel\n");
     HeadClient client(config_for(flaky.uri()));
     std::this_thread::sleep_for(1000ms);
@@ -193,7 +206,8 @@ TEST(HeadClient, BackoffGrowsAcrossConnectThenFailCycles) {
     EXPECT_LE(stats.connect_attempts, 12u);
 }
 
-TEST(HeadClient, AuthenticatesWithItsToken) {
+TEST(HeadClient, AuthenticatesWithItsToken)
+{
     HeadServerConfig server_config;
     server_config.token = "opensesame";
     RunningServer server(server_config);
@@ -209,7 +223,8 @@ TEST(HeadClient, AuthenticatesWithItsToken) {
     EXPECT_TRUE(eventually([&] { return client.stats().state_samples > 0; }));
 }
 
-TEST(HeadClient, CallerNeverWaitsOnAStuckHead) {
+TEST(HeadClient, CallerNeverWaitsOnAStuckHead)
+{
     // Listens but never accepts: connecting succeeds, the greeting never comes.
     net::Fd stuck(::socket(AF_INET, SOCK_STREAM, 0));
     sockaddr_in a{};
@@ -230,7 +245,8 @@ TEST(HeadClient, CallerNeverWaitsOnAStuckHead) {
         client.submit(absolute_pan(i % 10));
         client.pose_at(client.now());
         client.state();
-        worst_us = std::max(worst_us, std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count());
+        worst_us = std::max(
+            worst_us, std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count());
     }
     EXPECT_LT(worst_us, 100000.0);  // scheduling noise only: far below the 2 s connect timeout
     EXPECT_EQ(client.state(), ConnectionState::Connecting);
@@ -240,7 +256,8 @@ TEST(HeadClient, CallerNeverWaitsOnAStuckHead) {
 // A head that greets and hangs up before it reports a state never counts as connected, so
 // whoever reports connection changes (the element's warnings) sees one outage, not one per
 // attempt.
-TEST(HeadClient, AHeadThatHangsUpBeforeItsFirstStateIsNeverReportedConnected) {
+TEST(HeadClient, AHeadThatHangsUpBeforeItsFirstStateIsNeverReportedConnected)
+{
     ScriptedServer flaky("HELLO GCHP/1 axes=pan,tilt,verge_l,verge_r caps=abs,rel,vel\n");
     StateLog log;
     HeadClientConfig config = config_for(flaky.uri());
@@ -254,7 +271,8 @@ TEST(HeadClient, AHeadThatHangsUpBeforeItsFirstStateIsNeverReportedConnected) {
 
 // A GCHP line may hold 512 bytes before its '\n' (and a '\r' that does not count); a head
 // sending a longer one is refused, and the message names the limit.
-TEST(GchpBackend, TakesLinesOfUpTo512BytesAndNamesTheLimitBeyond) {
+TEST(GchpBackend, TakesLinesOfUpTo512BytesAndNamesTheLimitBeyond)
+{
     const std::string greeting = "HELLO GCHP/1 axes=pan,tilt,verge_l,verge_r caps=abs,rel,vel,";
     const std::string longest = greeting + std::string(kMaxLineLength - greeting.size(), 'x');
     ASSERT_EQ(longest.size(), 512u);
@@ -275,7 +293,8 @@ TEST(GchpBackend, TakesLinesOfUpTo512BytesAndNamesTheLimitBeyond) {
     }
 }
 
-TEST(HeadClient, RejectsBadConfigurationAndCommands) {
+TEST(HeadClient, RejectsBadConfigurationAndCommands)
+{
     HeadClientConfig config;
     config.uri = "ftp://head";
     EXPECT_THROW(HeadClient{config}, std::invalid_argument);

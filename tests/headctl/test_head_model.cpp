@@ -8,13 +8,15 @@
 namespace gc::headctl {
 namespace {
 
-AxisValues pan(double v) {
+AxisValues pan(double v)
+{
     AxisValues a;
     a.set(Axis::Pan, v);
     return a;
 }
 
-TEST(HeadModel, TrapezoidalMoveRespectsVelocityAndAccelerationLimits) {
+TEST(HeadModel, TrapezoidalMoveRespectsVelocityAndAccelerationLimits)
+{
     HeadModelConfig config;  // pan: 120 deg/s, 400 deg/s^2
     HeadModel head(config);
     head.move_absolute(pan(90.0), 0.0);
@@ -42,13 +44,15 @@ TEST(HeadModel, TrapezoidalMoveRespectsVelocityAndAccelerationLimits) {
     EXPECT_DOUBLE_EQ(head.state(3.0).pose.pan_deg, 90.0);
 }
 
-AxisValues zoom(double v) {
+AxisValues zoom(double v)
+{
     AxisValues a;
     a.set(Axis::Zoom, v);
     return a;
 }
 
-TEST(HeadModel, ZoomIsAMagnificationWithItsOwnLimitsAndSpeed) {
+TEST(HeadModel, ZoomIsAMagnificationWithItsOwnLimitsAndSpeed)
+{
     HeadModel head(HeadModelConfig{});  // zoom: 1..20, 8 per s, 30 per s^2
     EXPECT_DOUBLE_EQ(head.state(0.0).pose.zoom, 1.0);
     EXPECT_THROW(head.move_absolute(zoom(0.5), 0.0), std::out_of_range);
@@ -70,7 +74,8 @@ TEST(HeadModel, ZoomIsAMagnificationWithItsOwnLimitsAndSpeed) {
     EXPECT_DOUBLE_EQ(head.state(20.0).pose.zoom, 1.0);
 }
 
-TEST(HeadModel, APresetKeepsWhereTheHeadWasAndRecallsIt) {
+TEST(HeadModel, APresetKeepsWhereTheHeadWasAndRecallsIt)
+{
     HeadModel head(HeadModelConfig{});
     EXPECT_THROW(head.recall_preset(3, 0.0), std::out_of_range);
     AxisValues there = pan(30.0);
@@ -92,7 +97,8 @@ TEST(HeadModel, APresetKeepsWhereTheHeadWasAndRecallsIt) {
     EXPECT_DOUBLE_EQ(head.state(30.0).pose.pan_deg, -20.0);
 }
 
-TEST(HeadModel, ZoomLimitsMustHoldTheWidestView) {
+TEST(HeadModel, ZoomLimitsMustHoldTheWidestView)
+{
     HeadModelConfig config;
     config.limits[Axis::Zoom] = AxisLimits{0.5, 4.0, 1.0, 1.0};
     EXPECT_THROW(config.validate(), std::invalid_argument);
@@ -100,7 +106,8 @@ TEST(HeadModel, ZoomLimitsMustHoldTheWidestView) {
     EXPECT_THROW(config.validate(), std::invalid_argument);
 }
 
-TEST(HeadModel, RejectsTargetsBeyondSoftLimitsAndTooFastVelocities) {
+TEST(HeadModel, RejectsTargetsBeyondSoftLimitsAndTooFastVelocities)
+{
     HeadModel head(HeadModelConfig{});
     EXPECT_THROW(head.move_absolute(pan(170.5), 0.0), std::out_of_range);
     EXPECT_THROW(head.move_velocity(pan(121.0), 0.0), std::out_of_range);
@@ -110,7 +117,8 @@ TEST(HeadModel, RejectsTargetsBeyondSoftLimitsAndTooFastVelocities) {
     EXPECT_DOUBLE_EQ(head.state(5.0).pose.pan_deg, 150.0);
 }
 
-TEST(HeadModel, VelocityMoveBrakesToAStopAtTheSoftLimit) {
+TEST(HeadModel, VelocityMoveBrakesToAStopAtTheSoftLimit)
+{
     HeadModelConfig config;
     config.velocity_timeout_s = 0.0;
     HeadModel head(config);
@@ -122,7 +130,8 @@ TEST(HeadModel, VelocityMoveBrakesToAStopAtTheSoftLimit) {
     EXPECT_FALSE(head.state(4.1).moving[0]);
 }
 
-TEST(HeadModel, VelocityMoveStopsWhenNotRenewed) {
+TEST(HeadModel, VelocityMoveStopsWhenNotRenewed)
+{
     HeadModelConfig config;
     config.velocity_timeout_s = 0.5;
     HeadModel head(config);
@@ -134,7 +143,8 @@ TEST(HeadModel, VelocityMoveStopsWhenNotRenewed) {
     EXPECT_NEAR(later.pose.pan_deg, at_timeout + 0.5, 0.05);
 }
 
-TEST(HeadModel, StopHomeAndLatency) {
+TEST(HeadModel, StopHomeAndLatency)
+{
     HeadModelConfig config;
     config.latency_s = 0.1;
     HeadModel head(config);
@@ -150,7 +160,8 @@ TEST(HeadModel, StopHomeAndLatency) {
     EXPECT_EQ(head.state(3.0).server_time_us, 3000000);
 }
 
-TEST(HeadModel, AngleErrorIsSeededAndBounded) {
+TEST(HeadModel, AngleErrorIsSeededAndBounded)
+{
     HeadModelConfig config;
     config.angle_error_deg = 0.2;
     config.seed = 42;
@@ -166,7 +177,8 @@ TEST(HeadModel, AngleErrorIsSeededAndBounded) {
     EXPECT_NE(reached(42), 10.0);
 }
 
-TEST(HeadModel, ValidatesItsConfiguration) {
+TEST(HeadModel, ValidatesItsConfiguration)
+{
     HeadModelConfig config;
     config.latency_s = -1.0;
     EXPECT_THROW(HeadModel{config}, std::invalid_argument);

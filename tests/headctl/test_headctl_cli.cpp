@@ -19,7 +19,8 @@ struct Outcome {
 };
 
 // Runs build/core/tools/`program` with args (and `env` added to the environment); bounded to 10 s.
-Outcome run_program(const std::string& program, std::vector<std::string> args, const std::vector<std::string>& env = {}) {
+Outcome run_program(const std::string& program, std::vector<std::string> args, const std::vector<std::string>& env = {})
+{
     const char* root = std::getenv("GESTURECAM_BUILD_ROOT");
     const std::string path = std::string(root ? root : ".") + "/core/tools/" + program;
     Outcome o;
@@ -58,15 +59,18 @@ Outcome run_program(const std::string& program, std::vector<std::string> args, c
     o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     // What it wrote on stderr (a few lines at most: the pipe's buffer holds them all).
     char chunk[4096];
-    for (ssize_t n; (n = ::read(child.err.get(), chunk, sizeof chunk)) > 0;) o.err.append(chunk, static_cast<std::size_t>(n));
+    for (ssize_t n; (n = ::read(child.err.get(), chunk, sizeof chunk)) > 0;)
+        o.err.append(chunk, static_cast<std::size_t>(n));
     return o;
 }
 
-Outcome run_headctl(std::vector<std::string> args, const std::vector<std::string>& env = {}) {
+Outcome run_headctl(std::vector<std::string> args, const std::vector<std::string>& env = {})
+{
     return run_program("headctl", std::move(args), env);
 }
 
-TEST(HeadctlCli, StatusMoveAndLimits) {
+TEST(HeadctlCli, StatusMoveAndLimits)
+{
     RunningServer server;
     const Outcome status = run_headctl({"--uri", server.uri(), "status"});
     EXPECT_EQ(status.exit_code, 0);
@@ -82,7 +86,8 @@ TEST(HeadctlCli, StatusMoveAndLimits) {
     EXPECT_EQ(std::count(watch.out.begin(), watch.out.end(), '\n'), 3);
 }
 
-TEST(HeadctlCli, ZoomIsAMagnification) {
+TEST(HeadctlCli, ZoomIsAMagnification)
+{
     RunningServer server;
     EXPECT_NE(run_headctl({"--uri", server.uri(), "status"}).out.find(" zoom=1.000 "), std::string::npos);
     const Outcome move = run_headctl({"--uri", server.uri(), "move", "zoom=2"});
@@ -99,7 +104,8 @@ TEST(HeadctlCli, ZoomIsAMagnification) {
     EXPECT_NE(limits.out.find("zoom     min=1.000 max=20.000"), std::string::npos) << limits.out;
 }
 
-TEST(HeadctlCli, PresetsAreSavedAndRecalledOnTheHead) {
+TEST(HeadctlCli, PresetsAreSavedAndRecalledOnTheHead)
+{
     RunningServer server;
     const auto status_shows = [&](const std::string& text) {
         std::string seen;
@@ -126,7 +132,8 @@ TEST(HeadctlCli, PresetsAreSavedAndRecalledOnTheHead) {
     EXPECT_EQ(run_headctl({"--uri", server.uri(), "preset", "keep", "1"}).exit_code, 2);
 }
 
-TEST(HeadctlCli, ExitCodesTellUsageConnectionAndRefusal) {
+TEST(HeadctlCli, ExitCodesTellUsageConnectionAndRefusal)
+{
     HeadServerConfig config;
     config.token = "k3y";
     RunningServer server(config);
@@ -143,7 +150,8 @@ TEST(HeadctlCli, ExitCodesTellUsageConnectionAndRefusal) {
     EXPECT_EQ(run_headctl({"--uri", server.uri(), "--timeout", "500", "status"}).exit_code, 3);
 }
 
-TEST(HeadctlCli, TakesTheTokenFromAFileOrTheEnvironment) {
+TEST(HeadctlCli, TakesTheTokenFromAFileOrTheEnvironment)
+{
     HeadServerConfig config;
     config.token = "k3y-in-a-file";
     RunningServer server(config);
@@ -163,12 +171,14 @@ TEST(HeadctlCli, TakesTheTokenFromAFileOrTheEnvironment) {
 }
 
 }  // namespace
-TEST(HeadctlCli, JsonRepliesOneObjectPerLine) {
+TEST(HeadctlCli, JsonRepliesOneObjectPerLine)
+{
     RunningServer server;
     const Outcome status = run_headctl({"--uri", server.uri(), "--json", "status"});
     EXPECT_EQ(status.exit_code, 0);
     EXPECT_NE(status.out.find("\"pan\":0,\"tilt\":0,\"verge_l\":0,\"verge_r\":0,\"pan_moving\":false"),
-              std::string::npos) << status.out;
+              std::string::npos)
+        << status.out;
     EXPECT_EQ(status.out.front(), '{');
     EXPECT_EQ(std::count(status.out.begin(), status.out.end(), '\n'), 1);
     const Outcome move = run_headctl({"--uri", server.uri(), "--json", "move", "rel", "pan=-5"});
@@ -180,7 +190,8 @@ TEST(HeadctlCli, JsonRepliesOneObjectPerLine) {
     EXPECT_EQ(std::count(limits.out.begin(), limits.out.end(), '\n'), 4);
 }
 
-TEST(HeadctlCli, VersionHelpAndAOneLineHint) {
+TEST(HeadctlCli, VersionHelpAndAOneLineHint)
+{
     for (const std::string program : {"headctl", "headsim"}) {
         const Outcome version = run_program(program, {"--version"});
         EXPECT_EQ(version.exit_code, 0);

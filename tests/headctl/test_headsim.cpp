@@ -20,7 +20,8 @@ namespace {
 
 bool starts_with(const std::string& s, std::string_view prefix) { return s.rfind(prefix, 0) == 0; }
 
-TEST(HeadSim, GreetsAndAnswersRequestsWithTheirIds) {
+TEST(HeadSim, GreetsAndAnswersRequestsWithTheirIds)
+{
     RunningServer server;
     LineClient c(server.port());
     EXPECT_EQ(c.line().value_or(""), "HELLO GCHP/1 axes=pan,tilt,verge_l,verge_r,zoom caps=abs,rel,vel,preset");
@@ -37,7 +38,8 @@ TEST(HeadSim, GreetsAndAnswersRequestsWithTheirIds) {
     EXPECT_THROW(c.line(), net::NetError);  // closed after QUIT
 }
 
-TEST(HeadSim, RequiresTheTokenBeforeAnythingElse) {
+TEST(HeadSim, RequiresTheTokenBeforeAnythingElse)
+{
     HeadServerConfig config;
     config.token = "letmein";
     config.max_auth_failures = 2;
@@ -56,7 +58,8 @@ TEST(HeadSim, RequiresTheTokenBeforeAnythingElse) {
     EXPECT_THROW(guesser.line(), net::NetError);  // too many failures: closed
 }
 
-TEST(HeadSim, OverLongLinesAreReportedAndSkipped) {
+TEST(HeadSim, OverLongLinesAreReportedAndSkipped)
+{
     RunningServer server;
     LineClient c(server.port());
     c.line();
@@ -66,7 +69,8 @@ TEST(HeadSim, OverLongLinesAreReportedAndSkipped) {
     EXPECT_TRUE(starts_with(c.line().value_or(""), "OK #9 STATE "));
 }
 
-TEST(HeadSim, RefusesClientsBeyondTheCap) {
+TEST(HeadSim, RefusesClientsBeyondTheCap)
+{
     HeadServerConfig config;
     config.max_clients = 2;
     RunningServer server(config);
@@ -88,7 +92,8 @@ TEST(HeadSim, RefusesClientsBeyondTheCap) {
 }
 
 // A good client keeps getting prompt answers while 32 others misbehave in every way.
-TEST(HeadSim, MisbehavingClientsDoNotDisturbAGoodOne) {
+TEST(HeadSim, MisbehavingClientsDoNotDisturbAGoodOne)
+{
     HeadServerConfig config;
     config.max_clients = 64;
     config.max_pending_output = 16 * 1024;
@@ -102,19 +107,25 @@ TEST(HeadSim, MisbehavingClientsDoNotDisturbAGoodOne) {
     for (int i = 0; i < 32; ++i) {
         LineClient& c = *bad[static_cast<std::size_t>(i)];
         switch (i % 4) {
-            case 0: c.send("\x01\x02garbage\xff\xfe\n\n\n"); break;  // garbage
-            case 1: c.send("#1 MOVE ABS pan=1"); break;                 // half a line, never finished
-            case 2: {                                                   // slow reader: never reads
-                const int small = 4096;
-                ::setsockopt(c.fd(), SOL_SOCKET, SO_RCVBUF, &small, sizeof small);
-                ::fcntl(c.fd(), F_SETFL, ::fcntl(c.fd(), F_GETFL) | O_NONBLOCK);
-                for (int k = 0; k < 50; ++k) {
-                    const ssize_t n = ::send(c.fd(), flood.data(), flood.size(), MSG_NOSIGNAL);
-                    if (n <= 0) break;
-                }
-                break;
+        case 0:
+            c.send("\x01\x02garbage\xff\xfe\n\n\n");
+            break;  // garbage
+        case 1:
+            c.send("#1 MOVE ABS pan=1");
+            break;  // half a line, never finished
+        case 2: {   // slow reader: never reads
+            const int small = 4096;
+            ::setsockopt(c.fd(), SOL_SOCKET, SO_RCVBUF, &small, sizeof small);
+            ::fcntl(c.fd(), F_SETFL, ::fcntl(c.fd(), F_GETFL) | O_NONBLOCK);
+            for (int k = 0; k < 50; ++k) {
+                const ssize_t n = ::send(c.fd(), flood.data(), flood.size(), MSG_NOSIGNAL);
+                if (n <= 0) break;
             }
-            case 3: c.close(); break;  // abrupt close
+            break;
+        }
+        case 3:
+            c.close();
+            break;  // abrupt close
         }
     }
 
@@ -124,7 +135,8 @@ TEST(HeadSim, MisbehavingClientsDoNotDisturbAGoodOne) {
     for (int i = 0; i < 100; ++i) {
         const auto start = std::chrono::steady_clock::now();
         const std::string reply = good.request("#" + std::to_string(i) + " STATUS");
-        worst_ms = std::max(worst_ms, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+        worst_ms = std::max(
+            worst_ms, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
         ASSERT_TRUE(starts_with(reply, "OK #" + std::to_string(i) + " STATE ")) << reply;
     }
     EXPECT_LT(worst_ms, 500.0);
@@ -134,7 +146,8 @@ TEST(HeadSim, MisbehavingClientsDoNotDisturbAGoodOne) {
     EXPECT_TRUE(starts_with(bad[0]->request("#77 STATUS"), "OK #77 STATE "));
 }
 
-TEST(HeadSim, ThirtyTwoConcurrentClientsAllGetAnswers) {
+TEST(HeadSim, ThirtyTwoConcurrentClientsAllGetAnswers)
+{
     HeadServerConfig config;
     config.max_clients = 40;
     RunningServer server(config);
@@ -162,7 +175,8 @@ TEST(HeadSim, ThirtyTwoConcurrentClientsAllGetAnswers) {
     EXPECT_EQ(answered.load(), 32 * 20);
 }
 
-std::string headsim_path() {
+std::string headsim_path()
+{
     const char* root = std::getenv("GESTURECAM_BUILD_ROOT");
     return std::string(root ? root : ".") + "/core/tools/headsim";
 }
@@ -171,20 +185,23 @@ std::string headsim_path() {
 // and stderr are read through pipes. Whatever fails, the child does not outlive the test.
 class HeadsimProcess {
 public:
-    explicit HeadsimProcess(std::vector<std::string> args, const std::vector<std::string>& env = {}) {
+    explicit HeadsimProcess(std::vector<std::string> args, const std::vector<std::string>& env = {})
+    {
         Spawned s = spawn(headsim_path(), std::move(args), env, true);
         pid_ = s.pid;
         out_ = std::move(s.out);
         err_ = std::move(s.err);
     }
-    ~HeadsimProcess() {
+    ~HeadsimProcess()
+    {
         if (reaped_) return;
         ::kill(pid_, SIGKILL);
         ::waitpid(pid_, nullptr, 0);
     }
     pid_t pid() const { return pid_; }
     // The next line on stdout, or nullopt after 5 s or at its end.
-    std::optional<std::string> out_line() {
+    std::optional<std::string> out_line()
+    {
         try {
             return out_reader_.read_line(out_.get(), net::Clock::now() + 5s);
         } catch (const net::NetError&) {
@@ -192,14 +209,16 @@ public:
         }
     }
     // The port of the "listening ADDR:PORT" line, or 0 when it does not come.
-    std::uint16_t listening_port() {
+    std::uint16_t listening_port()
+    {
         const auto first = out_line();
         EXPECT_TRUE(first && starts_with(*first, "listening 127.0.0.1:")) << first.value_or("<nothing>");
         if (!first || first->rfind(':') == std::string::npos) return 0;
         return static_cast<std::uint16_t>(std::stoi(first->substr(first->rfind(':') + 1)));
     }
     // The exit status, or -1 when it runs on after `limit`.
-    int exit_status(std::chrono::milliseconds limit = 5000ms) {
+    int exit_status(std::chrono::milliseconds limit = 5000ms)
+    {
         int status = 0;
         pid_t done = 0;
         for (auto end = net::Clock::now() + limit; done == 0 && net::Clock::now() < end;) {
@@ -211,14 +230,17 @@ public:
         return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     }
     // What it wrote on stderr so far.
-    std::string err_text() {
+    std::string err_text()
+    {
         std::string text;
         char chunk[1024];
-        for (ssize_t n; (n = ::read(err_.get(), chunk, sizeof chunk)) > 0;) text.append(chunk, static_cast<std::size_t>(n));
+        for (ssize_t n; (n = ::read(err_.get(), chunk, sizeof chunk)) > 0;)
+            text.append(chunk, static_cast<std::size_t>(n));
         return text;
     }
     // Its command line as other users of the machine read it.
-    std::string command_line() const {
+    std::string command_line() const
+    {
         std::ifstream in("/proc/" + std::to_string(pid_) + "/cmdline");
         std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
         std::replace(text.begin(), text.end(), '\0', ' ');
@@ -232,7 +254,8 @@ private:
     net::LineReader out_reader_{256};
 };
 
-TEST(HeadSim, ExecutableShutsDownCleanlyOnSigterm) {
+TEST(HeadSim, ExecutableShutsDownCleanlyOnSigterm)
+{
     HeadsimProcess headsim({"--listen", "127.0.0.1:0", "--token", "t0k"});
     const std::uint16_t port = headsim.listening_port();
     ASSERT_NE(port, 0);
@@ -255,7 +278,8 @@ TEST(HeadSim, ExecutableShutsDownCleanlyOnSigterm) {
 
 // A file holding `text`, removed at the end of the scope.
 struct TempFile {
-    explicit TempFile(const std::string& text) {
+    explicit TempFile(const std::string& text)
+    {
         char name[] = "/tmp/gesturecam-token-XXXXXX";
         const int fd = ::mkstemp(name);
         path = name;
@@ -267,9 +291,11 @@ struct TempFile {
 };
 
 // The token holder is served, a wrong token is not.
-void expect_token(std::uint16_t port, const std::string& token) {
+void expect_token(std::uint16_t port, const std::string& token)
+{
     LineClient c(port);
-    EXPECT_TRUE(starts_with(c.line().value_or(""), "HELLO GCHP/1 axes=pan,tilt,verge_l,verge_r,zoom caps=abs,rel,vel,preset,auth"));
+    EXPECT_TRUE(starts_with(c.line().value_or(""),
+                            "HELLO GCHP/1 axes=pan,tilt,verge_l,verge_r,zoom caps=abs,rel,vel,preset,auth"));
     EXPECT_TRUE(starts_with(c.request("#1 STATUS"), "ERR #1 401 "));
     EXPECT_EQ(c.request("#2 AUTH " + token), "OK #2");
     LineClient other(port);
@@ -277,7 +303,8 @@ void expect_token(std::uint16_t port, const std::string& token) {
     EXPECT_TRUE(starts_with(other.request("#3 AUTH not-" + token), "ERR #3 403 "));
 }
 
-TEST(HeadSim, TakesItsTokenFromAFileOrTheEnvironmentOffItsCommandLine) {
+TEST(HeadSim, TakesItsTokenFromAFileOrTheEnvironmentOffItsCommandLine)
+{
     const TempFile file("from-a-file\n");
     HeadsimProcess from_file({"--listen", "127.0.0.1:0", "--token-file", file.path});
     expect_token(from_file.listening_port(), "from-a-file");
@@ -292,7 +319,8 @@ TEST(HeadSim, TakesItsTokenFromAFileOrTheEnvironmentOffItsCommandLine) {
     EXPECT_EQ(inline_token.command_line().find("typed-in-clear"), std::string::npos) << inline_token.command_line();
 }
 
-TEST(HeadSim, AnUnusableTokenFileStopsTheStartAndIsNamed) {
+TEST(HeadSim, AnUnusableTokenFileStopsTheStartAndIsNamed)
+{
     const TempFile empty("\n");
     for (const std::string& path : {std::string("/nonexistent/token"), empty.path}) {
         HeadsimProcess headsim({"--listen", "127.0.0.1:0", "--token-file", path});
@@ -301,7 +329,8 @@ TEST(HeadSim, AnUnusableTokenFileStopsTheStartAndIsNamed) {
     }
 }
 
-TEST(HeadSim, ExecutableRefusesToListenBeyondLoopbackWithoutAToken) {
+TEST(HeadSim, ExecutableRefusesToListenBeyondLoopbackWithoutAToken)
+{
     HeadsimProcess headsim({"--listen", "0.0.0.0:0"});
     const int status = headsim.exit_status();
     EXPECT_EQ(status, 2) << "headsim listens on every interface without a token";

@@ -17,7 +17,8 @@ bool starts_with(const std::string& s, std::string_view prefix) { return s.rfind
 
 constexpr const char* kToken = "s3cret-Token";
 
-HeadServerConfig with_token() {
+HeadServerConfig with_token()
+{
     HeadServerConfig config;
     config.port = 0;
     config.token = kToken;
@@ -26,7 +27,8 @@ HeadServerConfig with_token() {
 
 // Whether the server closes the connection within `limit`: reads (and drops) whatever
 // it says until then; the last line read goes to *last.
-bool closed_within(LineClient& c, std::chrono::milliseconds limit, std::string* last = nullptr) {
+bool closed_within(LineClient& c, std::chrono::milliseconds limit, std::string* last = nullptr)
+{
     const auto end = net::Clock::now() + limit;
     try {
         while (net::Clock::now() < end) {
@@ -40,14 +42,16 @@ bool closed_within(LineClient& c, std::chrono::milliseconds limit, std::string* 
 }
 
 // The token holder on 127.0.0.1: greeted, authenticated, answered.
-void expect_served(std::uint16_t port) {
+void expect_served(std::uint16_t port)
+{
     LineClient good(port);
     EXPECT_TRUE(starts_with(good.line().value_or("<timeout>"), "HELLO GCHP/1"));
     EXPECT_EQ(good.request(std::string("#1 AUTH ") + kToken), "OK #1");
     EXPECT_TRUE(starts_with(good.request("#2 STATUS"), "OK #2 STATE ")) << "the token holder is not served";
 }
 
-TEST(HeadSimHostile, IdleConnectionsWithoutTheTokenDoNotLockOutItsHolder) {
+TEST(HeadSimHostile, IdleConnectionsWithoutTheTokenDoNotLockOutItsHolder)
+{
     RunningServer server(with_token());
     // 40 addresses, 4 idle connections each: ten times the default client cap, and more than
     // the server keeps waiting to authenticate.
@@ -59,14 +63,15 @@ TEST(HeadSimHostile, IdleConnectionsWithoutTheTokenDoNotLockOutItsHolder) {
     expect_served(server.port());
 }
 
-TEST(HeadSimHostile, AClientThatDoesNotAuthenticateInTimeIsDropped) {
+TEST(HeadSimHostile, AClientThatDoesNotAuthenticateInTimeIsDropped)
+{
     RunningServer server(with_token());
     LineClient authenticated(server.port());
     authenticated.line();
     ASSERT_EQ(authenticated.request(std::string("AUTH ") + kToken), "OK");
     LineClient idle(server.port(), "127.0.2.2");
-    LineClient asking(server.port(), "127.0.2.3");    // requests without a token: refused each time
-    LineClient trickling(server.port(), "127.0.2.4"); // one byte of a request now and then
+    LineClient asking(server.port(), "127.0.2.3");     // requests without a token: refused each time
+    LineClient trickling(server.port(), "127.0.2.4");  // one byte of a request now and then
     std::atomic<bool> stop{false};
     std::thread drip([&] {
         const std::string request = "#1 STATUS\n";
@@ -91,7 +96,8 @@ TEST(HeadSimHostile, AClientThatDoesNotAuthenticateInTimeIsDropped) {
     EXPECT_TRUE(starts_with(authenticated.request("#3 STATUS"), "OK #3 STATE "));
 }
 
-TEST(HeadSimHostile, UnauthenticatedConnectionsPerAddressAreLimited) {
+TEST(HeadSimHostile, UnauthenticatedConnectionsPerAddressAreLimited)
+{
     RunningServer server(with_token());
     std::vector<std::unique_ptr<LineClient>> crowd;
     int greeted = 0, refused = 0;
@@ -111,7 +117,8 @@ TEST(HeadSimHostile, UnauthenticatedConnectionsPerAddressAreLimited) {
 
 // Wrong tokens cost the guessing address a wait that doubles with every failure, however
 // it reconnects; other addresses are not held up.
-TEST(HeadSimHostile, WrongTokensAreDelayedPerAddressAcrossReconnections) {
+TEST(HeadSimHostile, WrongTokensAreDelayedPerAddressAcrossReconnections)
+{
     RunningServer server(with_token());
     int refusals = 0;
     const auto end = net::Clock::now() + 2s;
@@ -149,7 +156,8 @@ TEST(HeadSimHostile, WrongTokensAreDelayedPerAddressAcrossReconnections) {
     EXPECT_EQ(late.line(10s).value_or("<timeout>"), "OK #5");
 }
 
-TEST(HeadSimHostile, RefusesToListenBeyondLoopbackWithoutAToken) {
+TEST(HeadSimHostile, RefusesToListenBeyondLoopbackWithoutAToken)
+{
     for (const char* host : {"0.0.0.0", "::", "192.0.2.1"}) {
         HeadServerConfig config;
         config.host = host;
@@ -171,7 +179,8 @@ TEST(HeadSimHostile, RefusesToListenBeyondLoopbackWithoutAToken) {
     }
 }
 
-TEST(AuthThrottle, WaitsDoubleUpToTheMaximumAndASuccessClearsThem) {
+TEST(AuthThrottle, WaitsDoubleUpToTheMaximumAndASuccessClearsThem)
+{
     AuthThrottle throttle(100ms, 1s, 3);
     const auto t0 = AuthThrottle::Clock::now();
     EXPECT_LE(throttle.next_check("10.0.0.1"), t0);
@@ -190,7 +199,8 @@ TEST(AuthThrottle, WaitsDoubleUpToTheMaximumAndASuccessClearsThem) {
     EXPECT_LE(throttle.size(), 3u);  // bounded memory, however many addresses fail
 }
 
-TEST(AuthThrottle, CountsAnIpv6HostByItsNetwork) {
+TEST(AuthThrottle, CountsAnIpv6HostByItsNetwork)
+{
     auto key = [](const char* text) {
         sockaddr_storage s{};
         if (::inet_pton(AF_INET, text, &reinterpret_cast<sockaddr_in&>(s).sin_addr) == 1) {

@@ -16,7 +16,8 @@ namespace {
 using namespace std::chrono_literals;
 using pelco::Message;
 
-TEST(PelcoBytes, MessagesCarryAddressCommandDataAndChecksum) {
+TEST(PelcoBytes, MessagesCarryAddressCommandDataAndChecksum)
+{
     EXPECT_EQ(pelco::stop(1), (Message{0xFF, 0x01, 0x00, 0x00, 0x00, 0x00, 0x01}));
     pelco::Drive right_up{1, 1, 0, 0x20, 0x10};
     EXPECT_EQ(pelco::drive(1, right_up), (Message{0xFF, 0x01, 0x00, 0x0A, 0x20, 0x10, 0x3B}));
@@ -45,15 +46,19 @@ TEST(PelcoBytes, MessagesCarryAddressCommandDataAndChecksum) {
 class PelcoCamera {
 public:
     explicit PelcoCamera(bool silent = false)
-        : silent_(silent), pty_([this](std::span<const std::uint8_t> bytes) { return respond(bytes); }) {}
+        : silent_(silent), pty_([this](std::span<const std::uint8_t> bytes) { return respond(bytes); })
+    {
+    }
     const std::string& path() const { return pty_.path(); }
-    std::vector<Message> received() {
+    std::vector<Message> received()
+    {
         std::lock_guard lock(mutex_);
         return received_;
     }
 
 private:
-    std::vector<std::uint8_t> respond(std::span<const std::uint8_t> bytes) {
+    std::vector<std::uint8_t> respond(std::span<const std::uint8_t> bytes)
+    {
         std::lock_guard lock(mutex_);
         std::vector<std::uint8_t> out;
         stream_.insert(stream_.end(), bytes.begin(), bytes.end());
@@ -71,13 +76,26 @@ private:
                 out.insert(out.end(), r.begin(), r.end());
             };
             switch (m[3]) {
-                case 0x4B: pan_ = value; break;
-                case 0x4D: tilt_ = value; break;
-                case 0x03: presets_[value] = {pan_, tilt_}; break;
-                case 0x07: std::tie(pan_, tilt_) = presets_[value]; break;
-                case 0x51: reply(0x59, pan_); break;
-                case 0x53: reply(0x5B, tilt_); break;
-                default: break;
+            case 0x4B:
+                pan_ = value;
+                break;
+            case 0x4D:
+                tilt_ = value;
+                break;
+            case 0x03:
+                presets_[value] = {pan_, tilt_};
+                break;
+            case 0x07:
+                std::tie(pan_, tilt_) = presets_[value];
+                break;
+            case 0x51:
+                reply(0x59, pan_);
+                break;
+            case 0x53:
+                reply(0x5B, tilt_);
+                break;
+            default:
+                break;
             }
         }
         return out;
@@ -92,14 +110,16 @@ private:
     testing::PtyPeer pty_;  // last: its thread starts once the rest is built
 };
 
-HeadCommand move(CommandKind kind, double pan, double tilt) {
+HeadCommand move(CommandKind kind, double pan, double tilt)
+{
     HeadCommand c{kind, {}};
     c.values.set(Axis::Pan, pan);
     c.values.set(Axis::Tilt, tilt);
     return c;
 }
 
-TEST(PelcoBackend, MovesReadsBackAndKeepsPresets) {
+TEST(PelcoBackend, MovesReadsBackAndKeepsPresets)
+{
     PelcoCamera camera;
     auto head = make_backend(parse_head_uri("pelco-d://" + camera.path() + "?address=1&baud=2400"));
     const auto deadline = [] { return net::Clock::now() + 2s; };
@@ -129,7 +149,8 @@ TEST(PelcoBackend, MovesReadsBackAndKeepsPresets) {
     EXPECT_EQ(got.back(), pelco::stop(1));
 }
 
-TEST(PelcoBackend, ASilentCameraCostsNoMoreThanTheDeadline) {
+TEST(PelcoBackend, ASilentCameraCostsNoMoreThanTheDeadline)
+{
     PelcoCamera camera(true);
     auto head = make_backend(parse_head_uri("pelco-d://" + camera.path() + "?timeout_ms=200"));
     head->open(net::Clock::now() + 1s);

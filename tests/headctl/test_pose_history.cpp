@@ -8,7 +8,8 @@ namespace {
 
 using namespace std::chrono_literals;
 
-StateSample sample(std::chrono::milliseconds t, double pan, double tilt = 0.0) {
+StateSample sample(std::chrono::milliseconds t, double pan, double tilt = 0.0)
+{
     StateSample s;
     s.time = t;
     s.state.pose.pan_deg = pan;
@@ -17,7 +18,8 @@ StateSample sample(std::chrono::milliseconds t, double pan, double tilt = 0.0) {
     return s;
 }
 
-TEST(PoseHistory, InterpolatesBetweenSamples) {
+TEST(PoseHistory, InterpolatesBetweenSamples)
+{
     PoseHistory h(8);
     EXPECT_FALSE(h.pose_at(0ms, 100ms));
     h.push(sample(100ms, 0.0, 10.0));
@@ -29,11 +31,12 @@ TEST(PoseHistory, InterpolatesBetweenSamples) {
     EXPECT_DOUBLE_EQ(h.pose_at(250ms, 0ms)->pan_deg, 10.0);
 }
 
-TEST(PoseHistory, ClampsBeforeTheFirstAndExtrapolatesBoundedlyAfterTheLast) {
+TEST(PoseHistory, ClampsBeforeTheFirstAndExtrapolatesBoundedlyAfterTheLast)
+{
     PoseHistory h(8);
     h.push(sample(100ms, 0.0));
     EXPECT_DOUBLE_EQ(h.pose_at(500ms, 100ms)->pan_deg, 0.0);  // one sample: held
-    h.push(sample(200ms, 10.0));  // 100 deg/s
+    h.push(sample(200ms, 10.0));                              // 100 deg/s
     EXPECT_DOUBLE_EQ(h.pose_at(50ms, 100ms)->pan_deg, 0.0);
     EXPECT_DOUBLE_EQ(h.pose_at(250ms, 100ms)->pan_deg, 15.0);
     EXPECT_DOUBLE_EQ(h.pose_at(300ms, 100ms)->pan_deg, 20.0);
@@ -45,7 +48,8 @@ TEST(PoseHistory, ClampsBeforeTheFirstAndExtrapolatesBoundedlyAfterTheLast) {
     EXPECT_DOUBLE_EQ(h.pose_at(350ms, 100ms)->pan_deg, 11.0);
 }
 
-TEST(PoseHistory, RingKeepsTheNewestAndDropsOutOfOrderSamples) {
+TEST(PoseHistory, RingKeepsTheNewestAndDropsOutOfOrderSamples)
+{
     PoseHistory h(4);
     for (int i = 0; i < 10; ++i) h.push(sample(std::chrono::milliseconds(i * 10), i));
     EXPECT_EQ(h.size(), 4u);

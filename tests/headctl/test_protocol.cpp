@@ -8,7 +8,8 @@
 namespace gc::headctl {
 namespace {
 
-ErrorCode request_error(std::string_view line) {
+ErrorCode request_error(std::string_view line)
+{
     try {
         parse_request(line);
     } catch (const ProtocolError& e) {
@@ -19,7 +20,8 @@ ErrorCode request_error(std::string_view line) {
     return ErrorCode::Internal;
 }
 
-ErrorCode reply_error(std::string_view line) {
+ErrorCode reply_error(std::string_view line)
+{
     try {
         parse_reply(line);
     } catch (const ProtocolError& e) {
@@ -29,7 +31,8 @@ ErrorCode reply_error(std::string_view line) {
     return ErrorCode::Internal;
 }
 
-TEST(Protocol, ParsesMoveWithIdAndAxes) {
+TEST(Protocol, ParsesMoveWithIdAndAxes)
+{
     const Request r = parse_request("#12 MOVE ABS pan=10.5 tilt=-3");
     ASSERT_TRUE(r.id);
     EXPECT_EQ(*r.id, 12u);
@@ -39,13 +42,15 @@ TEST(Protocol, ParsesMoveWithIdAndAxes) {
     EXPECT_FALSE(r.values.has(Axis::VergeLeft));
 }
 
-TEST(Protocol, VerbsAreCaseInsensitiveAndCarriageReturnIsIgnored) {
+TEST(Protocol, VerbsAreCaseInsensitiveAndCarriageReturnIsIgnored)
+{
     EXPECT_EQ(parse_request("status\r").command, Command::Status);
     EXPECT_EQ(parse_request("  move  vel\tverge_l=2e1 ").command, Command::MoveVelocity);
     EXPECT_DOUBLE_EQ(parse_request("move rel verge_r=-0.25").values.get(Axis::VergeRight), -0.25);
 }
 
-TEST(Protocol, RequestRoundTrips) {
+TEST(Protocol, RequestRoundTrips)
+{
     std::vector<Request> requests;
     Request move;
     move.id = 4294967295u;
@@ -66,12 +71,14 @@ TEST(Protocol, RequestRoundTrips) {
     for (const Request& r : requests) EXPECT_EQ(parse_request(format_request(r)), r) << format_request(r);
 }
 
-TEST(Protocol, RejectsUnknownCommand) {
+TEST(Protocol, RejectsUnknownCommand)
+{
     EXPECT_EQ(request_error("JUMP pan=1"), ErrorCode::UnknownCommand);
     EXPECT_EQ(request_error("#3 FLY"), ErrorCode::UnknownCommand);
 }
 
-TEST(Protocol, RejectsBadNumbers) {
+TEST(Protocol, RejectsBadNumbers)
+{
     EXPECT_EQ(request_error("MOVE ABS pan=abc"), ErrorCode::BadArgument);
     EXPECT_EQ(request_error("MOVE ABS pan=1.5x"), ErrorCode::BadArgument);
     EXPECT_EQ(request_error("MOVE ABS pan="), ErrorCode::BadArgument);
@@ -80,19 +87,22 @@ TEST(Protocol, RejectsBadNumbers) {
     EXPECT_EQ(request_error("MOVE ABS pan=1e400"), ErrorCode::BadArgument);
 }
 
-TEST(Protocol, RejectsNanAndInfinity) {
+TEST(Protocol, RejectsNanAndInfinity)
+{
     for (const char* v : {"nan", "NaN", "-nan", "inf", "-inf", "infinity"})
         EXPECT_EQ(request_error(std::string("MOVE VEL pan=") + v), ErrorCode::BadArgument) << v;
 }
 
-TEST(Protocol, RejectsOverLongLine) {
+TEST(Protocol, RejectsOverLongLine)
+{
     std::string line = "MOVE ABS pan=1";
     line.append(kMaxLineLength, ' ');
     EXPECT_EQ(request_error(line), ErrorCode::LineTooLong);
     EXPECT_EQ(reply_error("OK " + std::string(kMaxLineLength, 'x')), ErrorCode::LineTooLong);
 }
 
-TEST(Protocol, RejectsMissingOrMalformedFields) {
+TEST(Protocol, RejectsMissingOrMalformedFields)
+{
     EXPECT_EQ(request_error(""), ErrorCode::Syntax);
     EXPECT_EQ(request_error("#7"), ErrorCode::Syntax);
     EXPECT_EQ(request_error("MOVE"), ErrorCode::Syntax);
@@ -113,7 +123,8 @@ TEST(Protocol, RejectsMissingOrMalformedFields) {
     EXPECT_EQ(request_error("STATUS \x7f"), ErrorCode::Syntax);
 }
 
-TEST(Protocol, PeeksTheIdOfAMalformedRequest) {
+TEST(Protocol, PeeksTheIdOfAMalformedRequest)
+{
     EXPECT_EQ(peek_request_id("#42 MOVE ABS pan=nan"), 42u);
     EXPECT_EQ(peek_request_id("  #7"), 7u);
     EXPECT_FALSE(peek_request_id("MOVE #42"));
@@ -121,7 +132,8 @@ TEST(Protocol, PeeksTheIdOfAMalformedRequest) {
     EXPECT_FALSE(peek_request_id("#99999999999 STATUS"));
 }
 
-TEST(Protocol, StateReplyRoundTrips) {
+TEST(Protocol, StateReplyRoundTrips)
+{
     Reply r;
     r.id = 9;
     r.body = ReplyBody::State;
@@ -141,7 +153,8 @@ TEST(Protocol, StateReplyRoundTrips) {
     EXPECT_EQ(back.state.moving, r.state.moving);
 }
 
-TEST(Protocol, AHeadWithoutZoomReportsFourAxesAndReadsAsTheWidestView) {
+TEST(Protocol, AHeadWithoutZoomReportsFourAxesAndReadsAsTheWidestView)
+{
     const Reply r = parse_reply("OK STATE t=5 pan=1 tilt=2 verge_l=3 verge_r=4 moving=0,0,1,0");
     EXPECT_DOUBLE_EQ(r.state.pose.zoom, 1.0);
     EXPECT_TRUE(r.state.moving[2]);
@@ -154,7 +167,8 @@ TEST(Protocol, AHeadWithoutZoomReportsFourAxesAndReadsAsTheWidestView) {
                  ProtocolError);
 }
 
-TEST(Protocol, PresetsAreSavedAndRecalledByNumber) {
+TEST(Protocol, PresetsAreSavedAndRecalledByNumber)
+{
     const Request save = parse_request("#4 preset save 12");
     EXPECT_EQ(save.command, Command::PresetSave);
     EXPECT_EQ(save.preset, 12);
@@ -162,8 +176,8 @@ TEST(Protocol, PresetsAreSavedAndRecalledByNumber) {
     const Request recall = parse_request("PRESET RECALL 255");
     EXPECT_EQ(recall.command, Command::PresetRecall);
     EXPECT_EQ(format_request(recall), "PRESET RECALL 255");
-    for (const char* bad : {"PRESET SAVE", "PRESET SAVE 256", "PRESET SAVE -1", "PRESET FORGET 1", "PRESET SAVE 1 2",
-                            "PRESET RECALL x"})
+    for (const char* bad :
+         {"PRESET SAVE", "PRESET SAVE 256", "PRESET SAVE -1", "PRESET FORGET 1", "PRESET SAVE 1 2", "PRESET RECALL x"})
         EXPECT_THROW(parse_request(bad), ProtocolError) << bad;
     Greeting g;
     g.caps.presets = true;
@@ -171,13 +185,15 @@ TEST(Protocol, PresetsAreSavedAndRecalledByNumber) {
     EXPECT_TRUE(parse_greeting(format_greeting(g)).caps.presets);
 }
 
-TEST(Protocol, ZoomIsAnAxisOfMoves) {
+TEST(Protocol, ZoomIsAnAxisOfMoves)
+{
     const Request r = parse_request("#3 MOVE ABS zoom=2 pan=1");
     EXPECT_DOUBLE_EQ(r.values.get(Axis::Zoom), 2.0);
     EXPECT_EQ(format_request(r), "#3 MOVE ABS pan=1 zoom=2");
 }
 
-TEST(Protocol, NumbersKeepFourDecimals) {
+TEST(Protocol, NumbersKeepFourDecimals)
+{
     Request r;
     r.command = Command::MoveAbsolute;
     r.values.set(Axis::Pan, 1.0 / 3.0);
@@ -187,7 +203,8 @@ TEST(Protocol, NumbersKeepFourDecimals) {
     EXPECT_THROW(format_request(r), std::invalid_argument);
 }
 
-TEST(Protocol, LimitsReplyRoundTripsWithinTheLineBound) {
+TEST(Protocol, LimitsReplyRoundTripsWithinTheLineBound)
+{
     Reply r;
     r.body = ReplyBody::Limits;
     for (Axis a : kAllAxes) r.limits[a] = AxisLimits{-99999.1234, 99999.1234, 99999.1234, 99999.1234};
@@ -199,7 +216,8 @@ TEST(Protocol, LimitsReplyRoundTripsWithinTheLineBound) {
     EXPECT_EQ(back.limits, r.limits);
 }
 
-TEST(Protocol, ErrorReplyRoundTrips) {
+TEST(Protocol, ErrorReplyRoundTrips)
+{
     const Reply r = make_error_reply(5, ErrorCode::OutOfRange, "pan target 300 deg is outside [-170, 170]");
     const std::string line = format_reply(r);
     EXPECT_EQ(line, "ERR #5 416 pan target 300 deg is outside [-170, 170]");
@@ -214,7 +232,8 @@ TEST(Protocol, ErrorReplyRoundTrips) {
     EXPECT_EQ(parse_reply("ERR 599 new thing").error, ErrorCode::Internal);
 }
 
-TEST(Protocol, ErrorMessagesAreSanitisedAndBounded) {
+TEST(Protocol, ErrorMessagesAreSanitisedAndBounded)
+{
     const Reply r = make_error_reply(1, ErrorCode::Syntax, std::string("bad\nline\x01") + std::string(2000, 'z'));
     const std::string line = format_reply(r);
     EXPECT_LE(line.size(), kMaxLineLength);
@@ -229,7 +248,8 @@ TEST(Protocol, ErrorMessagesAreSanitisedAndBounded) {
     }
 }
 
-TEST(Protocol, RejectsMalformedReplies) {
+TEST(Protocol, RejectsMalformedReplies)
+{
     EXPECT_EQ(reply_error(""), ErrorCode::Syntax);
     EXPECT_EQ(reply_error("MAYBE"), ErrorCode::Syntax);
     EXPECT_EQ(reply_error("ERR #1"), ErrorCode::Syntax);
@@ -246,13 +266,15 @@ TEST(Protocol, RejectsMalformedReplies) {
     EXPECT_EQ(reply_error("OK #1 WEATHER sunny"), ErrorCode::Syntax);
 }
 
-TEST(Protocol, RepliesIgnoreUnknownFieldsOfLaterVersions) {
+TEST(Protocol, RepliesIgnoreUnknownFieldsOfLaterVersions)
+{
     const Reply r = parse_reply("OK #1 STATE t=5 pan=1 tilt=2 verge_l=3 verge_r=4 moving=1,0,0,1 temp=41.5");
     EXPECT_EQ(r.state.server_time_us, 5);
     EXPECT_DOUBLE_EQ(r.state.pose.verge_right_deg, 4.0);
 }
 
-TEST(Protocol, GreetingRoundTripsAndChecksItsShape) {
+TEST(Protocol, GreetingRoundTripsAndChecksItsShape)
+{
     Greeting g;
     EXPECT_EQ(format_greeting(g), "HELLO GCHP/1 axes=pan,tilt,verge_l,verge_r,zoom caps=abs,rel,vel");
     g.caps.auth_required = true;

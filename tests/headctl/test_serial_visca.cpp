@@ -24,15 +24,19 @@ public:
     enum class Mode { Answer, Silent, Garbage };
 
     explicit SerialCamera(Mode mode = Mode::Answer)
-        : mode_(mode), pty_([this](std::span<const std::uint8_t> bytes) { return respond(bytes); }) {}
+        : mode_(mode), pty_([this](std::span<const std::uint8_t> bytes) { return respond(bytes); })
+    {
+    }
     const std::string& path() const { return pty_.path(); }
-    std::vector<Bytes> received() {
+    std::vector<Bytes> received()
+    {
         std::lock_guard lock(mutex_);
         return received_;
     }
 
 private:
-    Bytes respond(std::span<const std::uint8_t> bytes) {
+    Bytes respond(std::span<const std::uint8_t> bytes)
+    {
         if (mode_ == Mode::Silent) return {};
         if (mode_ == Mode::Garbage) return Bytes(64, 0x5A);  // never an FF: no message ever ends
         Bytes out;
@@ -46,7 +50,8 @@ private:
         return out;
     }
 
-    std::vector<Bytes> answer(const Bytes& m) {
+    std::vector<Bytes> answer(const Bytes& m)
+    {
         std::lock_guard lock(mutex_);
         received_.push_back(m);
         if (m == visca::pan_tilt_position_inquiry(1)) {
@@ -70,13 +75,15 @@ private:
     testing::PtyPeer pty_;  // last: its thread starts once the rest is built
 };
 
-HeadCommand pan_to(double deg) {
+HeadCommand pan_to(double deg)
+{
     HeadCommand c{CommandKind::Absolute, {}};
     c.values.set(Axis::Pan, deg);
     return c;
 }
 
-TEST(SerialVisca, DrivesACameraOnASerialLine) {
+TEST(SerialVisca, DrivesACameraOnASerialLine)
+{
     SerialCamera camera;
     auto head = make_backend(parse_head_uri("visca-serial://" + camera.path() + "?baud=9600"));
     const auto deadline = [] { return net::Clock::now() + 2s; };
@@ -92,7 +99,8 @@ TEST(SerialVisca, DrivesACameraOnASerialLine) {
     EXPECT_EQ(head->name(), "visca-serial://" + camera.path());
 }
 
-TEST(SerialVisca, ASilentOrBabblingCameraCostsNoMoreThanTheDeadline) {
+TEST(SerialVisca, ASilentOrBabblingCameraCostsNoMoreThanTheDeadline)
+{
     for (const auto mode : {SerialCamera::Mode::Silent, SerialCamera::Mode::Garbage}) {
         SerialCamera camera(mode);
         auto head = make_backend(parse_head_uri("visca-serial://" + camera.path() + "?timeout_ms=200"));
@@ -117,7 +125,8 @@ TEST(SerialVisca, ASilentOrBabblingCameraCostsNoMoreThanTheDeadline) {
     }
 }
 
-TEST(SerialVisca, UnusablePortsAndRatesAreRefused) {
+TEST(SerialVisca, UnusablePortsAndRatesAreRefused)
+{
     EXPECT_THROW(open_serial_port("/nonexistent/ttyUSB9", 9600), net::NetError);
     EXPECT_THROW(open_serial_port("/dev/null", 9600), net::NetError);  // not a terminal
     EXPECT_THROW(open_serial_port("/dev/null", 1234), std::invalid_argument);

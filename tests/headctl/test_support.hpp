@@ -37,7 +37,8 @@ public:
     explicit RunningServer(HeadServerConfig config = {}) : RunningHead(any_free_port(config)) {}
 
 private:
-    static HeadServerConfig any_free_port(HeadServerConfig config) {
+    static HeadServerConfig any_free_port(HeadServerConfig config)
+    {
         if (config.port == 5050) config.port = 0;
         return config;
     }
@@ -52,7 +53,8 @@ struct Spawned {
 
 // Starts `path` with `args` and `env` added to the environment; throws when it cannot.
 inline Spawned spawn(const std::string& path, std::vector<std::string> args, const std::vector<std::string>& env,
-                     bool capture_err) {
+                     bool capture_err)
+{
     args.insert(args.begin(), path);
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
@@ -89,7 +91,8 @@ inline Spawned spawn(const std::string& path, std::vector<std::string> args, con
 
 // A TCP connection to 127.0.0.1:port from the loopback address `source` (any 127.x.y.z
 // works on Linux), so one test can play clients on many addresses.
-inline net::Fd connect_from(const char* source, std::uint16_t port) {
+inline net::Fd connect_from(const char* source, std::uint16_t port)
+{
     net::Fd fd(::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0));
     sockaddr_in from{};
     from.sin_family = AF_INET;
@@ -110,13 +113,16 @@ inline net::Fd connect_from(const char* source, std::uint16_t port) {
 class LineClient {
 public:
     explicit LineClient(std::uint16_t port, const char* source = "127.0.0.1") : fd_(connect_from(source, port)) {}
-    void send(std::string_view text) {
+    void send(std::string_view text)
+    {
         net::send_all(fd_.get(), std::span<const char>(text.data(), text.size()), net::Clock::now() + 2s);
     }
-    std::optional<std::string> line(std::chrono::milliseconds timeout = 2000ms) {
+    std::optional<std::string> line(std::chrono::milliseconds timeout = 2000ms)
+    {
         return reader_.read_line(fd_.get(), net::Clock::now() + timeout);
     }
-    std::string request(std::string_view text) {
+    std::string request(std::string_view text)
+    {
         send(std::string(text) + "\n");
         auto l = line();
         return l ? *l : std::string("<timeout>");
@@ -133,19 +139,22 @@ private:
 // connects and then fails, or one that sends a line of a chosen length.
 class ScriptedServer {
 public:
-    explicit ScriptedServer(std::string script) : script_(std::move(script)) {
+    explicit ScriptedServer(std::string script) : script_(std::move(script))
+    {
         listener_ = net::Fd(::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0));
         sockaddr_in a{};
         a.sin_family = AF_INET;
         a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
         socklen_t len = sizeof a;
-        if (::bind(listener_.get(), reinterpret_cast<sockaddr*>(&a), sizeof a) != 0 || ::listen(listener_.get(), 16) != 0 ||
+        if (::bind(listener_.get(), reinterpret_cast<sockaddr*>(&a), sizeof a) != 0 ||
+            ::listen(listener_.get(), 16) != 0 ||
             ::getsockname(listener_.get(), reinterpret_cast<sockaddr*>(&a), &len) != 0)
             throw net::NetError("cannot listen on 127.0.0.1");
         port_ = ntohs(a.sin_port);
         thread_ = std::thread([this] { run(); });
     }
-    ~ScriptedServer() {
+    ~ScriptedServer()
+    {
         stop_ = true;
         thread_.join();
     }
@@ -154,7 +163,8 @@ public:
     int accepted() const { return accepted_; }
 
 private:
-    void run() {
+    void run()
+    {
         while (!stop_) {
             pollfd p{listener_.get(), POLLIN, 0};
             if (::poll(&p, 1, 20) <= 0) continue;

@@ -7,7 +7,8 @@
 namespace gc::headctl {
 namespace {
 
-TEST(HeadUri, ParsesEachSchemeWithItsDefaultPort) {
+TEST(HeadUri, ParsesEachSchemeWithItsDefaultPort)
+{
     const HeadUri a = parse_head_uri("tcp://127.0.0.1:5050");
     EXPECT_EQ(a.scheme, HeadScheme::Gchp);
     EXPECT_EQ(a.host, "127.0.0.1");
@@ -22,7 +23,8 @@ TEST(HeadUri, ParsesEachSchemeWithItsDefaultPort) {
     EXPECT_EQ(parse_head_uri("tcp://head").port, 5050);
 }
 
-TEST(HeadUri, ParsesIpv6AndQueryAndRoundTrips) {
+TEST(HeadUri, ParsesIpv6AndQueryAndRoundTrips)
+{
     const HeadUri u = parse_head_uri("visca-udp://[::1]:1259?address=2&pan_units_per_deg=-14.4");
     EXPECT_EQ(u.host, "::1");
     EXPECT_EQ(u.port, 1259);
@@ -34,13 +36,35 @@ TEST(HeadUri, ParsesIpv6AndQueryAndRoundTrips) {
     EXPECT_EQ(parse_head_uri("tcp://h:1?token=abc").param("token"), "abc");
 }
 
-TEST(HeadUri, RejectsMalformedUris) {
+TEST(HeadUri, RejectsMalformedUris)
+{
     for (const char* bad : {
-             "", "127.0.0.1:5050", "http://host:80", "tcp://", "tcp://:5050", "tcp://host:", "tcp://host:0",
-             "tcp://host:65536", "tcp://host:12ab", "tcp://host:-1", "tcp://ho st:1", "tcp://host name",
-             "tcp://[::1", "tcp://[zz]:1", "tcp://[12.34]:1", "tcp://[]:1", "tcp://[::1]x", "tcp://[::1]:", "tcp://host?token", "tcp://host?=x",
-             "tcp://host?token=", "tcp://host?address=1", "tcp://host?token=a&token=b", "visca-udp://h?colour=red",
-             "visca-udp://h?address=1 2", "tcp://h\x01st:1",
+             "",
+             "127.0.0.1:5050",
+             "http://host:80",
+             "tcp://",
+             "tcp://:5050",
+             "tcp://host:",
+             "tcp://host:0",
+             "tcp://host:65536",
+             "tcp://host:12ab",
+             "tcp://host:-1",
+             "tcp://ho st:1",
+             "tcp://host name",
+             "tcp://[::1",
+             "tcp://[zz]:1",
+             "tcp://[12.34]:1",
+             "tcp://[]:1",
+             "tcp://[::1]x",
+             "tcp://[::1]:",
+             "tcp://host?token",
+             "tcp://host?=x",
+             "tcp://host?token=",
+             "tcp://host?address=1",
+             "tcp://host?token=a&token=b",
+             "visca-udp://h?colour=red",
+             "visca-udp://h?address=1 2",
+             "tcp://h\x01st:1",
          }) {
         EXPECT_THROW(parse_head_uri(bad), std::invalid_argument) << bad;
     }
@@ -49,7 +73,8 @@ TEST(HeadUri, RejectsMalformedUris) {
     EXPECT_THROW(parse_head_uri("tcp://[" + std::string(300, ':') + "]"), std::invalid_argument);
 }
 
-TEST(HeadUri, ErrorsNameTheOffendingPart) {
+TEST(HeadUri, ErrorsNameTheOffendingPart)
+{
     try {
         parse_head_uri("visca-udp://h?zoom=1");
         FAIL();
@@ -59,7 +84,8 @@ TEST(HeadUri, ErrorsNameTheOffendingPart) {
 }
 
 // A token in a URI that does not parse stays out of the error, wherever it stands.
-TEST(HeadUri, ErrorsDoNotShowAToken) {
+TEST(HeadUri, ErrorsDoNotShowAToken)
+{
     for (const char* bad : {"tcp://head:12&token=S3CRET", "127.0.0.1:5050?token=S3CRET", "tcp://?token=S3CRET",
                             "tcp://head:1?Token=S3CRET&dance=1", "tcp://head:1?token=S3CRET?x", "ftp://token=S3CRET"}) {
         try {
@@ -71,7 +97,8 @@ TEST(HeadUri, ErrorsDoNotShowAToken) {
     }
 }
 
-TEST(HeadUri, RedactionHidesEveryTokenValueAndNothingElse) {
+TEST(HeadUri, RedactionHidesEveryTokenValueAndNothingElse)
+{
     EXPECT_EQ(redact_uri("tcp://127.0.0.1:5050?token=abc"), "tcp://127.0.0.1:5050?token=***");
     EXPECT_EQ(redact_uri("tcp://h:1?token=a&token=b"), "tcp://h:1?token=***&token=***");
     EXPECT_EQ(redact_uri("tcp://h:1?TOKEN=abc#x"), "tcp://h:1?TOKEN=***#x");
@@ -82,16 +109,17 @@ TEST(HeadUri, RedactionHidesEveryTokenValueAndNothingElse) {
     EXPECT_EQ(redact_uri("tcp://h:1?token="), "tcp://h:1?token=***");
 }
 
-TEST(HeadUri, ViscaSettingsComeFromTheQuery) {
+TEST(HeadUri, ViscaSettingsComeFromTheQuery)
+{
     const auto s = ViscaSettings::from_uri(
         parse_head_uri("visca-udp://h?address=3&tilt_units_per_deg=10&pan_max_speed_dps=50&timeout_ms=250"));
     EXPECT_EQ(s.address, 3);
     EXPECT_DOUBLE_EQ(s.tilt_units_per_deg, 10.0);
     EXPECT_DOUBLE_EQ(s.pan_max_speed_dps, 50.0);
     EXPECT_EQ(s.reply_timeout.count(), 250);
-    for (const char* bad : {"visca-udp://h?address=8", "visca-udp://h?address=1.5", "visca-udp://h?pan_units_per_deg=0",
-                            "visca-udp://h?pan_units_per_deg=nan", "visca-udp://h?timeout_ms=0",
-                            "visca-udp://h?tilt_max_speed_dps=abc"})
+    for (const char* bad :
+         {"visca-udp://h?address=8", "visca-udp://h?address=1.5", "visca-udp://h?pan_units_per_deg=0",
+          "visca-udp://h?pan_units_per_deg=nan", "visca-udp://h?timeout_ms=0", "visca-udp://h?tilt_max_speed_dps=abc"})
         EXPECT_THROW(ViscaSettings::from_uri(parse_head_uri(bad)), std::invalid_argument) << bad;
 }
 

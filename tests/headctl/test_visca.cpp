@@ -27,7 +27,8 @@ namespace {
 using namespace std::chrono_literals;
 using visca::Bytes;
 
-TEST(ViscaBytes, CommandsHaveTheExactLayout) {
+TEST(ViscaBytes, CommandsHaveTheExactLayout)
+{
     EXPECT_EQ(visca::pan_tilt_drive(1, 0x10, 0x08, visca::Direction::Negative, visca::Direction::Positive),
               (Bytes{0x81, 0x01, 0x06, 0x01, 0x10, 0x08, 0x01, 0x01, 0xFF}));
     EXPECT_EQ(visca::pan_tilt_drive(1, 0x10, 0x08, visca::Direction::Positive, visca::Direction::Negative),
@@ -44,7 +45,8 @@ TEST(ViscaBytes, CommandsHaveTheExactLayout) {
     EXPECT_THROW(visca::pan_tilt_absolute(1, 1, 1, 0x8000, 0), visca::ViscaError);
 }
 
-TEST(ViscaBytes, MemoryCommandsHaveTheExactLayout) {
+TEST(ViscaBytes, MemoryCommandsHaveTheExactLayout)
+{
     EXPECT_EQ(visca::memory(1, visca::MemoryAction::Set, 5), (Bytes{0x81, 0x01, 0x04, 0x3F, 0x01, 0x05, 0xFF}));
     EXPECT_EQ(visca::memory(3, visca::MemoryAction::Recall, 0x7F), (Bytes{0x83, 0x01, 0x04, 0x3F, 0x02, 0x7F, 0xFF}));
     EXPECT_EQ(visca::memory(1, visca::MemoryAction::Reset, 0), (Bytes{0x81, 0x01, 0x04, 0x3F, 0x00, 0x00, 0xFF}));
@@ -52,7 +54,8 @@ TEST(ViscaBytes, MemoryCommandsHaveTheExactLayout) {
     EXPECT_THROW(visca::memory(1, visca::MemoryAction::Set, -1), visca::ViscaError);
 }
 
-TEST(ViscaBytes, ZoomCommandsAndInquiryHaveTheExactLayout) {
+TEST(ViscaBytes, ZoomCommandsAndInquiryHaveTheExactLayout)
+{
     EXPECT_EQ(visca::zoom_direct(1, 0x4000), (Bytes{0x81, 0x01, 0x04, 0x47, 0x04, 0x00, 0x00, 0x00, 0xFF}));
     EXPECT_EQ(visca::zoom_direct(2, 0x1234), (Bytes{0x82, 0x01, 0x04, 0x47, 0x01, 0x02, 0x03, 0x04, 0xFF}));
     EXPECT_EQ(visca::zoom_drive(1, 5, visca::Direction::Positive), (Bytes{0x81, 0x01, 0x04, 0x07, 0x25, 0xFF}));
@@ -67,7 +70,8 @@ TEST(ViscaBytes, ZoomCommandsAndInquiryHaveTheExactLayout) {
     EXPECT_THROW(visca::parse_reply(Bytes{0x90, 0x50, 0x1A, 0x0B, 0x0C, 0x0D, 0xFF}), visca::ViscaError);
 }
 
-TEST(ViscaBytes, IpHeaderCarriesTypeLengthAndSequence) {
+TEST(ViscaBytes, IpHeaderCarriesTypeLengthAndSequence)
+{
     const Bytes payload = visca::pan_tilt_home(1);
     EXPECT_EQ(visca::wrap_ip(visca::kIpCommand, 0x01020304, payload),
               (Bytes{0x01, 0x00, 0x00, 0x05, 0x01, 0x02, 0x03, 0x04, 0x81, 0x01, 0x06, 0x04, 0xFF}));
@@ -81,7 +85,8 @@ TEST(ViscaBytes, IpHeaderCarriesTypeLengthAndSequence) {
     EXPECT_THROW(visca::unwrap_ip(Bytes{0x01, 0x11, 0x00, 0x00, 0, 0, 0, 1}), visca::ViscaError);
 }
 
-TEST(ViscaBytes, ParsesAckCompletionErrorAndPosition) {
+TEST(ViscaBytes, ParsesAckCompletionErrorAndPosition)
+{
     auto ack = visca::parse_reply(Bytes{0x90, 0x41, 0xFF});
     EXPECT_EQ(ack.kind, visca::ReplyKind::Ack);
     EXPECT_EQ(ack.socket, 1);
@@ -99,12 +104,22 @@ TEST(ViscaBytes, ParsesAckCompletionErrorAndPosition) {
     EXPECT_EQ(pos.tilt_units, 0x0100);
 }
 
-TEST(ViscaBytes, RejectsMalformedReplies) {
+TEST(ViscaBytes, RejectsMalformedReplies)
+{
     for (const Bytes& bad : {
-             Bytes{}, Bytes{0x90, 0xFF}, Bytes{0x90, 0x41, 0x00}, Bytes{0x91, 0x41, 0xFF}, Bytes{0x80, 0x41, 0xFF},
-             Bytes{0x10, 0x41, 0xFF}, Bytes{0x90, 0x41, 0x00, 0xFF}, Bytes{0x90, 0x61, 0xFF},
-             Bytes{0x90, 0x71, 0xFF}, Bytes{0x90, 0xFF, 0x41, 0xFF}, Bytes{0x90, 0x50, 0x00, 0xFF},
-             Bytes{0x90, 0x50, 0x1F, 0x0F, 0x0F, 0x0E, 0x00, 0x01, 0x00, 0x00, 0xFF}, Bytes(17, 0x00),
+             Bytes{},
+             Bytes{0x90, 0xFF},
+             Bytes{0x90, 0x41, 0x00},
+             Bytes{0x91, 0x41, 0xFF},
+             Bytes{0x80, 0x41, 0xFF},
+             Bytes{0x10, 0x41, 0xFF},
+             Bytes{0x90, 0x41, 0x00, 0xFF},
+             Bytes{0x90, 0x61, 0xFF},
+             Bytes{0x90, 0x71, 0xFF},
+             Bytes{0x90, 0xFF, 0x41, 0xFF},
+             Bytes{0x90, 0x50, 0x00, 0xFF},
+             Bytes{0x90, 0x50, 0x1F, 0x0F, 0x0F, 0x0E, 0x00, 0x01, 0x00, 0x00, 0xFF},
+             Bytes(17, 0x00),
          }) {
         EXPECT_THROW(visca::parse_reply(bad), visca::ViscaError) << bad.size();
     }
@@ -113,7 +128,8 @@ TEST(ViscaBytes, RejectsMalformedReplies) {
 // A camera on loopback: answers VISCA over IP (UDP) or raw VISCA (TCP), keeps a position.
 class ViscaResponder {
 public:
-    explicit ViscaResponder(bool tcp) : tcp_(tcp) {
+    explicit ViscaResponder(bool tcp) : tcp_(tcp)
+    {
         fd_ = ::socket(AF_INET, (tcp ? SOCK_STREAM : SOCK_DGRAM) | SOCK_CLOEXEC, 0);
         sockaddr_in a{};
         a.sin_family = AF_INET;
@@ -125,13 +141,15 @@ public:
         port_ = ntohs(a.sin_port);
         thread_ = std::thread([this] { tcp_ ? serve_tcp() : serve_udp(); });
     }
-    ~ViscaResponder() {
+    ~ViscaResponder()
+    {
         stop_ = true;
         thread_.join();
         ::close(fd_);
     }
     std::uint16_t port() const { return port_; }
-    std::vector<Bytes> received() {
+    std::vector<Bytes> received()
+    {
         std::lock_guard lock(mutex_);
         return received_;
     }
@@ -139,11 +157,13 @@ public:
     // From now on a message is answered only by a flood of datagrams that are not its reply
     // (UDP only).
     void flood_instead_of_answering() { flood_ = true; }
-    void set_zoom(int units) {
+    void set_zoom(int units)
+    {
         std::lock_guard lock(mutex_);
         zoom_ = units;
     }
-    void set_position(int pan, int tilt) {
+    void set_position(int pan, int tilt)
+    {
         std::lock_guard lock(mutex_);
         pan_ = pan;
         tilt_ = tilt;
@@ -151,7 +171,8 @@ public:
 
 private:
     // The replies to one VISCA message.
-    std::vector<Bytes> answer(const Bytes& m) {
+    std::vector<Bytes> answer(const Bytes& m)
+    {
         std::lock_guard lock(mutex_);
         received_.push_back(m);
         if (m == visca::pan_tilt_position_inquiry(1)) {
@@ -164,7 +185,8 @@ private:
         }
         if (m == visca::zoom_position_inquiry(1)) {
             Bytes r{0x90, 0x50};
-            for (int shift = 12; shift >= 0; shift -= 4) r.push_back(static_cast<std::uint8_t>((zoom_ >> shift) & 0x0F));
+            for (int shift = 12; shift >= 0; shift -= 4)
+                r.push_back(static_cast<std::uint8_t>((zoom_ >> shift) & 0x0F));
             r.push_back(0xFF);
             return {r};
         }
@@ -186,12 +208,14 @@ private:
         return {Bytes{0x90, 0x41, 0xFF}, Bytes{0x90, 0x51, 0xFF}};
     }
 
-    bool wait_readable(int fd) {
+    bool wait_readable(int fd)
+    {
         pollfd p{fd, POLLIN, 0};
         return ::poll(&p, 1, 20) > 0;
     }
 
-    void serve_udp() {
+    void serve_udp()
+    {
         while (!stop_) {
             if (!wait_readable(fd_)) continue;
             std::uint8_t buf[256];
@@ -229,7 +253,8 @@ private:
     // queue empty now and then and look at its deadline there: each send becomes 64 datagrams
     // (segmentation offload, where the kernel has it) and the sending thread runs at a
     // real-time priority (where allowed), so other load on the machine does not pause it.
-    void flood(std::uint32_t sequence, sockaddr_storage& to, socklen_t to_len) {
+    void flood(std::uint32_t sequence, sockaddr_storage& to, socklen_t to_len)
+    {
         const Bytes stale = visca::wrap_ip(visca::kIpReply, sequence + 1, Bytes{0x90, 0x51, 0xFF});
         Bytes garbled = stale;
         garbled[3] = 4;  // the header claims a byte more than the datagram has
@@ -259,7 +284,8 @@ private:
         ::pthread_setschedparam(::pthread_self(), SCHED_OTHER, &realtime);
     }
 
-    void serve_tcp() {
+    void serve_tcp()
+    {
         int conn = -1;
         Bytes stream;
         while (!stop_) {
@@ -287,7 +313,8 @@ private:
     }
 
 public:
-    std::vector<std::uint32_t> sequences() {
+    std::vector<std::uint32_t> sequences()
+    {
         std::lock_guard lock(mutex_);
         return sequences_;
     }
@@ -308,14 +335,16 @@ private:
     std::thread thread_;
 };
 
-HeadCommand command(CommandKind kind, std::optional<double> pan, std::optional<double> tilt) {
+HeadCommand command(CommandKind kind, std::optional<double> pan, std::optional<double> tilt)
+{
     HeadCommand c{kind, {}};
     if (pan) c.values.set(Axis::Pan, *pan);
     if (tilt) c.values.set(Axis::Tilt, *tilt);
     return c;
 }
 
-void exercise(ViscaResponder& camera, ViscaBackend& head) {
+void exercise(ViscaResponder& camera, ViscaBackend& head)
+{
     const auto deadline = [] { return net::Clock::now() + 2s; };
     head.open(deadline());
     camera.set_position(160, -32);  // 10 deg, -2 deg at 16 units per degree
@@ -352,7 +381,8 @@ void exercise(ViscaResponder& camera, ViscaBackend& head) {
     EXPECT_EQ(got[7], visca::pan_tilt_home(1));
 }
 
-TEST(ViscaBackend, DrivesACameraOverUdpWithSequenceNumbers) {
+TEST(ViscaBackend, DrivesACameraOverUdpWithSequenceNumbers)
+{
     ViscaResponder camera(false);
     ViscaBackend head("127.0.0.1", camera.port(), ViscaBackend::Transport::Udp, ViscaSettings{});
     exercise(camera, head);
@@ -362,7 +392,8 @@ TEST(ViscaBackend, DrivesACameraOverUdpWithSequenceNumbers) {
     for (std::size_t i = 1; i < seq.size(); ++i) EXPECT_EQ(seq[i], i - 1);
 }
 
-TEST(ViscaBackend, ZoomsToAMagnificationAndReadsItBack) {
+TEST(ViscaBackend, ZoomsToAMagnificationAndReadsItBack)
+{
     ViscaResponder camera(false);
     ViscaSettings settings;
     settings.zoom_max = 21.0;  // position 0x4000 at 21x: 0x0333 per step of 1x (rounded)
@@ -400,7 +431,8 @@ TEST(ViscaBackend, ZoomsToAMagnificationAndReadsItBack) {
     EXPECT_THROW(fixed.send(zoom, deadline()), HeadRejected);
 }
 
-TEST(ViscaBackend, SavesAndRecallsPresetsInTheCamerasMemory) {
+TEST(ViscaBackend, SavesAndRecallsPresetsInTheCamerasMemory)
+{
     ViscaResponder camera(true);
     ViscaBackend head("127.0.0.1", camera.port(), ViscaBackend::Transport::Tcp, ViscaSettings{});
     const auto deadline = [] { return net::Clock::now() + 2s; };
@@ -416,13 +448,15 @@ TEST(ViscaBackend, SavesAndRecallsPresetsInTheCamerasMemory) {
     EXPECT_THROW(head.send(preset_command(CommandKind::RecallPreset, 128), deadline()), HeadRejected);
 }
 
-TEST(ViscaBackend, DrivesACameraOverTcp) {
+TEST(ViscaBackend, DrivesACameraOverTcp)
+{
     ViscaResponder camera(true);
     ViscaBackend head("127.0.0.1", camera.port(), ViscaBackend::Transport::Tcp, ViscaSettings{});
     exercise(camera, head);
 }
 
-TEST(ViscaBackend, ASilentCameraTimesOut) {
+TEST(ViscaBackend, ASilentCameraTimesOut)
+{
     // A bound UDP socket that never answers.
     const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
     sockaddr_in a{};
@@ -440,7 +474,8 @@ TEST(ViscaBackend, ASilentCameraTimesOut) {
 
 // However fast datagrams that are not its reply come in, the client gives up at its reply
 // timeout (50 ms here; the bound leaves ten times that for a loaded machine).
-TEST(ViscaBackend, AFloodOfRepliesToOtherMessagesDoesNotHoldTheClientPastItsTimeout) {
+TEST(ViscaBackend, AFloodOfRepliesToOtherMessagesDoesNotHoldTheClientPastItsTimeout)
+{
     ViscaResponder camera(false);
     camera.flood_instead_of_answering();
     ViscaSettings settings;

@@ -32,8 +32,7 @@ std::string play(const std::string& description)
     if (error) {
         std::string message = error->message;
         g_error_free(error);
-        if (pipeline)
-            gst_object_unref(pipeline);
+        if (pipeline) gst_object_unref(pipeline);
         return message;
     }
     gst_element_set_state(pipeline, GST_STATE_PLAYING);
@@ -47,8 +46,7 @@ std::string play(const std::string& description)
         result = err->message;
         g_error_free(err);
     }
-    if (msg)
-        gst_message_unref(msg);
+    if (msg) gst_message_unref(msg);
     gst_object_unref(bus);
     gst_element_set_state(pipeline, GST_STATE_NULL);
     gst_object_unref(pipeline);
@@ -62,8 +60,7 @@ std::vector<std::string> tracking_lines(const std::string& path)
     static const std::regex pts(R"("pts_ns":(-?[0-9]+|null))");
     std::vector<std::string> lines;
     std::ifstream in(path);
-    for (std::string line; std::getline(in, line);)
-        lines.push_back(std::regex_replace(line, pts, "\"pts_ns\":_"));
+    for (std::string line; std::getline(in, line);) lines.push_back(std::regex_replace(line, pts, "\"pts_ns\":_"));
     return lines;
 }
 
@@ -73,25 +70,36 @@ TEST(FilePipeline, ToolAndElementWriteTheSameJson)
     const std::string tool = env("GESTURECAM_TRACK_EXE");
     ASSERT_FALSE(tool.empty()) << "GESTURECAM_TRACK_EXE is not set";
     const std::string dir = env("GESTURECAM_BUILD_ROOT") + "/tests/pipeline/file_pipeline";
-    for (const char* sub : {"", "/left", "/right"})
-        ASSERT_EQ(g_mkdir_with_parents((dir + sub).c_str(), 0755), 0);
+    for (const char* sub : {"", "/left", "/right"}) ASSERT_EQ(g_mkdir_with_parents((dir + sub).c_str(), 0755), 0);
 
     // Record: the scene's two views as PNG sequences (RGB straight from the source).
-    const std::string scene = " scene=light motion=mixed seed=5 truth-messages=false num-buffers=" +
-                              std::to_string(kFrames) + " ";
-    std::string error = play("handscenesrc eye=left" + scene + "! video/x-raw,format=RGB ! pngenc ! "
-                             "multifilesink location=" + dir + "/left/%05d.png "
-                             "handscenesrc eye=right" + scene + "! video/x-raw,format=RGB ! pngenc ! "
-                             "multifilesink location=" + dir + "/right/%05d.png");
+    const std::string scene =
+        " scene=light motion=mixed seed=5 truth-messages=false num-buffers=" + std::to_string(kFrames) + " ";
+    std::string error = play("handscenesrc eye=left" + scene +
+                             "! video/x-raw,format=RGB ! pngenc ! "
+                             "multifilesink location=" +
+                             dir +
+                             "/left/%05d.png "
+                             "handscenesrc eye=right" +
+                             scene +
+                             "! video/x-raw,format=RGB ! pngenc ! "
+                             "multifilesink location=" +
+                             dir + "/right/%05d.png");
     ASSERT_EQ(error, "");
 
     // Track with the tool.
     const std::string tool_out = dir + "/tool.jsonl";
     const std::string left = dir + "/left/%05d.png";
     const std::string right = dir + "/right/%05d.png";
-    gchar* argv[] = {const_cast<gchar*>(tool.c_str()), const_cast<gchar*>("--left"), const_cast<gchar*>(left.c_str()),
-                     const_cast<gchar*>("--right"), const_cast<gchar*>(right.c_str()), const_cast<gchar*>("--fps"),
-                     const_cast<gchar*>("30"), const_cast<gchar*>("--out"), const_cast<gchar*>(tool_out.c_str()),
+    gchar* argv[] = {const_cast<gchar*>(tool.c_str()),
+                     const_cast<gchar*>("--left"),
+                     const_cast<gchar*>(left.c_str()),
+                     const_cast<gchar*>("--right"),
+                     const_cast<gchar*>(right.c_str()),
+                     const_cast<gchar*>("--fps"),
+                     const_cast<gchar*>("30"),
+                     const_cast<gchar*>("--out"),
+                     const_cast<gchar*>(tool_out.c_str()),
                      nullptr};
     gint status = -1;
     gchar* err = nullptr;
@@ -104,9 +112,13 @@ TEST(FilePipeline, ToolAndElementWriteTheSameJson)
 
     // Track with the element, reading the same files (pngdec gives RGB: no videoconvert).
     const std::string element_out = dir + "/element.jsonl";
-    error = play("multifilesrc location=" + left + " caps=image/png,framerate=30/1 ! pngdec ! t.sink_left "
-                 "multifilesrc location=" + right + " caps=image/png,framerate=30/1 ! pngdec ! t.sink_right "
-                 "handtracker name=t message-updates=none json-location=" + element_out + " ! fakesink sync=false");
+    error = play("multifilesrc location=" + left +
+                 " caps=image/png,framerate=30/1 ! pngdec ! t.sink_left "
+                 "multifilesrc location=" +
+                 right +
+                 " caps=image/png,framerate=30/1 ! pngdec ! t.sink_right "
+                 "handtracker name=t message-updates=none json-location=" +
+                 element_out + " ! fakesink sync=false");
     ASSERT_EQ(error, "");
 
     const auto expected = tracking_lines(tool_out);
@@ -126,8 +138,7 @@ TEST(FilePipeline, ToolAndElementWriteTheSameJson)
 void write_png_header(const std::string& path, std::uint32_t width, std::uint32_t height)
 {
     auto be32 = [](std::string& out, std::uint32_t v) {
-        for (int shift = 24; shift >= 0; shift -= 8)
-            out.push_back(char((v >> shift) & 0xFF));
+        for (int shift = 24; shift >= 0; shift -= 8) out.push_back(char((v >> shift) & 0xFF));
     };
     std::string ihdr = "IHDR";
     be32(ihdr, width);
@@ -149,7 +160,8 @@ TEST(FilePipeline, FilesScriptRefusesAPictureOverTheLimitByItsHeader)
     const std::string dir = env("GESTURECAM_BUILD_ROOT") + "/tests/pipeline/oversized";
     ASSERT_EQ(g_mkdir_with_parents((dir + "/seq").c_str(), 0755), 0);
     ASSERT_EQ(play("videotestsrc num-buffers=4 ! video/x-raw,width=64,height=48,format=RGB ! pngenc ! "
-                   "multifilesink location=" + dir + "/seq/%05d.png"),
+                   "multifilesink location=" +
+                   dir + "/seq/%05d.png"),
               "");
     write_png_header(dir + "/seq/00002.png", 30000, 30000);
 

@@ -51,7 +51,8 @@ std::string yaml(const Entries& entries)
             continue;
         }
         std::string data = e.data;
-        for (std::size_t p = data.find(' '); p != std::string::npos; p = data.find(' ', p + 2)) data.replace(p, 1, ", ");
+        for (std::size_t p = data.find(' '); p != std::string::npos; p = data.find(' ', p + 2))
+            data.replace(p, 1, ", ");
         s += key + ": !!opencv-matrix\n   rows: " + std::to_string(e.rows) + "\n   cols: " + std::to_string(e.cols) +
              "\n   dt: " + e.dt + "\n   data: [ " + data + " ]\n";
     }
@@ -89,7 +90,10 @@ protected:
         std::ofstream(p, std::ios::binary) << text;
         return p.string();
     }
-    std::string write(const Entries& e) { return write(is_xml() ? "calib.xml" : "calib.yml", is_xml() ? xml(e) : yaml(e)); }
+    std::string write(const Entries& e)
+    {
+        return write(is_xml() ? "calib.xml" : "calib.yml", is_xml() ? xml(e) : yaml(e));
+    }
 
     // Loading must fail with a message naming `key` and the file.
     void expect_error(const Entries& e, const std::string& key, const std::string& what = "")
@@ -367,13 +371,11 @@ TEST(Calibration, OnlySmallRegularFilesAreRead)
 
     // A valid calibration followed by unknown keys: read below 1 MiB, refused above it.
     std::string text = yaml(valid_entries());
-    for (int i = 0; text.size() < 1000000; ++i)
-        text += "unknown_" + std::to_string(i) + ": 1\n";
+    for (int i = 0; text.size() < 1000000; ++i) text += "unknown_" + std::to_string(i) + ": 1\n";
     const fs::path below = dir / "below.yml";
     std::ofstream(below, std::ios::binary) << text;
     EXPECT_NO_THROW((void)gc::load_calibration(below.string()));
-    for (int i = 0; text.size() < 2000000; ++i)
-        text += "more_" + std::to_string(i) + ": 1\n";
+    for (int i = 0; text.size() < 2000000; ++i) text += "more_" + std::to_string(i) + ": 1\n";
     const fs::path above = dir / "above.yml";
     std::ofstream(above, std::ios::binary) << text;
     expect_refused(above.string(), "limit");

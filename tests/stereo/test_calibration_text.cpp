@@ -66,8 +66,10 @@ void expect_same(const gc::CalibrationMatrix& m, const cv::Mat& expected, const 
         const double want = d.at<double>(i / d.cols, i % d.cols);
         if (std::isnan(want)) EXPECT_TRUE(std::isnan(m.data[i])) << key << "[" << i << "]";
         // FileStorage writes a float with the digits of a float, not of the double it widens to.
-        else if (expected.depth() == CV_32F) EXPECT_EQ(static_cast<float>(m.data[i]), static_cast<float>(want)) << key;
-        else EXPECT_EQ(m.data[i], want) << key << "[" << i << "]";
+        else if (expected.depth() == CV_32F)
+            EXPECT_EQ(static_cast<float>(m.data[i]), static_cast<float>(want)) << key;
+        else
+            EXPECT_EQ(m.data[i], want) << key << "[" << i << "]";
     }
 }
 
@@ -87,8 +89,8 @@ struct Written {
         cv::FileStorage out(path.string(), cv::FileStorage::WRITE);
         out.writeComment("a comment # with a hash and <markup>");
         out << "count" << 640 << "rms" << 0.25 << "negative" << -3.5e-7 << "empty" << cv::Mat();
-        out << "M" << M << "big" << big << "ints" << ints << "floats" << floats << "bytes" << bytes
-            << "column" << column;
+        out << "M" << M << "big" << big << "ints" << ints << "floats" << floats << "bytes" << bytes << "column"
+            << column;
         out.release();
     }
 
@@ -156,39 +158,37 @@ TEST(CalibrationText, AgreesWithFileStorageOnSavedCalibrations)
 
 TEST(CalibrationText, AcceptsHandWrittenVariants)
 {
-    const std::string yaml =
-        "%YAML 1.0\r\n"
-        "# rig 3, measured in the lab\r\n"
-        "---\r\n"
-        "\r\n"
-        "width: 640   # pixels\r\n"
-        "R: !!opencv-matrix   # rotation\r\n"
-        "  dt: d\r\n"
-        "  cols: 3\r\n"
-        "  rows: 1\r\n"
-        "  data: [\r\n"
-        "     1.0,\r\n"
-        "     +2e0 ,3 ]\r\n"
-        "scale: -.5\r\n";
+    const std::string yaml = "%YAML 1.0\r\n"
+                             "# rig 3, measured in the lab\r\n"
+                             "---\r\n"
+                             "\r\n"
+                             "width: 640   # pixels\r\n"
+                             "R: !!opencv-matrix   # rotation\r\n"
+                             "  dt: d\r\n"
+                             "  cols: 3\r\n"
+                             "  rows: 1\r\n"
+                             "  data: [\r\n"
+                             "     1.0,\r\n"
+                             "     +2e0 ,3 ]\r\n"
+                             "scale: -.5\r\n";
     const gc::CalibrationEntries y = gc::read_calibration_text(yaml, "hand.yml");
     EXPECT_EQ(scalar(y, "width").value, 640.0);
     EXPECT_EQ(matrix(y, "R").data, (std::vector<double>{1.0, 2.0, 3.0}));
     EXPECT_EQ(scalar(y, "scale").value, -0.5);
     EXPECT_EQ(y.at("scale").line, 13u);
 
-    const std::string xml =
-        "<?xml version='1.0' encoding='UTF-8'?>\n"
-        "<!-- rig 3 -->\n"
-        "<opencv_storage>\n"
-        "<width> 640 </width>\n"
-        "<R type_id = 'opencv-matrix'>\n"
-        "  <!-- a row vector -->\n"
-        "  <rows>1</rows> <cols>3</cols>\n"
-        "  <dt>d</dt>\n"
-        "  <data>1.0\n 2e0\t3</data>\n"
-        "</R>\n"
-        "</opencv_storage>\n"
-        "<!-- end -->\n";
+    const std::string xml = "<?xml version='1.0' encoding='UTF-8'?>\n"
+                            "<!-- rig 3 -->\n"
+                            "<opencv_storage>\n"
+                            "<width> 640 </width>\n"
+                            "<R type_id = 'opencv-matrix'>\n"
+                            "  <!-- a row vector -->\n"
+                            "  <rows>1</rows> <cols>3</cols>\n"
+                            "  <dt>d</dt>\n"
+                            "  <data>1.0\n 2e0\t3</data>\n"
+                            "</R>\n"
+                            "</opencv_storage>\n"
+                            "<!-- end -->\n";
     const gc::CalibrationEntries x = gc::read_calibration_text(xml, "hand.xml");
     EXPECT_EQ(scalar(x, "width").value, 640.0);
     EXPECT_EQ(matrix(x, "R").data, (std::vector<double>{1.0, 2.0, 3.0}));
@@ -215,15 +215,15 @@ void expect_refused(const std::string& text, std::size_t line, const std::string
 const std::string kYaml = "%YAML:1.0\n---\n";
 const std::string kXml = "<?xml version=\"1.0\"?>\n<opencv_storage>\n";
 
-std::string yaml_matrix(const std::string& key, const std::string& rows, const std::string& cols,
-                        const std::string& dt, const std::string& data)
+std::string yaml_matrix(const std::string& key, const std::string& rows, const std::string& cols, const std::string& dt,
+                        const std::string& data)
 {
-    return key + ": !!opencv-matrix\n   rows: " + rows + "\n   cols: " + cols + "\n   dt: " + dt +
-           "\n   data: [ " + data + " ]\n";
+    return key + ": !!opencv-matrix\n   rows: " + rows + "\n   cols: " + cols + "\n   dt: " + dt + "\n   data: [ " +
+           data + " ]\n";
 }
 
-std::string xml_matrix(const std::string& key, const std::string& rows, const std::string& cols,
-                       const std::string& dt, const std::string& data)
+std::string xml_matrix(const std::string& key, const std::string& rows, const std::string& cols, const std::string& dt,
+                       const std::string& data)
 {
     return "<" + key + " type_id=\"opencv-matrix\">\n  <rows>" + rows + "</rows>\n  <cols>" + cols + "</cols>\n  <dt>" +
            dt + "</dt>\n  <data>\n    " + data + "</data></" + key + ">\n";
@@ -258,7 +258,8 @@ TEST(CalibrationText, RefusesMatricesOutsideTheLimits)
     for (int i = 0; i < 10002; ++i) many_xml += "1 ";
     expect_refused(kXml + xml_matrix("M", "1", "10002", "d", many_xml) + "</opencv_storage>\n", 8, "M",
                    "more than 10000 values");
-    expect_refused(kXml + xml_matrix("M", "2", "2", "d", "1 2 3") + "</opencv_storage>\n", 8, "M", "3 values, expected 4");
+    expect_refused(kXml + xml_matrix("M", "2", "2", "d", "1 2 3") + "</opencv_storage>\n", 8, "M",
+                   "3 values, expected 4");
     expect_refused(kXml + xml_matrix("M", "1", "2", "dd", "1 2") + "</opencv_storage>\n", 6, "M", "element type");
     expect_refused(kXml + xml_matrix("M", "1", "2", "d", "1 two") + "</opencv_storage>\n", 8, "M", "non-number 'two'");
     expect_refused(kXml + xml_matrix("M", "1", "2", "d", "1, 2") + "</opencv_storage>\n", 8, "M", "non-number '1,'");
@@ -299,7 +300,8 @@ TEST(CalibrationText, RefusesXmlOutsideTheSubset)
     expect_refused(kXml + "<a>one</a>\n" + end, 3, "a", "'one' is not a number");
     expect_refused(kXml + "<a><b>1</b></a>\n" + end, 3, "a", "is not a number");
     expect_refused(kXml + "<a>1</b>\n" + end, 3, "a", "closing tag </b> does not match <a>");
-    expect_refused(kXml + "<a type_id=\"opencv-nd-matrix\"><rows>1</rows></a>\n" + end, 3, "a", "unsupported attribute");
+    expect_refused(kXml + "<a type_id=\"opencv-nd-matrix\"><rows>1</rows></a>\n" + end, 3, "a",
+                   "unsupported attribute");
     expect_refused(kXml + "<a type_id=opencv-matrix>\n" + end, 3, "a", "not quoted");
     expect_refused(kXml + "<M type_id=\"opencv-matrix\">\n  <rows>1</rows>\n  <sizes>1</sizes>\n</M>\n" + end, 5, "M",
                    "unknown matrix field 'sizes'");
@@ -359,7 +361,8 @@ TEST(CalibrationText, IgnoresTextValuesSuchAsTheCalibrationTime)
         SCOPED_TRACE(name);
         {
             cv::FileStorage out((dir / name).string(), cv::FileStorage::WRITE);
-            out << "calibration_time" << "Sun Nov 22 04:40:00 2026";
+            out << "calibration_time"
+                << "Sun Nov 22 04:40:00 2026";
             out << "image_width" << 640 << "image_height" << 480;
             out << "M1" << cv::Mat(c.M1) << "D1" << c.D1 << "M2" << cv::Mat(c.M2) << "D2" << c.D2;
             out << "R" << cv::Mat(c.R) << "T" << cv::Mat(c.T);

@@ -60,7 +60,8 @@ protected:
     void SetUp() override
     {
         ASSERT_TRUE(fs::exists(tool())) << tool();
-        ASSERT_TRUE(fs::exists(kData / "left01.jpg")) << "opencv-doc's sample images are missing: apt install opencv-doc";
+        ASSERT_TRUE(fs::exists(kData / "left01.jpg"))
+            << "opencv-doc's sample images are missing: apt install opencv-doc";
         dir_ = fs::path(::testing::TempDir()) / ("gc_chessboard_" + std::to_string(::getpid()));
         fs::create_directories(dir_);
     }
@@ -71,9 +72,10 @@ protected:
 TEST_F(Chessboard, CalibratesTheSamplePairs)
 {
     const fs::path out = dir_ / "stereo.yml";
-    const ToolRun r = run("--left '" + (kData / "left%02d.jpg").string() + "' --right '" + (kData / "right%02d.jpg").string() +
-                          "' --board 9x6 --square 25 --out '" + out.string() + "'",
-                      dir_ / "log.txt");
+    const ToolRun r =
+        run("--left '" + (kData / "left%02d.jpg").string() + "' --right '" + (kData / "right%02d.jpg").string() +
+                "' --board 9x6 --square 25 --out '" + out.string() + "'",
+            dir_ / "log.txt");
     ASSERT_EQ(r.status, 0) << r.out;
     const double rms = printed(r.out, "rms reprojection error \\(stereo\\)");
     const double epipolar = printed(r.out, "mean epipolar error");
@@ -114,7 +116,8 @@ TEST_F(Chessboard, AcceptsFileLists)
         right += (right.empty() ? "" : ",") + (kData / (std::string("right") + id + ".jpg")).string();
     }
     const fs::path out = dir_ / "stereo.xml";
-    const ToolRun r = run("--left '" + left + "' --right '" + right + "' --out '" + out.string() + "'", dir_ / "log.txt");
+    const ToolRun r =
+        run("--left '" + left + "' --right '" + right + "' --out '" + out.string() + "'", dir_ / "log.txt");
     ASSERT_EQ(r.status, 0) << r.out;
     EXPECT_NE(r.out.find("pairs used: 6 of 6"), std::string::npos) << r.out;
     EXPECT_LT(printed(r.out, "mean epipolar error"), 1.0) << r.out;
@@ -125,9 +128,9 @@ TEST_F(Chessboard, OversizedImagesAreRefusedWithTheirSize)
 {
     const fs::path wide = dir_ / "wide.png";
     ASSERT_TRUE(cv::imwrite(wide.string(), cv::Mat(40, 8193, CV_8UC1, cv::Scalar(128))));
-    const ToolRun r = run("--left '" + wide.string() + "' --right '" + wide.string() + "' --out '" +
-                              (dir_ / "x.yml").string() + "'",
-                          dir_ / "log.txt");
+    const ToolRun r =
+        run("--left '" + wide.string() + "' --right '" + wide.string() + "' --out '" + (dir_ / "x.yml").string() + "'",
+            dir_ / "log.txt");
     EXPECT_EQ(r.status, 1);
     EXPECT_NE(r.out.find("8193x40"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("8192x8192"), std::string::npos) << r.out;

@@ -22,8 +22,8 @@ gc::StereoCalibration rig_with_offsets()
     c.head.tilt_centre_mm = {0.0, -30.0, 20.0};
     c.head.nodal_offset_mm = {0.0, 0.0, 25.0};
     // The zero-pose extrinsics that this exact geometry implies.
-    const gc::RigidTransform l2r = gc::camera_to_head(c.head, {}, gc::Eye::Right).inverse() *
-                                   gc::camera_to_head(c.head, {}, gc::Eye::Left);
+    const gc::RigidTransform l2r =
+        gc::camera_to_head(c.head, {}, gc::Eye::Right).inverse() * gc::camera_to_head(c.head, {}, gc::Eye::Left);
     c.R = l2r.R;
     c.T = l2r.t;
     return c;
@@ -87,8 +87,8 @@ TEST(Extrinsics, KeepsTheCalibratedMountingErrorUnderVergence)
     c.R = (mount * ideal_zero).R;
     c.T = (mount * ideal_zero).t;
     const gc::HeadPose pose{5, 3, 6, -2};
-    const gc::RigidTransform ideal = gc::camera_to_head(c.head, pose, gc::Eye::Right).inverse() *
-                                     gc::camera_to_head(c.head, pose, gc::Eye::Left);
+    const gc::RigidTransform ideal =
+        gc::camera_to_head(c.head, pose, gc::Eye::Right).inverse() * gc::camera_to_head(c.head, pose, gc::Eye::Left);
     EXPECT_LT(max_diff(gc::left_to_right_at(c, pose), mount * ideal), 1e-9);
 }
 
@@ -148,9 +148,9 @@ TEST(Triangulation, ATriangulatedPointReprojectsExactly)
         const cv::Point2d pl = project(c.M1, X), pr = project(c.M2, l2r.apply(X));
         const cv::Vec3d dl = K1inv * cv::Vec3d(pl.x, pl.y, 1.0);
         const cv::Vec3d dr = l2r.R.t() * (K2inv * cv::Vec3d(pr.x, pr.y, 1.0));
-        const auto Y = gc::triangulate_midpoint({0, 0, 0}, {dl[0], dl[1], dl[2]},
-                                                {right_origin[0], right_origin[1], right_origin[2]},
-                                                {dr[0], dr[1], dr[2]});
+        const auto Y =
+            gc::triangulate_midpoint({0, 0, 0}, {dl[0], dl[1], dl[2]},
+                                     {right_origin[0], right_origin[1], right_origin[2]}, {dr[0], dr[1], dr[2]});
         ASSERT_TRUE(Y.has_value());
         const cv::Vec3d Yc(Y->x(), Y->y(), Y->z());
         EXPECT_LT(cv::norm(Yc - X), 1e-6);
@@ -178,8 +178,8 @@ TEST(Plane, RayPlaneIntersection)
     const auto p = gc::intersect({0, 0, 0}, {0.1, -0.2, 1.0}, plane);
     ASSERT_TRUE(p.has_value());
     EXPECT_LT((*p - Eigen::Vector3d(100, -200, 1000)).norm(), 1e-9);
-    EXPECT_FALSE(gc::intersect({0, 0, 0}, {1, 0, 0}, plane).has_value());      // parallel
-    EXPECT_FALSE(gc::intersect({0, 0, 2000}, {0, 0, 1}, plane).has_value());   // behind
+    EXPECT_FALSE(gc::intersect({0, 0, 0}, {1, 0, 0}, plane).has_value());     // parallel
+    EXPECT_FALSE(gc::intersect({0, 0, 2000}, {0, 0, 1}, plane).has_value());  // behind
 }
 
 TEST(Plane, RobustFitIgnoresOutliers)
@@ -191,7 +191,8 @@ TEST(Plane, RobustFitIgnoresOutliers)
     std::uniform_real_distribution<double> in_plane(-60.0, 60.0), off(-150.0, 150.0);
     std::normal_distribution<double> noise(0.0, 1.5);
     std::vector<Eigen::Vector3d> points;
-    for (int i = 0; i < 120; ++i) points.push_back(centre + in_plane(rng) * u + in_plane(rng) * v + noise(rng) * normal);
+    for (int i = 0; i < 120; ++i)
+        points.push_back(centre + in_plane(rng) * u + in_plane(rng) * v + noise(rng) * normal);
     for (int i = 0; i < 50; ++i) points.push_back(centre + in_plane(rng) * u + in_plane(rng) * v + off(rng) * normal);
 
     std::vector<std::uint8_t> inliers;

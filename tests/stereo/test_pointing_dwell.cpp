@@ -30,8 +30,7 @@ TEST(PointingDwell, AHeldPointingPicksThePointAlongItsRayAfterTheDwell)
     std::optional<cv::Vec3d> target;
     for (int i = 0; i < 60 && picked_at < 0.0; ++i) {
         target = dwell.update(i / kFps, pointing_at(20.0), params);
-        if (target)
-            picked_at = i / kFps;
+        if (target) picked_at = i / kFps;
     }
     EXPECT_NEAR(picked_at, 1.0, 1.5 / kFps);
     ASSERT_TRUE(target);
@@ -62,8 +61,7 @@ TEST(PointingDwell, TheTargetOutlivesShortGapsAndGoesAfterTheReleaseTime)
     gc::PointingDwell dwell;
     const gc::DwellParams params;  // released after 1 s without pointing
     int i = 0;
-    for (; i < 45; ++i)
-        dwell.update(i / kFps, pointing_at(-10.0), params);
+    for (; i < 45; ++i) dwell.update(i / kFps, pointing_at(-10.0), params);
     gc::Pointing3D lowered;
     const int lowered_from = i;
     for (; i < lowered_from + 20; ++i)
@@ -71,8 +69,7 @@ TEST(PointingDwell, TheTargetOutlivesShortGapsAndGoesAfterTheReleaseTime)
     EXPECT_TRUE(dwell.update(i / kFps, pointing_at(-10.0), params));
     const int lowered_again = ++i;
     bool released = false;
-    for (; i < lowered_again + 60 && !released; ++i)
-        released = !dwell.update(i / kFps, lowered, params);
+    for (; i < lowered_again + 60 && !released; ++i) released = !dwell.update(i / kFps, lowered, params);
     EXPECT_TRUE(released);
     EXPECT_NEAR((i - 1 - (lowered_again - 1)) / kFps, 1.0, 1.5 / kFps);
 }
@@ -82,17 +79,14 @@ TEST(PointingDwell, PointingElsewhereForTheDwellMovesTheTarget)
     gc::PointingDwell dwell;
     const gc::DwellParams params;
     int i = 0;
-    for (; i < 40; ++i)
-        dwell.update(i / kFps, pointing_at(-20.0), params);
+    for (; i < 40; ++i) dwell.update(i / kFps, pointing_at(-20.0), params);
     const auto first = dwell.update(i / kFps, pointing_at(-20.0), params);
     ASSERT_TRUE(first);
     std::optional<cv::Vec3d> now;
-    for (int k = 0; k < 25; ++k)
-        now = dwell.update(++i / kFps, pointing_at(25.0), params);
+    for (int k = 0; k < 25; ++k) now = dwell.update(++i / kFps, pointing_at(25.0), params);
     ASSERT_TRUE(now);
     EXPECT_LT(cv::norm(*now - *first), 1e-9) << "0.8 s at the new place does not move it yet";
-    for (int k = 0; k < 10; ++k)
-        now = dwell.update(++i / kFps, pointing_at(25.0), params);
+    for (int k = 0; k < 10; ++k) now = dwell.update(++i / kFps, pointing_at(25.0), params);
     ASSERT_TRUE(now);
     EXPECT_GT((*now)[0], 500.0) << "now to the right";
 }

@@ -29,7 +29,8 @@ constexpr double kMaxTilt = 90.0;
 // One eye's view at `pose`: the rendered room, or, where the head looks past the room's
 // wall, a view of somewhere else without the hand (seeded noise).
 void view(const gc::sim::Scene& scene, int frame, gc::Eye eye, const gc::HeadPose& pose, cv::Mat& bgr,
-          gc::sim::EyeTruth& truth) {
+          gc::sim::EyeTruth& truth)
+{
     try {
         scene.render(frame, eye, pose, bgr, &truth);
     } catch (const std::invalid_argument&) {
@@ -39,7 +40,8 @@ void view(const gc::sim::Scene& scene, int frame, gc::Eye eye, const gc::HeadPos
     }
 }
 
-long rss_kib() {
+long rss_kib()
+{
     std::ifstream status("/proc/self/status");
     for (std::string line; std::getline(status, line);)
         if (line.rfind("VmRSS:", 0) == 0) return std::atol(line.c_str() + 6);
@@ -47,7 +49,8 @@ long rss_kib() {
 }
 
 gc::ImageMotion motion_of(const gc::StereoCalibration& cal, gc::Eye eye, const gc::HeadPose& before,
-                          const gc::HeadPose& after) {
+                          const gc::HeadPose& after)
+{
     const cv::Point2d centre(cal.M1(0, 2), cal.M1(1, 2));
     try {
         return gc::camera_motion(cal, eye, before, after, centre, 1000.0);
@@ -64,7 +67,8 @@ struct Jump {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv)
+{
     const int frames = argc > 1 ? std::atoi(argv[1]) : 10000;
     const unsigned seed = argc > 2 ? unsigned(std::atoi(argv[2])) : 1u;
     gc::sim::SceneConfig config;
@@ -101,8 +105,9 @@ int main(int argc, char** argv) {
         const int shown = f % 600;  // the scripted motion repeats
         view(scene, shown, gc::Eye::Left, pose, left, tl);
         view(scene, shown, gc::Eye::Right, pose, right, tr);
-        const gc::FrameResult& r = tracker.process_stereo(left, right, -1, pose, motion_of(cal, gc::Eye::Left, before, pose),
-                                                          motion_of(cal, gc::Eye::Right, before, pose));
+        const gc::FrameResult& r =
+            tracker.process_stereo(left, right, -1, pose, motion_of(cal, gc::Eye::Left, before, pose),
+                                   motion_of(cal, gc::Eye::Right, before, pose));
         // Later jumps may keep the hand in view: every jump of the last 60 frames is followed.
         for (auto j = jumps.rbegin(); j != jumps.rend() && f - j->frame <= 60; ++j) {
             const int since = f - j->frame;

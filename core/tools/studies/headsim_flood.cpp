@@ -46,7 +46,8 @@ struct Options {
     std::string headsim;
 };
 
-Options parse_options(int argc, char** argv) {
+Options parse_options(int argc, char** argv)
+{
     Options o;
     const char* root = std::getenv("GESTURECAM_BUILD_ROOT");
     o.headsim = root ? std::string(root) + "/core/tools/headsim" : "";
@@ -58,16 +59,21 @@ Options parse_options(int argc, char** argv) {
     }
     for (int i = 1; i + 1 < argc; i += 2) {
         const std::string key = argv[i];
-        if (key == "--connections") o.connections = std::max(1, std::atoi(argv[i + 1]));
-        else if (key == "--seconds") o.seconds = std::max(1.0, std::atof(argv[i + 1]));
-        else if (key == "--headsim") o.headsim = argv[i + 1];
-        else throw std::invalid_argument("unknown option " + key);
+        if (key == "--connections")
+            o.connections = std::max(1, std::atoi(argv[i + 1]));
+        else if (key == "--seconds")
+            o.seconds = std::max(1.0, std::atof(argv[i + 1]));
+        else if (key == "--headsim")
+            o.headsim = argv[i + 1];
+        else
+            throw std::invalid_argument("unknown option " + key);
     }
     return o;
 }
 
 // Every connection is a descriptor: the soft limit goes up to the hard one.
-void raise_descriptor_limit(int needed) {
+void raise_descriptor_limit(int needed)
+{
     rlimit l{};
     ::getrlimit(RLIMIT_NOFILE, &l);
     l.rlim_cur = l.rlim_max;
@@ -84,7 +90,8 @@ struct Headsim {
     std::string token_file;
 };
 
-Headsim start_headsim(const std::string& path) {
+Headsim start_headsim(const std::string& path)
+{
     Headsim h;
     char name[] = "/tmp/gesturecam-bench-token-XXXXXX";
     const int fd = ::mkstemp(name);
@@ -116,7 +123,8 @@ Headsim start_headsim(const std::string& path) {
     return h;
 }
 
-void stop_headsim(const Headsim& h) {
+void stop_headsim(const Headsim& h)
+{
     ::kill(h.pid, SIGTERM);
     ::waitpid(h.pid, nullptr, 0);
     ::unlink(h.token_file.c_str());
@@ -151,13 +159,15 @@ private:
 };
 
 // Eight connections per address, the addresses spread over 127.0.0.0/8.
-std::string source_of(std::size_t i) {
+std::string source_of(std::size_t i)
+{
     const std::size_t a = i / 8;
     return "127." + std::to_string(1 + a % 200) + "." + std::to_string(a / 200 % 250) + "." +
            std::to_string(2 + a % 250);
 }
 
-void Crowd::open(std::size_t i) {
+void Crowd::open(std::size_t i)
+{
     Slot& s = slots_[i];
     s.fd = net::Fd(::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0));
     s.source = source_of(i);
@@ -178,19 +188,32 @@ void Crowd::open(std::size_t i) {
 }
 
 // Each kind does its part of the attack when its time comes.
-void Crowd::act(std::size_t i, Clock::time_point now) {
+void Crowd::act(std::size_t i, Clock::time_point now)
+{
     Slot& s = slots_[i];
     std::string text;
     switch (static_cast<Kind>(i % 4)) {
-        case Idle: s.next_action = now + 1h; return;
-        case Trickle: text = "S"; s.next_action = now + 1s; break;
-        case Guess: text = "AUTH guess" + std::to_string(now.time_since_epoch().count() % 100000) + "\n"; s.next_action = now + 20ms; break;
-        case Ask: text = "#1 STATUS\n"; s.next_action = now + 20ms; break;
+    case Idle:
+        s.next_action = now + 1h;
+        return;
+    case Trickle:
+        text = "S";
+        s.next_action = now + 1s;
+        break;
+    case Guess:
+        text = "AUTH guess" + std::to_string(now.time_since_epoch().count() % 100000) + "\n";
+        s.next_action = now + 20ms;
+        break;
+    case Ask:
+        text = "#1 STATUS\n";
+        s.next_action = now + 20ms;
+        break;
     }
     [[maybe_unused]] const ssize_t n = ::send(s.fd.get(), text.data(), text.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
 }
 
-void Crowd::read(std::size_t i) {
+void Crowd::read(std::size_t i)
+{
     Slot& s = slots_[i];
     char buffer[2048];
     const ssize_t n = ::recv(s.fd.get(), buffer, sizeof buffer, MSG_DONTWAIT);
@@ -198,7 +221,8 @@ void Crowd::read(std::size_t i) {
         const bool first = s.seen.empty();
         s.seen.append(buffer, static_cast<std::size_t>(n));
         if (first) (s.seen.rfind("HELLO", 0) == 0 ? counts.greeted : counts.refused)++;
-        for (std::size_t at = 0; (at = s.seen.find("ERR 403", at)) != std::string::npos; at += 7) ++counts.wrong_token_replies;
+        for (std::size_t at = 0; (at = s.seen.find("ERR 403", at)) != std::string::npos; at += 7)
+            ++counts.wrong_token_replies;
         s.seen = s.seen.substr(0, 8);  // the first reply's kind is all that is kept
         return;
     }
@@ -209,14 +233,17 @@ void Crowd::read(std::size_t i) {
     }
 }
 
-void Crowd::run(Clock::time_point end) {
+void Crowd::run(Clock::time_point end)
+{
     for (std::size_t i = 0; i < slots_.size(); ++i) open(i);
     std::vector<pollfd> fds(slots_.size());
     while (Clock::now() < end) {
         const auto now = Clock::now();
         for (std::size_t i = 0; i < slots_.size(); ++i) {
-            if (!slots_[i].fd && now >= slots_[i].next_action) open(i);
-            else if (slots_[i].fd && now >= slots_[i].next_action) act(i, now);
+            if (!slots_[i].fd && now >= slots_[i].next_action)
+                open(i);
+            else if (slots_[i].fd && now >= slots_[i].next_action)
+                act(i, now);
             fds[i] = {slots_[i].fd ? slots_[i].fd.get() : -1, POLLIN, 0};
         }
         ::poll(fds.data(), fds.size(), 10);
@@ -229,12 +256,15 @@ void Crowd::run(Clock::time_point end) {
 class TokenHolder {
 public:
     explicit TokenHolder(std::uint16_t port)
-        : fd_(net::connect_to("127.0.0.1", port, net::Transport::Tcp, Clock::now() + 5s)) {
+        : fd_(net::connect_to("127.0.0.1", port, net::Transport::Tcp, Clock::now() + 5s))
+    {
         const auto greeting = reader_.read_line(fd_.get(), Clock::now() + 5s);
-        if (!greeting || greeting->rfind("HELLO", 0) != 0) throw std::runtime_error("not greeted: " + greeting.value_or("<timeout>"));
+        if (!greeting || greeting->rfind("HELLO", 0) != 0)
+            throw std::runtime_error("not greeted: " + greeting.value_or("<timeout>"));
         if (request(std::string("AUTH ") + kToken) != "OK") throw std::runtime_error("the token holder was refused");
     }
-    std::string request(const std::string& line) {
+    std::string request(const std::string& line)
+    {
         const std::string text = line + "\n";
         net::send_all(fd_.get(), std::span<const char>(text.data(), text.size()), Clock::now() + 5s);
         return reader_.read_line(fd_.get(), Clock::now() + 5s).value_or("<timeout>");
@@ -247,7 +277,8 @@ private:
 
 // How long a new token holder takes from connecting to its first state (ms), one every
 // 200 ms until `end`; and how many were not served.
-std::vector<double> new_holders(std::uint16_t port, Clock::time_point end, int& failed) {
+std::vector<double> new_holders(std::uint16_t port, Clock::time_point end, int& failed)
+{
     std::vector<double> ms;
     while (Clock::now() + 200ms < end) {
         const auto start = Clock::now();
@@ -265,7 +296,8 @@ std::vector<double> new_holders(std::uint16_t port, Clock::time_point end, int& 
 }
 
 // The token holder's STATUS round trips (ms), one every 5 ms for `duration`.
-std::vector<double> measure(std::uint16_t port, std::chrono::milliseconds duration) {
+std::vector<double> measure(std::uint16_t port, std::chrono::milliseconds duration)
+{
     TokenHolder holder(port);
     auto request = [&](const std::string& line) { return holder.request(line); };
     std::vector<double> ms;
@@ -279,7 +311,8 @@ std::vector<double> measure(std::uint16_t port, std::chrono::milliseconds durati
     return ms;
 }
 
-void print_round_trips(const char* what, std::vector<double> ms) {
+void print_round_trips(const char* what, std::vector<double> ms)
+{
     if (ms.empty()) {
         std::printf("%-28s none\n", what);
         return;
@@ -292,7 +325,8 @@ void print_round_trips(const char* what, std::vector<double> ms) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv)
+{
     try {
         const Options o = parse_options(argc, argv);
         raise_descriptor_limit(o.connections + 64);
@@ -300,7 +334,8 @@ int main(int argc, char** argv) {
         const Headsim head = start_headsim(o.headsim);
         print_round_trips("alone:", measure(head.port, 1000ms));
         Crowd crowd(head.port, o.connections);
-        const auto end = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(o.seconds));
+        const auto end =
+            Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(o.seconds));
         std::thread attack([&] { crowd.run(end); });
         std::this_thread::sleep_for(500ms);  // the crowd in place
         int not_served = 0;

@@ -31,7 +31,8 @@
 
 namespace {
 
-gc::sim::SceneConfig scene_config(gc::sim::Preset preset, gc::sim::Variety variety, int seed) {
+gc::sim::SceneConfig scene_config(gc::sim::Preset preset, gc::sim::Variety variety, int seed)
+{
     gc::sim::SceneConfig cfg;
     cfg.preset = preset;
     cfg.variety = variety;
@@ -42,13 +43,15 @@ gc::sim::SceneConfig scene_config(gc::sim::Preset preset, gc::sim::Variety varie
 
 double cpu_seconds() { return double(std::clock()) / CLOCKS_PER_SEC; }
 
-double median(std::vector<double> v) {
+double median(std::vector<double> v)
+{
     if (v.empty()) return NAN;
     std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
     return v[v.size() / 2];
 }
 
-int images(const gc::sim::SceneConfig& base, int first, int last, int frame, const std::string& dir) {
+int images(const gc::sim::SceneConfig& base, int first, int last, int frame, const std::string& dir)
+{
     std::vector<cv::Mat> tiles;
     const std::string stem = dir + "/" + std::string(gc::sim::to_string(base.preset)) + "-" +
                              std::string(gc::sim::to_string(base.variety)) + "-";
@@ -85,7 +88,8 @@ int images(const gc::sim::SceneConfig& base, int first, int last, int frame, con
     return 0;
 }
 
-int cost(const gc::sim::SceneConfig& base, int first, int last) {
+int cost(const gc::sim::SceneConfig& base, int first, int last)
+{
     double total = 0.0, worst = 0.0;
     int frames = 0;
     for (int seed = first; seed <= last; ++seed) {
@@ -108,7 +112,8 @@ int cost(const gc::sim::SceneConfig& base, int first, int last) {
     return 0;
 }
 
-int clutter(const gc::sim::SceneConfig& base, int first, int last) {
+int clutter(const gc::sim::SceneConfig& base, int first, int last)
+{
     std::vector<double> fractions, sides;
     for (int seed = first; seed <= last; ++seed) {
         gc::sim::SceneConfig cfg = base;
@@ -134,7 +139,8 @@ int clutter(const gc::sim::SceneConfig& base, int first, int last) {
     return 0;
 }
 
-int track(const gc::sim::SceneConfig& base, int first, int last, bool learned, int frames) {
+int track(const gc::sim::SceneConfig& base, int first, int last, bool learned, int frames)
+{
     std::vector<double> all_errors, all_on_errors;
     long on_hand_total = 0, in_view_total = 0;
     double snr_sum = 0.0;
@@ -155,8 +161,8 @@ int track(const gc::sim::SceneConfig& base, int first, int last, bool learned, i
         for (int f = 0; f < frames; ++f) {
             scene.render(f, gc::Eye::Left, {}, bgr, &truth);
             const gc::EyeEstimate& e = tracker.process(bgr);
-            const cv::Mat1b tracked = e.valid() ? gc::contour_mask(e.contour, bgr.size())
-                                                : cv::Mat1b(bgr.size(), std::uint8_t{0});
+            const cv::Mat1b tracked =
+                e.valid() ? gc::contour_mask(e.contour, bgr.size()) : cv::Mat1b(bgr.size(), std::uint8_t{0});
             snr.add(truth.mask, tracked);
             if (!truth.visible) continue;
             ++in_view;
@@ -187,13 +193,15 @@ int track(const gc::sim::SceneConfig& base, int first, int last, bool learned, i
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv)
+{
     const std::string mode = argc > 1 ? argv[1] : "";
     const auto preset = argc > 2 ? gc::sim::preset_from_string(argv[2]) : std::nullopt;
     const auto variety = argc > 3 ? gc::sim::variety_from_string(argv[3]) : std::nullopt;
     const int first = argc > 4 ? std::atoi(argv[4]) : -1, last = argc > 5 ? std::atoi(argv[5]) : -2;
     if (!preset || !variety || first < 0 || last < first) {
-        std::fprintf(stderr, "usage: %s images|cost|clutter|track PRESET none|wide FIRST_SEED LAST_SEED ...\n", argv[0]);
+        std::fprintf(stderr, "usage: %s images|cost|clutter|track PRESET none|wide FIRST_SEED LAST_SEED ...\n",
+                     argv[0]);
         return 2;
     }
     const gc::sim::SceneConfig base = scene_config(*preset, *variety, first);

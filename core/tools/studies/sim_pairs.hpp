@@ -54,8 +54,8 @@ struct PoseResult {
 // Renders `hand` with the head at `render_head` and estimates with `nominal_head` (they
 // differ to simulate motor-angle error).
 inline PoseResult run_pose(const sim::Scene& scene, PointingEstimator& estimator, const sim::HandPose& hand,
-                           const HeadPose& render_head, const HeadPose& nominal_head, int frame,
-                           cv::Mat& left, cv::Mat& right)
+                           const HeadPose& render_head, const HeadPose& nominal_head, int frame, cv::Mat& left,
+                           cv::Mat& right)
 {
     PoseResult r;
     sim::EyeTruth lt, rt;

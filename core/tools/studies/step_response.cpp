@@ -42,11 +42,11 @@ struct Step {
 };
 
 struct AxisFigures {
-    double overshoot = 0.0;     // beyond the target, degrees (0 when it never passes it)
-    double rise_s = NAN;        // from 10 % to 90 % of the final value (the dead band stops
-                                // the axis short of the target, so not of the step)
-    double settle_s = NAN;      // from then on within the dead band (1 deg) of the target
-    double rest_s = NAN;        // last movement of the axis
+    double overshoot = 0.0;  // beyond the target, degrees (0 when it never passes it)
+    double rise_s = NAN;     // from 10 % to 90 % of the final value (the dead band stops
+                             // the axis short of the target, so not of the step)
+    double settle_s = NAN;   // from then on within the dead band (1 deg) of the target
+    double rest_s = NAN;     // last movement of the axis
     double final_error = 0.0;
 };
 
@@ -132,7 +132,8 @@ int main(int argc, char** argv)
 {
     const char* csv_path = nullptr;
     for (int i = 1; i < argc; ++i) {
-        if (std::strcmp(argv[i], "--csv") == 0 && i + 1 < argc) csv_path = argv[++i];
+        if (std::strcmp(argv[i], "--csv") == 0 && i + 1 < argc)
+            csv_path = argv[++i];
         else {
             std::fprintf(stderr, "usage: %s [--csv FILE]\n", argv[0]);
             return 2;
@@ -155,8 +156,8 @@ int main(int argc, char** argv)
         const std::vector<Sample> s = run(step);
         if (csv)
             for (const Sample& x : s)
-                std::fprintf(csv, "%s,%.4f,%.1f,%.1f,%.4f,%.4f,%.3f,%.3f\n", step.name, x.t, step.pan, step.tilt,
-                             x.pan, x.tilt, x.cmd_pan, x.cmd_tilt);
+                std::fprintf(csv, "%s,%.4f,%.1f,%.1f,%.4f,%.4f,%.3f,%.3f\n", step.name, x.t, step.pan, step.tilt, x.pan,
+                             x.tilt, x.cmd_pan, x.cmd_tilt);
         const struct {
             const char* name;
             double target;

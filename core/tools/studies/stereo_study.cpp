@@ -20,7 +20,7 @@ namespace {
 using gc::test::percentile;
 
 struct Sample {
-    double true_depth, est_depth;   // fingertip, head frame z
+    double true_depth, est_depth;  // fingertip, head frame z
     double true_az, est_az, true_el, est_el;
     double angle_error;
 };
@@ -46,7 +46,8 @@ double slope(const std::vector<Sample>& s)
     for (const auto& x : s) mx += x.true_depth, my += x.est_depth;
     mx /= s.size(), my /= s.size();
     double sxy = 0, sxx = 0;
-    for (const auto& x : s) sxy += (x.true_depth - mx) * (x.est_depth - my), sxx += (x.true_depth - mx) * (x.true_depth - mx);
+    for (const auto& x : s)
+        sxy += (x.true_depth - mx) * (x.est_depth - my), sxx += (x.true_depth - mx) * (x.true_depth - mx);
     return sxy / sxx;
 }
 
@@ -54,10 +55,11 @@ void summary(const std::vector<Sample>& s, int invalid, int total)
 {
     std::vector<double> angle, depth;
     for (const auto& x : s) angle.push_back(x.angle_error), depth.push_back(std::abs(x.est_depth - x.true_depth));
-    std::printf("\n| pairs | valid | angle error median | p90 | max | fingertip depth error median | p90 | slope |\n"
-                "|---|---|---|---|---|---|---|---|\n| %d | %d | %.2f deg | %.2f deg | %.2f deg | %.1f mm | %.1f mm | %.4f |\n",
-                total, total - invalid, percentile(angle, 0.5), percentile(angle, 0.9), percentile(angle, 1.0),
-                percentile(depth, 0.5), percentile(depth, 0.9), slope(s));
+    std::printf(
+        "\n| pairs | valid | angle error median | p90 | max | fingertip depth error median | p90 | slope |\n"
+        "|---|---|---|---|---|---|---|---|\n| %d | %d | %.2f deg | %.2f deg | %.2f deg | %.1f mm | %.1f mm | %.4f |\n",
+        total, total - invalid, percentile(angle, 0.5), percentile(angle, 0.9), percentile(angle, 1.0),
+        percentile(depth, 0.5), percentile(depth, 0.9), slope(s));
 }
 
 using SamplesBy = std::map<double, std::vector<Sample>>;
@@ -68,7 +70,8 @@ void print_by_depth(const SamplesBy& by_depth)
                 "| palm depth | true fingertip depth | estimated | error mean | error sd |\n|---|---|---|---|---|\n");
     for (const auto& [z, s] : by_depth) {
         std::vector<double> t, e, d;
-        for (const auto& x : s) t.push_back(x.true_depth), e.push_back(x.est_depth), d.push_back(x.est_depth - x.true_depth);
+        for (const auto& x : s)
+            t.push_back(x.true_depth), e.push_back(x.est_depth), d.push_back(x.est_depth - x.true_depth);
         std::printf("| %.0f mm | %.1f mm | %.1f mm | %+.1f mm | %.1f mm |\n", z, mean(t), mean(e), mean(d), stddev(d));
     }
 }
@@ -100,13 +103,15 @@ void print_by_yaw(const SamplesBy& by_yaw)
 
 void print_by_roll(const SamplesBy& by_roll)
 {
-    std::printf("\nVertical angle (elevation) by roll of the finger in the hand plane\n\n"
-                "| roll | true elevation (range over yaws) | error mean | error sd | max error |\n|---|---|---|---|---|\n");
+    std::printf(
+        "\nVertical angle (elevation) by roll of the finger in the hand plane\n\n"
+        "| roll | true elevation (range over yaws) | error mean | error sd | max error |\n|---|---|---|---|---|\n");
     for (const auto& [roll, s] : by_roll) {
         std::vector<double> err, t;
         for (const auto& x : s) err.push_back(x.est_el - x.true_el), t.push_back(x.true_el);
         std::printf("| %+.0f | %.1f .. %.1f deg | %+.2f deg | %.2f deg | %.2f deg |\n", roll, percentile(t, 0.0),
-                    percentile(t, 1.0), mean(err), stddev(err), std::max(std::abs(percentile(err, 0.0)), percentile(err, 1.0)));
+                    percentile(t, 1.0), mean(err), stddev(err),
+                    std::max(std::abs(percentile(err, 0.0)), percentile(err, 1.0)));
     }
 }
 
@@ -149,7 +154,8 @@ void placed_hands(double motor_error_deg)
                         ++invalid;
                         continue;
                     }
-                    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+                    ms.push_back(
+                        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
                     Sample s;
                     s.true_depth = r.truth.fingertip_mm[2];
                     s.est_depth = r.estimate.fingertip_head_mm[2];
@@ -205,9 +211,12 @@ int main(int argc, char** argv)
 {
     const std::string mode = argc > 1 ? argv[1] : "truth";
     try {
-        if (mode == "truth") placed_hands(0.0);
-        else if (mode == "motor") placed_hands(0.5);
-        else if (mode == "tracker") tracked_scenes();
+        if (mode == "truth")
+            placed_hands(0.0);
+        else if (mode == "motor")
+            placed_hands(0.5);
+        else if (mode == "tracker")
+            tracked_scenes();
         else {
             std::fprintf(stderr, "usage: stereo_study truth|motor|tracker\n");
             return 2;

@@ -38,7 +38,8 @@ struct StudyOptions {
 };
 
 // The options from the command line; nothing when they are wrong.
-std::optional<StudyOptions> parse_options(int argc, char** argv) {
+std::optional<StudyOptions> parse_options(int argc, char** argv)
+{
     const auto preset = gc::sim::preset_from_string(argv[1]);
     StudyOptions o;
     o.first = std::atoi(argv[2]);
@@ -72,7 +73,8 @@ struct SeedFigures {
     double entry_iou = -1.0;
 };
 
-SeedFigures track_seed(const StudyOptions& o, int seed) {
+SeedFigures track_seed(const StudyOptions& o, int seed)
+{
     gc::sim::SceneConfig cfg;
     cfg.preset = o.preset;
     cfg.motion = gc::sim::Motion::Mixed;
@@ -95,14 +97,12 @@ SeedFigures track_seed(const StudyOptions& o, int seed) {
             bgr = cv::imdecode(encoded, cv::IMREAD_COLOR);
         }
         const auto& e = tracker.process(bgr);
-        const cv::Mat1b tracked = e.valid() ? gc::contour_mask(e.contour, bgr.size())
-                                            : cv::Mat1b(bgr.size(), uchar(0));
+        const cv::Mat1b tracked = e.valid() ? gc::contour_mask(e.contour, bgr.size()) : cv::Mat1b(bgr.size(), uchar(0));
         snr.add(truth.mask, tracked);
         const bool crosses = gc_test::hand_crosses_face(truth);
         if (o.trace)
-            std::printf("  frame %3d %s conf %.2f iou %.2f scale %.2f hand %d%s\n", f,
-                        e.valid() ? "track" : "acq  ", e.confidence,
-                        e.valid() ? gc::mask_iou(truth.mask, tracked) : 0.0, e.mean.scale,
+            std::printf("  frame %3d %s conf %.2f iou %.2f scale %.2f hand %d%s\n", f, e.valid() ? "track" : "acq  ",
+                        e.confidence, e.valid() ? gc::mask_iou(truth.mask, tracked) : 0.0, e.mean.scale,
                         cv::countNonZero(truth.mask), crosses ? " face" : "");
         if (!crosses) continue;
         ++r.crossing;
@@ -116,7 +116,8 @@ SeedFigures track_seed(const StudyOptions& o, int seed) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv)
+{
     if (argc < 4) {
         std::fprintf(stderr, "usage: %s PRESET FIRST_SEED LAST_SEED [PARTICLES [left|right [trace] [jpeg=Q]]]\n",
                      argv[0]);
@@ -138,8 +139,8 @@ int main(int argc, char** argv) {
             kept += r.off == 0;
             failed_after_good_entry += r.off > 0 && r.entry_iou >= 0.5;
         }
-        std::printf("seed %d snr %.2f crossing %d off %d lost %d entry %.2f\n", seed, r.snr_db,
-                    r.crossing, r.off, r.lost, std::max(r.entry_iou, 0.0));
+        std::printf("seed %d snr %.2f crossing %d off %d lost %d entry %.2f\n", seed, r.snr_db, r.crossing, r.off,
+                    r.lost, std::max(r.entry_iou, 0.0));
         std::fflush(stdout);
     }
     std::printf("mean snr %.3f dB over %d seeds; hand kept through the face on %d of %d crossing seeds"
