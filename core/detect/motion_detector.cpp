@@ -228,6 +228,89 @@ void drop_thin_strands(cv::Mat1b& blob, int& area, const cv::Mat1b& moving)
     area = kept;
 }
 
+// The frame's pixels of `skin` (colour and brightness band together: a face or an object of
+// the hand's skin tone touching it is usually brighter or darker), closed; skin of the static
+// scene is not the hand's, and what was cleared of it is returned in `cleared`.
+cv::Mat1b skin_segments(const cv::Mat& bgr, const SkinModel& skin, const cv::Mat1b& static_scene, const cv::Mat& kernel,
+                        cv::Mat1b& cleared)
+{
+    cv::Mat1b seg;
+    skin.membership(bgr, cv::Rect(0, 0, bgr.cols, bgr.rows), seg);
+    cv::threshold(seg, seg, 127, 255, cv::THRESH_BINARY);
+    if (!static_scene.empty()) {
+        cv::bitwise_and(seg, static_scene, cleared);
+        seg.setTo(0, static_scene);
+    }
+    cv::morphologyEx(seg, seg, cv::MORPH_CLOSE, kernel);
+    return seg;
+}
+
+// The blob as far as it moved lately. Cut only when a large part is static: a hand that
+// barely moved keeps its palm. Until motion has been seen for a while, a mostly static blob is
+// not trusted either way: false, wait for more of the hand to move.
+bool keep_recent_motion(cv::Mat1b& blob, int& area, double& support, bool& cut, const cv::Mat1b& recent_motion,
+                        bool history_mature, const DetectionParams& params, const cv::Mat& kernel)
+{
+    const int k = 2 * params.history_reach + 1;
+    cv::Mat1b near = dilated_within(recent_motion, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(k, k)),
+                                    cv::boundingRect(blob));
+    cv::bitwise_and(near, blob, near);
+    const int kept = cv::countNonZero(near);
+    support = double(kept) / std::max(1, area);
+    if (kept >= 0.75 * area) return true;
+    if (!history_mature) return false;
+    cv::morphologyEx(near, near, cv::MORPH_OPEN, kernel);
+    int keep_area = 0;
+    cv::Mat1b kept_part = largest_component(near, keep_area);
+    if (keep_area == 0) return false;
+    blob = kept_part;
+    area = keep_area;
+    cut = true;
+    return true;
+}
+
+// A component that is still not shaped like a pointing hand (a touching object's remnant next
+// to the finger or the palm) is cut closer to the motion: the neighbourhood shrinks until the
+// shape is a pointing hand (holes filled, since the middle of the palm may not have changed),
+// else the wider cut stands.
+void cut_to_pointing_shape(cv::Mat1b& blob, int& area, bool& cut, const cv::Mat1b& component,
+                           const cv::Rect& component_box, const cv::Mat1b& recent_motion, const DetectionParams& params,
+                           const cv::Mat& kernel)
+{
+    for (const int reach : {params.history_reach * 2 / 3, params.history_reach / 3}) {
+        if (reach < 2) break;
+        cv::Mat1b near = dilated_within(
+            recent_motion, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * reach + 1, 2 * reach + 1)),
+            component_box);
+        cv::bitwise_and(near, component, near);
+        std::vector<std::vector<cv::Point>> outer;
+        cv::findContours(near, outer, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE);
+        cv::drawContours(near, outer, -1, 255, cv::FILLED);
+        cv::bitwise_and(near, component, near);
+        cv::morphologyEx(near, near, cv::MORPH_OPEN, kernel);
+        int keep_area = 0;
+        cv::Mat1b candidate = largest_component(near, keep_area);
+        if (keep_area == 0) break;
+        if (!hand_proportions(candidate, recent_motion).pointing()) continue;
+        blob = candidate;
+        area = keep_area;
+        cut = true;
+        break;
+    }
+}
+
+// A blob that static skin was cleared off (more than a sliver along its outline) is not known
+// to be the hand alone: its outline there is the cut, not the hand's.
+bool touches_cleared_skin(const cv::Mat1b& blob, int area, const cv::Mat1b& cleared)
+{
+    const cv::Rect frame(0, 0, blob.cols, blob.rows);
+    const cv::Rect around = cv::Rect(cv::boundingRect(blob) - cv::Point(2, 2) + cv::Size(4, 4)) & frame;
+    cv::Mat1b near;
+    cv::dilate(blob(around), near, cv::Mat(), cv::Point(-1, -1), 2);
+    cv::bitwise_and(near, cleared(around), near);
+    return cv::countNonZero(near) > kStaticCutFraction * area;
+}
+
 }  // namespace
 
 std::optional<Detection> segment_hand(const cv::Mat& bgr, const cv::Mat1b& moving, const cv::Rect& box,
@@ -247,20 +330,9 @@ std::optional<Detection> segment_hand(const cv::Mat& bgr, const cv::Mat1b& movin
     // Segment the whole frame: the moving pixels may be only the waving fingers, and the
     // hand must not be cut at the box. The hand is the skin component holding the most
     // moving pixels.
-    // Colour and the brightness band together: a face or an object of the hand's skin tone
-    // touching it is usually brighter or darker.
-    cv::Mat1b seg;
-    skin->membership(bgr, cv::Rect(0, 0, bgr.cols, bgr.rows), seg);
-    cv::threshold(seg, seg, 127, 255, cv::THRESH_BINARY);
-    // Skin of the static scene is not the hand's; what was cleared is kept to tell a blob
-    // that touched it.
-    cv::Mat1b cleared;
-    if (!static_scene.empty()) {
-        cv::bitwise_and(seg, static_scene, cleared);
-        seg.setTo(0, static_scene);
-    }
     const cv::Mat kernel = cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(params.close_size, params.close_size));
-    cv::morphologyEx(seg, seg, cv::MORPH_CLOSE, kernel);
+    cv::Mat1b cleared;
+    const cv::Mat1b seg = skin_segments(bgr, *skin, static_scene, kernel, cleared);
     cv::Mat1i labels;
     cv::Mat stats, centroids;
     const int count = cv::connectedComponentsWithStats(seg, labels, stats, centroids, 8, CV_32S);
@@ -274,66 +346,14 @@ std::optional<Detection> segment_hand(const cv::Mat& bgr, const cv::Mat1b& movin
     bool cut = false;
     const bool has_history = !recent_motion.empty() && recent_motion.size() == bgr.size();
     const cv::Mat1b motion = has_history ? recent_motion : cv::Mat1b();
-    if (has_history) {
-        const int k = 2 * params.history_reach + 1;
-        cv::Mat1b near = dilated_within(recent_motion, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(k, k)),
-                                        cv::boundingRect(blob));
-        cv::bitwise_and(near, blob, near);
-        const int kept = cv::countNonZero(near);
-        support = double(kept) / std::max(1, area);
-        // Cut only when a large part is static: a hand that barely moved keeps its palm.
-        // Until motion has been seen for a while, a mostly static blob is not trusted
-        // either way: wait for more of the hand to move.
-        if (kept < 0.75 * area && !history_mature) return std::nullopt;
-        if (kept < 0.75 * area) {
-            cv::morphologyEx(near, near, cv::MORPH_OPEN, kernel);
-            int keep_area = 0;
-            cv::Mat1b kept_part = largest_component(near, keep_area);
-            if (keep_area == 0) return std::nullopt;
-            blob = kept_part;
-            area = keep_area;
-            cut = true;
-        }
-    }
-    // A component that is still not shaped like a pointing hand (a touching object's
-    // remnant next to the finger or the palm) is cut closer to the motion: the
-    // neighbourhood shrinks until the shape is a pointing hand (holes filled, since the
-    // middle of the palm may not have changed), else the wider cut stands.
+    if (has_history && !keep_recent_motion(blob, area, support, cut, recent_motion, history_mature, params, kernel))
+        return std::nullopt;
     if (has_history && history_mature && !hand_proportions(blob, motion).pointing()) {
-        const cv::Mat1b component = labels == best;
         const cv::Rect component_box(stats.at<int>(best, cv::CC_STAT_LEFT), stats.at<int>(best, cv::CC_STAT_TOP),
                                      stats.at<int>(best, cv::CC_STAT_WIDTH), stats.at<int>(best, cv::CC_STAT_HEIGHT));
-        for (const int reach : {params.history_reach * 2 / 3, params.history_reach / 3}) {
-            if (reach < 2) break;
-            cv::Mat1b near = dilated_within(
-                recent_motion, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * reach + 1, 2 * reach + 1)),
-                component_box);
-            cv::bitwise_and(near, component, near);
-            std::vector<std::vector<cv::Point>> outer;
-            cv::findContours(near, outer, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE);
-            cv::drawContours(near, outer, -1, 255, cv::FILLED);
-            cv::bitwise_and(near, component, near);
-            cv::morphologyEx(near, near, cv::MORPH_OPEN, kernel);
-            int keep_area = 0;
-            cv::Mat1b candidate = largest_component(near, keep_area);
-            if (keep_area == 0) break;
-            if (!hand_proportions(candidate, motion).pointing()) continue;
-            blob = candidate;
-            area = keep_area;
-            cut = true;
-            break;
-        }
+        cut_to_pointing_shape(blob, area, cut, labels == best, component_box, recent_motion, params, kernel);
     }
-    // A blob that static skin was cleared off (more than a sliver along its outline) is
-    // not known to be the hand alone: its outline there is the cut, not the hand's.
-    if (!cleared.empty() && !cut) {
-        const cv::Rect frame(0, 0, bgr.cols, bgr.rows);
-        const cv::Rect around = cv::Rect(cv::boundingRect(blob) - cv::Point(2, 2) + cv::Size(4, 4)) & frame;
-        cv::Mat1b near;
-        cv::dilate(blob(around), near, cv::Mat(), cv::Point(-1, -1), 2);
-        cv::bitwise_and(near, cleared(around), near);
-        if (cv::countNonZero(near) > kStaticCutFraction * area) cut = true;
-    }
+    if (!cleared.empty() && !cut && touches_cleared_skin(blob, area, cleared)) cut = true;
     if (area < params.min_hand_area || area > params.max_hand_fraction * double(bgr.rows) * bgr.cols)
         return std::nullopt;
     // The history changes with the next frame; the detection keeps the present one.
