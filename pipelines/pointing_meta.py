@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Reads GstHandPointingMeta from Python through GObject introspection (GstGestureCam-1.0).
 
 Runs two synthetic eyes through handtracker into an appsink and prints, for every buffer,

@@ -176,7 +176,7 @@ TEST(HeadctlCli, JsonRepliesOneObjectPerLine)
     RunningServer server;
     const Outcome status = run_headctl({"--uri", server.uri(), "--json", "status"});
     EXPECT_EQ(status.exit_code, 0);
-    EXPECT_NE(status.out.find("\"pan\":0,\"tilt\":0,\"verge_l\":0,\"verge_r\":0,\"pan_moving\":false"),
+    EXPECT_NE(status.out.find("\"pan\":0,\"tilt\":0,\"verge_l\":0,\"verge_r\":0,\"zoom\":1,\"pan_moving\":false"),
               std::string::npos)
         << status.out;
     EXPECT_EQ(status.out.front(), '{');
@@ -187,7 +187,7 @@ TEST(HeadctlCli, JsonRepliesOneObjectPerLine)
     const Outcome limits = run_headctl({"--uri", server.uri(), "--json", "limits"});
     EXPECT_EQ(limits.exit_code, 0);
     EXPECT_NE(limits.out.find("{\"axis\":\"pan\",\"min\":-170,\"max\":170,"), std::string::npos) << limits.out;
-    EXPECT_EQ(std::count(limits.out.begin(), limits.out.end(), '\n'), 4);
+    EXPECT_EQ(std::count(limits.out.begin(), limits.out.end(), '\n'), 5);  // pan, tilt, verge_l, verge_r, zoom
 }
 
 TEST(HeadctlCli, VersionHelpAndAOneLineHint)

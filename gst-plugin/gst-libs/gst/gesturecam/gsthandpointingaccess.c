@@ -1,14 +1,18 @@
 /* GstHandPointingMeta's accessors: what a language binding calls instead of reading the
  * record's fields, whose layout bindings never see. */
-#define GST_GESTURECAM_META_API __attribute__((visibility("default"))) extern
+#define GST_GESTURECAM_META_API __attribute__ ((visibility ("default"))) extern
 #include "gsthandpointingmeta.h"
 
 /* The view's estimate, or NULL for the right view of a mono meta. */
-static const GstHandPointingEye* view_eye(const GstHandPointingMeta* meta, GstHandPointingView view)
+static const GstHandPointingEye *
+view_eye (const GstHandPointingMeta * meta, GstHandPointingView view)
 {
-    if (view == GST_HAND_POINTING_VIEW_LEFT) return &meta->left;
-    if (view == GST_HAND_POINTING_VIEW_RIGHT && (meta->flags & GST_HAND_POINTING_FLAG_STEREO)) return &meta->right;
-    return NULL;
+  if (view == GST_HAND_POINTING_VIEW_LEFT)
+    return &meta->left;
+  if (view == GST_HAND_POINTING_VIEW_RIGHT
+      && (meta->flags & GST_HAND_POINTING_FLAG_STEREO))
+    return &meta->right;
+  return NULL;
 }
 
 /**
@@ -18,10 +22,11 @@ static const GstHandPointingEye* view_eye(const GstHandPointingMeta* meta, GstHa
  * Returns: (transfer none) (nullable): the buffer's #GstHandPointingMeta, or %NULL when it
  *   has none. It lives as long as the buffer.
  */
-GstHandPointingMeta* gst_hand_pointing_meta_from_buffer(GstBuffer* buffer)
+GstHandPointingMeta *
+gst_hand_pointing_meta_from_buffer (GstBuffer * buffer)
 {
-    g_return_val_if_fail(GST_IS_BUFFER(buffer), NULL);
-    return gst_buffer_get_hand_pointing_meta(buffer);
+  g_return_val_if_fail (GST_IS_BUFFER (buffer), NULL);
+  return gst_buffer_get_hand_pointing_meta (buffer);
 }
 
 /**
@@ -30,10 +35,11 @@ GstHandPointingMeta* gst_hand_pointing_meta_from_buffer(GstBuffer* buffer)
  *
  * Returns: the index of the stereo pair since the tracker started
  */
-guint64 gst_hand_pointing_meta_get_frame(const GstHandPointingMeta* meta)
+guint64
+gst_hand_pointing_meta_get_frame (const GstHandPointingMeta * meta)
 {
-    g_return_val_if_fail(meta != NULL, 0);
-    return meta->frame;
+  g_return_val_if_fail (meta != NULL, 0);
+  return meta->frame;
 }
 
 /**
@@ -42,10 +48,11 @@ guint64 gst_hand_pointing_meta_get_frame(const GstHandPointingMeta* meta)
  *
  * Returns: the tracking state (tracking only when every tracked view tracks)
  */
-GstHandPointingState gst_hand_pointing_meta_get_state(const GstHandPointingMeta* meta)
+GstHandPointingState
+gst_hand_pointing_meta_get_state (const GstHandPointingMeta * meta)
 {
-    g_return_val_if_fail(meta != NULL, GST_HAND_POINTING_STATE_ACQUIRING);
-    return meta->state;
+  g_return_val_if_fail (meta != NULL, GST_HAND_POINTING_STATE_ACQUIRING);
+  return meta->state;
 }
 
 /**
@@ -54,10 +61,11 @@ GstHandPointingState gst_hand_pointing_meta_get_state(const GstHandPointingMeta*
  *
  * Returns: which parts of the meta are valid
  */
-GstHandPointingFlags gst_hand_pointing_meta_get_flags(const GstHandPointingMeta* meta)
+GstHandPointingFlags
+gst_hand_pointing_meta_get_flags (const GstHandPointingMeta * meta)
 {
-    g_return_val_if_fail(meta != NULL, GST_HAND_POINTING_FLAG_NONE);
-    return (GstHandPointingFlags)meta->flags;
+  g_return_val_if_fail (meta != NULL, GST_HAND_POINTING_FLAG_NONE);
+  return (GstHandPointingFlags) meta->flags;
 }
 
 /**
@@ -71,14 +79,18 @@ GstHandPointingFlags gst_hand_pointing_meta_get_flags(const GstHandPointingMeta*
  * Returns: %TRUE when the direction is known (%GST_HAND_POINTING_FLAG_HAS_3D); the outputs
  *   are left alone otherwise
  */
-gboolean gst_hand_pointing_meta_get_direction(const GstHandPointingMeta* meta, gdouble* azimuth_deg,
-                                              gdouble* elevation_deg)
+gboolean
+gst_hand_pointing_meta_get_direction (const GstHandPointingMeta * meta,
+    gdouble * azimuth_deg, gdouble * elevation_deg)
 {
-    g_return_val_if_fail(meta != NULL, FALSE);
-    if (!(meta->flags & GST_HAND_POINTING_FLAG_HAS_3D)) return FALSE;
-    if (azimuth_deg) *azimuth_deg = meta->azimuth_deg;
-    if (elevation_deg) *elevation_deg = meta->elevation_deg;
-    return TRUE;
+  g_return_val_if_fail (meta != NULL, FALSE);
+  if (!(meta->flags & GST_HAND_POINTING_FLAG_HAS_3D))
+    return FALSE;
+  if (azimuth_deg)
+    *azimuth_deg = meta->azimuth_deg;
+  if (elevation_deg)
+    *elevation_deg = meta->elevation_deg;
+  return TRUE;
 }
 
 /**
@@ -90,14 +102,20 @@ gboolean gst_hand_pointing_meta_get_direction(const GstHandPointingMeta* meta, g
  *
  * Returns: %TRUE when the 3D fingertip is known (%GST_HAND_POINTING_FLAG_HAS_3D)
  */
-gboolean gst_hand_pointing_meta_get_fingertip_mm(const GstHandPointingMeta* meta, gdouble* x, gdouble* y, gdouble* z)
+gboolean
+gst_hand_pointing_meta_get_fingertip_mm (const GstHandPointingMeta * meta,
+    gdouble * x, gdouble * y, gdouble * z)
 {
-    g_return_val_if_fail(meta != NULL, FALSE);
-    if (!(meta->flags & GST_HAND_POINTING_FLAG_HAS_3D)) return FALSE;
-    if (x) *x = meta->fingertip_mm[0];
-    if (y) *y = meta->fingertip_mm[1];
-    if (z) *z = meta->fingertip_mm[2];
-    return TRUE;
+  g_return_val_if_fail (meta != NULL, FALSE);
+  if (!(meta->flags & GST_HAND_POINTING_FLAG_HAS_3D))
+    return FALSE;
+  if (x)
+    *x = meta->fingertip_mm[0];
+  if (y)
+    *y = meta->fingertip_mm[1];
+  if (z)
+    *z = meta->fingertip_mm[2];
+  return TRUE;
 }
 
 /**
@@ -110,16 +128,22 @@ gboolean gst_hand_pointing_meta_get_fingertip_mm(const GstHandPointingMeta* meta
  *
  * Returns: %TRUE when the head pose is known (%GST_HAND_POINTING_FLAG_HAS_HEAD)
  */
-gboolean gst_hand_pointing_meta_get_head_pose(const GstHandPointingMeta* meta, gdouble* pan_deg, gdouble* tilt_deg,
-                                              gdouble* verge_left_deg, gdouble* verge_right_deg)
+gboolean
+gst_hand_pointing_meta_get_head_pose (const GstHandPointingMeta * meta,
+    gdouble * pan_deg, gdouble * tilt_deg, gdouble * verge_left_deg, gdouble * verge_right_deg)
 {
-    g_return_val_if_fail(meta != NULL, FALSE);
-    if (!(meta->flags & GST_HAND_POINTING_FLAG_HAS_HEAD)) return FALSE;
-    if (pan_deg) *pan_deg = meta->head_pan_deg;
-    if (tilt_deg) *tilt_deg = meta->head_tilt_deg;
-    if (verge_left_deg) *verge_left_deg = meta->head_verge_left_deg;
-    if (verge_right_deg) *verge_right_deg = meta->head_verge_right_deg;
-    return TRUE;
+  g_return_val_if_fail (meta != NULL, FALSE);
+  if (!(meta->flags & GST_HAND_POINTING_FLAG_HAS_HEAD))
+    return FALSE;
+  if (pan_deg)
+    *pan_deg = meta->head_pan_deg;
+  if (tilt_deg)
+    *tilt_deg = meta->head_tilt_deg;
+  if (verge_left_deg)
+    *verge_left_deg = meta->head_verge_left_deg;
+  if (verge_right_deg)
+    *verge_right_deg = meta->head_verge_right_deg;
+  return TRUE;
 }
 
 /**
@@ -130,13 +154,14 @@ gboolean gst_hand_pointing_meta_get_head_pose(const GstHandPointingMeta* meta, g
  * Returns: that view's tracking state; %GST_HAND_POINTING_STATE_ACQUIRING for the right
  *   view of mono input
  */
-GstHandPointingState gst_hand_pointing_meta_get_view_state(const GstHandPointingMeta* meta, GstHandPointingView view)
+GstHandPointingState
+gst_hand_pointing_meta_get_view_state (const GstHandPointingMeta * meta, GstHandPointingView view)
 {
-    const GstHandPointingEye* eye;
+  const GstHandPointingEye *eye;
 
-    g_return_val_if_fail(meta != NULL, GST_HAND_POINTING_STATE_ACQUIRING);
-    eye = view_eye(meta, view);
-    return eye ? eye->state : GST_HAND_POINTING_STATE_ACQUIRING;
+  g_return_val_if_fail (meta != NULL, GST_HAND_POINTING_STATE_ACQUIRING);
+  eye = view_eye (meta, view);
+  return eye ? eye->state : GST_HAND_POINTING_STATE_ACQUIRING;
 }
 
 /**
@@ -147,11 +172,13 @@ GstHandPointingState gst_hand_pointing_meta_get_view_state(const GstHandPointing
  * Returns: what the hand does in that view; %GST_HAND_POINTING_GESTURE_UNKNOWN without key
  *   points (the motion-only detector) and for the right view of mono input
  */
-GstHandPointingGesture gst_hand_pointing_meta_get_gesture(const GstHandPointingMeta* meta, GstHandPointingView view)
+GstHandPointingGesture
+gst_hand_pointing_meta_get_gesture (const GstHandPointingMeta * meta, GstHandPointingView view)
 {
-    g_return_val_if_fail(meta != NULL, GST_HAND_POINTING_GESTURE_UNKNOWN);
-    if (!view_eye(meta, view)) return GST_HAND_POINTING_GESTURE_UNKNOWN;
-    return view == GST_HAND_POINTING_VIEW_RIGHT ? meta->right_gesture : meta->left_gesture;
+  g_return_val_if_fail (meta != NULL, GST_HAND_POINTING_GESTURE_UNKNOWN);
+  if (!view_eye (meta, view))
+    return GST_HAND_POINTING_GESTURE_UNKNOWN;
+  return view == GST_HAND_POINTING_VIEW_RIGHT ? meta->right_gesture : meta->left_gesture;
 }
 
 /**
@@ -165,18 +192,23 @@ GstHandPointingGesture gst_hand_pointing_meta_get_gesture(const GstHandPointingM
  *
  * Returns: %TRUE when that view tracks the hand; the outputs are left alone otherwise
  */
-gboolean gst_hand_pointing_meta_get_fingertip(const GstHandPointingMeta* meta, GstHandPointingView view, gdouble* x,
-                                              gdouble* y, gdouble* pointing_deg)
+gboolean
+gst_hand_pointing_meta_get_fingertip (const GstHandPointingMeta * meta, GstHandPointingView view,
+    gdouble * x, gdouble * y, gdouble * pointing_deg)
 {
-    const GstHandPointingEye* eye;
+  const GstHandPointingEye *eye;
 
-    g_return_val_if_fail(meta != NULL, FALSE);
-    eye = view_eye(meta, view);
-    if (!eye || eye->state != GST_HAND_POINTING_STATE_TRACKING) return FALSE;
-    if (x) *x = eye->fingertip_x;
-    if (y) *y = eye->fingertip_y;
-    if (pointing_deg) *pointing_deg = eye->pointing_deg;
-    return TRUE;
+  g_return_val_if_fail (meta != NULL, FALSE);
+  eye = view_eye (meta, view);
+  if (!eye || eye->state != GST_HAND_POINTING_STATE_TRACKING)
+    return FALSE;
+  if (x)
+    *x = eye->fingertip_x;
+  if (y)
+    *y = eye->fingertip_y;
+  if (pointing_deg)
+    *pointing_deg = eye->pointing_deg;
+  return TRUE;
 }
 
 /**
@@ -189,13 +221,14 @@ gboolean gst_hand_pointing_meta_get_fingertip(const GstHandPointingMeta* meta, G
  *   x0, y0, x1, y1, ... in pixels (a closed polygon), owned by the meta; empty for the
  *   right view of mono input
  */
-const gfloat* gst_hand_pointing_meta_get_contour(const GstHandPointingMeta* meta, GstHandPointingView view,
-                                                 guint* n_values)
+const gfloat *
+gst_hand_pointing_meta_get_contour (const GstHandPointingMeta * meta, GstHandPointingView view,
+    guint * n_values)
 {
-    const GstHandPointingEye* eye;
+  const GstHandPointingEye *eye;
 
-    g_return_val_if_fail(meta != NULL && n_values != NULL, NULL);
-    eye = view_eye(meta, view);
-    *n_values = eye ? 2 * eye->n_contour_points : 0;
-    return eye ? &eye->contour[0][0] : NULL;
+  g_return_val_if_fail (meta != NULL && n_values != NULL, NULL);
+  eye = view_eye (meta, view);
+  *n_values = eye ? 2 * eye->n_contour_points : 0;
+  return eye ? &eye->contour[0][0] : NULL;
 }
