@@ -394,7 +394,10 @@ int frame_noise_threshold(const cv::Mat1b& difference)
     if (samples == 0) return 0;
     // The quartile of the integer differences below `limit`, interpolated within its level
     // (level k stands for the values in [k - 0.5, k + 0.5)), as the threshold it gives.
+    // A frame that changed almost everywhere (a cut, a source starting) gives a first
+    // estimate past the last level: the second pass then counts every level.
     const auto threshold_below = [&](int limit) {
+        limit = std::min(limit, 256);
         int counted = 0;
         for (int k = 0; k < limit; ++k) counted += histogram[k];
         if (counted == 0) return 0;

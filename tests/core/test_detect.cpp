@@ -311,3 +311,16 @@ TEST(MotionDetector, BadInputsThrow)
 }
 
 }  // namespace
+
+// A frame that changed almost everywhere (a source whose first frames are black, a cut) makes
+// the first noise estimate pass the last grey level; the second pass must stay within the
+// histogram (it read past it before, and crashed a side-by-side pipeline now and then).
+TEST(MotionDetector, NoiseThresholdOfAFrameThatChangedEverywhere)
+{
+    const cv::Mat1b changed(480, 640, uchar(200));
+    EXPECT_GE(gc::frame_noise_threshold(changed), 255);
+    gc::MotionDetector detector;
+    const gc::SkinModel prior = gc::SkinModel::generic();
+    detector.process(cv::Mat3b(480, 640, cv::Vec3b(0, 0, 0)), prior, true);
+    EXPECT_FALSE(detector.process(cv::Mat3b(480, 640, cv::Vec3b(210, 200, 190)), prior, true));
+}
