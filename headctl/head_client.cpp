@@ -1,25 +1,25 @@
 #include "headctl/head_client.hpp"
 
+#include "common/enum_names.hpp"
+
 #include <cmath>
 
 namespace gc::headctl {
 
 using SteadyClock = std::chrono::steady_clock;
 
-std::string_view to_string(ConnectionState s)
-{
-    switch (s) {
-    case ConnectionState::Connecting:
-        return "connecting";
-    case ConnectionState::Connected:
-        return "connected";
-    case ConnectionState::Disconnected:
-        return "disconnected";
-    case ConnectionState::Stopped:
-        return "stopped";
-    }
-    return "?";
-}
+namespace {
+
+constexpr EnumNames<ConnectionState, 4> kConnectionStates{{
+    {ConnectionState::Connecting, "connecting"},
+    {ConnectionState::Connected, "connected"},
+    {ConnectionState::Disconnected, "disconnected"},
+    {ConnectionState::Stopped, "stopped"},
+}};
+
+}  // namespace
+
+std::string_view to_string(ConnectionState s) { return name_in(kConnectionStates, s, "?"); }
 
 HeadClient::HeadClient(HeadClientConfig config)
     : config_(std::move(config)), history_(config_.history_capacity < 2 ? 2 : config_.history_capacity)

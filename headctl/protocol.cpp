@@ -1,5 +1,7 @@
 #include "headctl/protocol.hpp"
 
+#include "common/enum_names.hpp"
+
 #include <algorithm>
 #include <array>
 #include <charconv>
@@ -11,11 +13,7 @@ namespace gc::headctl {
 
 namespace {
 
-struct ErrorName {
-    ErrorCode code;
-    std::string_view name;
-};
-constexpr std::array<ErrorName, 9> kErrorNames{{
+constexpr EnumNames<ErrorCode, 9> kErrorNames{{
     {ErrorCode::Syntax, "syntax"},
     {ErrorCode::AuthRequired, "auth-required"},
     {ErrorCode::AuthFailed, "auth-failed"},
@@ -171,17 +169,12 @@ constexpr std::array<Verb, 6> kSimpleVerbs{{
 
 }  // namespace
 
-std::string_view error_code_name(ErrorCode code)
-{
-    for (const auto& e : kErrorNames)
-        if (e.code == code) return e.name;
-    return "unknown";
-}
+std::string_view error_code_name(ErrorCode code) { return name_in(kErrorNames, code, "unknown"); }
 
 std::optional<ErrorCode> error_code_from_number(int number)
 {
-    for (const auto& e : kErrorNames)
-        if (static_cast<int>(e.code) == number) return e.code;
+    for (const auto& [code, name] : kErrorNames)
+        if (static_cast<int>(code) == number) return code;
     return std::nullopt;
 }
 

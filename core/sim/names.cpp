@@ -1,17 +1,16 @@
 // Text names of the scene presets, motions and varieties: the element's enum nicks, used on
 // command lines too. Names are spelt with '-'; '_' is accepted where a user types one.
+#include "common/enum_names.hpp"
 #include "sim/scene.hpp"
 
 #include <algorithm>
-#include <array>
 #include <string>
-#include <utility>
 
 namespace gc::sim {
 
 namespace {
 
-constexpr std::array<std::pair<Preset, std::string_view>, 5> kPresets{{
+constexpr EnumNames<Preset, 5> kPresets{{
     {Preset::Clean, "clean"},
     {Preset::Light, "light"},
     {Preset::Heavy, "heavy"},
@@ -19,7 +18,7 @@ constexpr std::array<std::pair<Preset, std::string_view>, 5> kPresets{{
     {Preset::Varied, "varied"},
 }};
 
-constexpr std::array<std::pair<Motion, std::string_view>, 7> kMotions{{
+constexpr EnumNames<Motion, 7> kMotions{{
     {Motion::Static, "static"},
     {Motion::Translate, "translate"},
     {Motion::Rotate, "rotate"},
@@ -29,36 +28,26 @@ constexpr std::array<std::pair<Motion, std::string_view>, 7> kMotions{{
     {Motion::LeaveReturn, "leave-return"},
 }};
 
-constexpr std::array<std::pair<Variety, std::string_view>, 2> kVarieties{{
+constexpr EnumNames<Variety, 2> kVarieties{{
     {Variety::None, "none"},
     {Variety::Wide, "wide"},
 }};
 
-template <class Table, class Value>
-std::string_view name_of(const Table& table, Value v)
-{
-    for (const auto& [q, n] : table)
-        if (q == v) return n;
-    return "unknown";
-}
-
-template <class Value, std::size_t N>
-std::optional<Value> value_of(const std::array<std::pair<Value, std::string_view>, N>& table, std::string_view name)
+template <class Enum, std::size_t N>
+std::optional<Enum> value_named(const EnumNames<Enum, N>& table, std::string_view name)
 {
     std::string spelt(name);
     std::replace(spelt.begin(), spelt.end(), '_', '-');
-    for (const auto& [v, n] : table)
-        if (n == spelt) return v;
-    return std::nullopt;
+    return value_in(table, spelt);
 }
 
 }  // namespace
 
-std::optional<Preset> preset_from_string(std::string_view name) { return value_of(kPresets, name); }
-std::optional<Motion> motion_from_string(std::string_view name) { return value_of(kMotions, name); }
-std::optional<Variety> variety_from_string(std::string_view name) { return value_of(kVarieties, name); }
-std::string_view to_string(Preset p) { return name_of(kPresets, p); }
-std::string_view to_string(Motion m) { return name_of(kMotions, m); }
-std::string_view to_string(Variety v) { return name_of(kVarieties, v); }
+std::optional<Preset> preset_from_string(std::string_view name) { return value_named(kPresets, name); }
+std::optional<Motion> motion_from_string(std::string_view name) { return value_named(kMotions, name); }
+std::optional<Variety> variety_from_string(std::string_view name) { return value_named(kVarieties, name); }
+std::string_view to_string(Preset p) { return name_in(kPresets, p, "unknown"); }
+std::string_view to_string(Motion m) { return name_in(kMotions, m, "unknown"); }
+std::string_view to_string(Variety v) { return name_in(kVarieties, v, "unknown"); }
 
 }  // namespace gc::sim
