@@ -29,18 +29,12 @@ int direction(double v) { return std::abs(v) < 1e-6 ? 0 : (v > 0 ? 1 : -1); }
 PelcoSettings PelcoSettings::from_uri(const HeadUri& uri)
 {
     PelcoSettings s;
-    const double address = uri.number_param("address", 1, 1, 255);
-    if (address != std::floor(address))
-        throw std::invalid_argument("head URI: parameter address must be an integer in 1..255");
-    s.address = static_cast<int>(address);
-    s.baud = static_cast<int>(uri.number_param("baud", s.baud, 1, 1e7));
-    if (!is_supported_baud(s.baud))
-        throw std::invalid_argument("head URI: baud must be 2400, 4800, 9600, 19200, 38400, 57600 or 115200");
+    s.address = address_param(uri, 255);
+    s.baud = baud_param(uri, s.baud);
     s.pan_max_speed_dps = uri.number_param("pan_max_speed_dps", s.pan_max_speed_dps, 0.1, 1000.0);
     s.tilt_max_speed_dps = uri.number_param("tilt_max_speed_dps", s.tilt_max_speed_dps, 0.1, 1000.0);
     s.zoom_max = uri.number_param("zoom_max", s.zoom_max, 1.0, 1000.0);
-    s.reply_timeout = std::chrono::milliseconds(
-        static_cast<long>(uri.number_param("timeout_ms", static_cast<double>(s.reply_timeout.count()), 1, 60'000)));
+    s.reply_timeout = reply_timeout_param(uri, s.reply_timeout);
     return s;
 }
 

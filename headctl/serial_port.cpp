@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <stdexcept>
 
@@ -65,6 +66,29 @@ net::Fd open_serial_port(const std::string& path, int baud)
     if (::tcsetattr(fd.get(), TCSANOW, &t) != 0) fail(path, "cannot configure");
     ::tcflush(fd.get(), TCIOFLUSH);
     return fd;
+}
+
+int address_param(const HeadUri& uri, int max_address)
+{
+    const double address = uri.number_param("address", 1, 1, max_address);
+    if (address != std::floor(address))
+        throw std::invalid_argument("head URI: parameter address must be an integer in 1.." +
+                                    std::to_string(max_address));
+    return static_cast<int>(address);
+}
+
+int baud_param(const HeadUri& uri, int fallback)
+{
+    const int baud = static_cast<int>(uri.number_param("baud", fallback, 1, 1e7));
+    if (!is_supported_baud(baud))
+        throw std::invalid_argument("head URI: baud must be 2400, 4800, 9600, 19200, 38400, 57600 or 115200");
+    return baud;
+}
+
+std::chrono::milliseconds reply_timeout_param(const HeadUri& uri, std::chrono::milliseconds fallback)
+{
+    return std::chrono::milliseconds(
+        static_cast<long>(uri.number_param("timeout_ms", static_cast<double>(fallback.count()), 1, 60'000)));
 }
 
 }  // namespace gc::headctl

@@ -14,10 +14,7 @@ constexpr int kMaxRepliesPerExchange = 16;
 ViscaSettings ViscaSettings::from_uri(const HeadUri& uri)
 {
     ViscaSettings s;
-    const double address = uri.number_param("address", 1, 1, 7);
-    if (address != std::floor(address))
-        throw std::invalid_argument("head URI: parameter address must be an integer in 1..7");
-    s.address = static_cast<int>(address);
+    s.address = address_param(uri, 7);
     s.pan_units_per_deg = uri.number_param("pan_units_per_deg", s.pan_units_per_deg, -1000.0, 1000.0);
     s.tilt_units_per_deg = uri.number_param("tilt_units_per_deg", s.tilt_units_per_deg, -1000.0, 1000.0);
     if (std::abs(s.pan_units_per_deg) < 1e-3 || std::abs(s.tilt_units_per_deg) < 1e-3)
@@ -29,11 +26,8 @@ ViscaSettings ViscaSettings::from_uri(const HeadUri& uri)
     if (tele != std::floor(tele)) throw std::invalid_argument("head URI: parameter zoom_tele_units must be an integer");
     s.zoom_tele_units = static_cast<int>(tele);
     s.zoom_max_speed = uri.number_param("zoom_max_speed", s.zoom_max_speed, 0.01, 1000.0);
-    s.baud = static_cast<int>(uri.number_param("baud", s.baud, 1, 1e7));
-    if (!is_supported_baud(s.baud))
-        throw std::invalid_argument("head URI: baud must be 2400, 4800, 9600, 19200, 38400, 57600 or 115200");
-    s.reply_timeout = std::chrono::milliseconds(
-        static_cast<long>(uri.number_param("timeout_ms", static_cast<double>(s.reply_timeout.count()), 1, 60'000)));
+    s.baud = baud_param(uri, s.baud);
+    s.reply_timeout = reply_timeout_param(uri, s.reply_timeout);
     return s;
 }
 
