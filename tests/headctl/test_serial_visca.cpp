@@ -6,16 +6,17 @@
 #include "headctl/visca.hpp"
 
 #include "pty_peer.hpp"
+#include "serial_camera.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <mutex>
 
 namespace gc::headctl {
 namespace {
 
 using namespace std::chrono_literals;
+using testing::step_deadline;
 using visca::Bytes;
 
 // A VISCA camera on the far end of a pty pair; silent or babbling on request.
@@ -28,11 +29,7 @@ public:
     {
     }
     const std::string& path() const { return pty_.path(); }
-    std::vector<Bytes> received()
-    {
-        std::lock_guard lock(mutex_);
-        return received_;
-    }
+    std::vector<Bytes> received() const { return received_.messages(); }
 
 private:
     Bytes respond(std::span<const std::uint8_t> bytes)
@@ -52,8 +49,7 @@ private:
 
     std::vector<Bytes> answer(const Bytes& m)
     {
-        std::lock_guard lock(mutex_);
-        received_.push_back(m);
+        received_.add(m);
         if (m == visca::pan_tilt_position_inquiry(1)) {
             Bytes r{0x90, 0x50};
             for (int v : {pan_, 0})
@@ -68,8 +64,7 @@ private:
     }
 
     Mode mode_;
-    std::mutex mutex_;
-    std::vector<Bytes> received_;
+    testing::ReceivedLog<Bytes> received_;
     Bytes stream_;
     int pan_ = 0;
     testing::PtyPeer pty_;  // last: its thread starts once the rest is built
@@ -85,13 +80,11 @@ HeadCommand pan_to(double deg)
 TEST(SerialVisca, DrivesACameraOnASerialLine)
 {
     SerialCamera camera;
-    auto head = make_backend(parse_head_uri("visca-serial://" + camera.path() + "?baud=9600"));
-    const auto deadline = [] { return net::Clock::now() + 2s; };
-    head->open(deadline());
-    EXPECT_DOUBLE_EQ(head->query_state(deadline()).pose.pan_deg, 0.0);
-    head->send(pan_to(10.0), deadline());
-    EXPECT_DOUBLE_EQ(head->query_state(deadline()).pose.pan_deg, 10.0);
-    head->send(preset_command(CommandKind::SavePreset, 2), deadline());
+    auto head = testing::opened_backend("visca-serial://" + camera.path() + "?baud=9600");
+    EXPECT_DOUBLE_EQ(head->query_state(step_deadline()).pose.pan_deg, 0.0);
+    head->send(pan_to(10.0), step_deadline());
+    EXPECT_DOUBLE_EQ(head->query_state(step_deadline()).pose.pan_deg, 10.0);
+    head->send(preset_command(CommandKind::SavePreset, 2), step_deadline());
     const auto got = camera.received();
     ASSERT_EQ(got.size(), 4u);
     EXPECT_EQ(got[1], visca::pan_tilt_absolute(1, 0x18, 0x14, 160, 0));
@@ -106,19 +99,13 @@ TEST(SerialVisca, ASilentOrBabblingCameraCostsNoMoreThanTheDeadline)
         auto head = make_backend(parse_head_uri("visca-serial://" + camera.path() + "?timeout_ms=200"));
         head->open(net::Clock::now() + 1s);
         const auto start = net::Clock::now();
-        const auto failure = [](auto&& call) {
-            try {
-                call();
-            } catch (const net::NetError& e) {
-                return std::string(e.what());
-            }
-            return std::string("no error");
-        };
         // Silent: the reply timeout ends the wait; garbage: no message end within 16 bytes.
         const char* expected = mode == SerialCamera::Mode::Silent ? "did not answer in time" : "unterminated message";
-        EXPECT_NE(failure([&] { head->query_state(net::Clock::now() + 1s); }).find(expected), std::string::npos);
+        EXPECT_NE(testing::net_error_of([&] { head->query_state(net::Clock::now() + 1s); }).find(expected),
+                  std::string::npos);
         if (mode == SerialCamera::Mode::Garbage) head->open(net::Clock::now() + 1s);  // as the client would
-        EXPECT_NE(failure([&] { head->send(pan_to(5.0), net::Clock::now() + 1s); }).find(expected), std::string::npos);
+        EXPECT_NE(testing::net_error_of([&] { head->send(pan_to(5.0), net::Clock::now() + 1s); }).find(expected),
+                  std::string::npos);
         // Bounded by the reply timeout (200 ms each), not a hang: the suite's timeout would
         // catch a hang, this catches a deadline ignored.
         EXPECT_LT(net::Clock::now() - start, 1900ms);
