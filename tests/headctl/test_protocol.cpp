@@ -4,27 +4,24 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 namespace gc::headctl {
 namespace {
 
-ErrorCode request_error(std::string_view line)
+enum class Parser { Request, Reply };
+
+// The code of the ProtocolError the parser throws on `line` (a failure where it accepts it).
+ErrorCode error_of(Parser parser, std::string_view line)
 {
     try {
-        parse_request(line);
+        if (parser == Parser::Request)
+            parse_request(line);
+        else
+            parse_reply(line);
     } catch (const ProtocolError& e) {
         EXPECT_NE(std::string(e.what()), "");
-        return e.code();
-    }
-    ADD_FAILURE() << "accepted: " << line;
-    return ErrorCode::Internal;
-}
-
-ErrorCode reply_error(std::string_view line)
-{
-    try {
-        parse_reply(line);
-    } catch (const ProtocolError& e) {
         return e.code();
     }
     ADD_FAILURE() << "accepted: " << line;
@@ -71,57 +68,60 @@ TEST(Protocol, RequestRoundTrips)
     for (const Request& r : requests) EXPECT_EQ(parse_request(format_request(r)), r) << format_request(r);
 }
 
-TEST(Protocol, RejectsUnknownCommand)
+// Lines a parser refuses, grouped by the error code they earn.
+struct Refused {
+    std::string name;
+    Parser parser;
+    ErrorCode code;
+    std::vector<std::string> lines;
+};
+
+const std::string kOverLongRequest = "MOVE ABS pan=1" + std::string(kMaxLineLength, ' ');
+
+const Refused kRefused[] = {
+    {"UnknownCommands", Parser::Request, ErrorCode::UnknownCommand, {"JUMP pan=1", "#3 FLY"}},
+    {"BadNumbers",
+     Parser::Request,
+     ErrorCode::BadArgument,
+     {"MOVE ABS pan=abc", "MOVE ABS pan=1.5x", "MOVE ABS pan=", "MOVE ABS pan=+1", "MOVE ABS pan=1e6",
+      "MOVE ABS pan=1e400", "MOVE VEL pan=nan", "MOVE VEL pan=NaN", "MOVE VEL pan=-nan", "MOVE VEL pan=inf",
+      "MOVE VEL pan=-inf", "MOVE VEL pan=infinity"}},
+    {"OverLongRequest", Parser::Request, ErrorCode::LineTooLong, {kOverLongRequest}},
+    {"OverLongReply", Parser::Reply, ErrorCode::LineTooLong, {"OK " + std::string(kMaxLineLength, 'x')}},
+    {"MalformedRequests",
+     Parser::Request,
+     ErrorCode::Syntax,
+     {"", "#7", "MOVE", "MOVE ABS", "MOVE SIDEWAYS pan=1", "MOVE ABS pan", "MOVE ABS =3", "STATUS now", "AUTH",
+      "AUTH a b", "#x STATUS", "#99999999999 STATUS", "#4294967296 STATUS", std::string("STATUS\0", 7), "STATUS \x7f"}},
+    {"BadRequestArguments",
+     Parser::Request,
+     ErrorCode::BadArgument,
+     {"MOVE ABS roll=3", "MOVE ABS pan=1 pan=2", "AUTH " + std::string(kMaxTokenLength + 1, 'k')}},
+    {"MalformedReplies",
+     Parser::Reply,
+     ErrorCode::Syntax,
+     {"", "MAYBE", "ERR #1", "OK #1 STATE t=1 pan=0 tilt=0 verge_l=0 moving=0,0,0,0",
+      "OK #1 STATE t=1 pan=0 tilt=0 verge_l=0 verge_r=0 moving=0,0,2,0",
+      "OK #1 STATE t=1 pan=0 tilt=0 verge_l=0 verge_r=0 moving=0,0,0", "OK LIMITS pan=1:2:3:4",
+      "OK LIMITS pan=-1:1:3 tilt=-1:1:1:1 verge_l=-1:1:1:1 verge_r=-1:1:1:1", "OK #1 WEATHER sunny"}},
+    {"BadReplyArguments",
+     Parser::Reply,
+     ErrorCode::BadArgument,
+     {"ERR #1 abc text", "OK #1 STATE t=x pan=0 tilt=0 verge_l=0 verge_r=0 moving=0,0,0,0",
+      "OK #1 STATE t=1 pan=inf tilt=0 verge_l=0 verge_r=0 moving=0,0,0,0",
+      "OK LIMITS pan=1:-1:3:4 tilt=-1:1:1:1 verge_l=-1:1:1:1 verge_r=-1:1:1:1"}},
+};
+
+class Refusal : public ::testing::TestWithParam<Refused> {};
+
+TEST_P(Refusal, EachLineEarnsItsErrorCode)
 {
-    EXPECT_EQ(request_error("JUMP pan=1"), ErrorCode::UnknownCommand);
-    EXPECT_EQ(request_error("#3 FLY"), ErrorCode::UnknownCommand);
+    for (const std::string& line : GetParam().lines)
+        EXPECT_EQ(error_of(GetParam().parser, line), GetParam().code) << line;
 }
 
-TEST(Protocol, RejectsBadNumbers)
-{
-    EXPECT_EQ(request_error("MOVE ABS pan=abc"), ErrorCode::BadArgument);
-    EXPECT_EQ(request_error("MOVE ABS pan=1.5x"), ErrorCode::BadArgument);
-    EXPECT_EQ(request_error("MOVE ABS pan="), ErrorCode::BadArgument);
-    EXPECT_EQ(request_error("MOVE ABS pan=+1"), ErrorCode::BadArgument);
-    EXPECT_EQ(request_error("MOVE ABS pan=1e6"), ErrorCode::BadArgument);
-    EXPECT_EQ(request_error("MOVE ABS pan=1e400"), ErrorCode::BadArgument);
-}
-
-TEST(Protocol, RejectsNanAndInfinity)
-{
-    for (const char* v : {"nan", "NaN", "-nan", "inf", "-inf", "infinity"})
-        EXPECT_EQ(request_error(std::string("MOVE VEL pan=") + v), ErrorCode::BadArgument) << v;
-}
-
-TEST(Protocol, RejectsOverLongLine)
-{
-    std::string line = "MOVE ABS pan=1";
-    line.append(kMaxLineLength, ' ');
-    EXPECT_EQ(request_error(line), ErrorCode::LineTooLong);
-    EXPECT_EQ(reply_error("OK " + std::string(kMaxLineLength, 'x')), ErrorCode::LineTooLong);
-}
-
-TEST(Protocol, RejectsMissingOrMalformedFields)
-{
-    EXPECT_EQ(request_error(""), ErrorCode::Syntax);
-    EXPECT_EQ(request_error("#7"), ErrorCode::Syntax);
-    EXPECT_EQ(request_error("MOVE"), ErrorCode::Syntax);
-    EXPECT_EQ(request_error("MOVE ABS"), ErrorCode::Syntax);
-    EXPECT_EQ(request_error("MOVE SIDEWAYS pan=1"), ErrorCode::Syntax);
-    EXPECT_EQ(request_error("MOVE ABS pan"), ErrorCode::Syntax);
-    EXPECT_EQ(request_error("MOVE ABS =3"), ErrorCode::Syntax);
-    EXPECT_EQ(request_error("MOVE ABS roll=3"), ErrorCode::BadArgument);
-    EXPECT_EQ(request_error("MOVE ABS pan=1 pan=2"), ErrorCode::BadArgument);
-    EXPECT_EQ(request_error("STATUS now"), ErrorCode::Syntax);
-    EXPECT_EQ(request_error("AUTH"), ErrorCode::Syntax);
-    EXPECT_EQ(request_error("AUTH a b"), ErrorCode::Syntax);
-    EXPECT_EQ(request_error("AUTH " + std::string(kMaxTokenLength + 1, 'k')), ErrorCode::BadArgument);
-    EXPECT_EQ(request_error("#x STATUS"), ErrorCode::Syntax);
-    EXPECT_EQ(request_error("#99999999999 STATUS"), ErrorCode::Syntax);
-    EXPECT_EQ(request_error("#4294967296 STATUS"), ErrorCode::Syntax);
-    EXPECT_EQ(request_error(std::string("STATUS\0", 7)), ErrorCode::Syntax);
-    EXPECT_EQ(request_error("STATUS \x7f"), ErrorCode::Syntax);
-}
+INSTANTIATE_TEST_SUITE_P(Protocol, Refusal, ::testing::ValuesIn(kRefused),
+                         [](const auto& info) { return info.param.name; });
 
 TEST(Protocol, PeeksTheIdOfAMalformedRequest)
 {
@@ -246,24 +246,6 @@ TEST(Protocol, ErrorMessagesAreSanitisedAndBounded)
         EXPECT_EQ(format_reply(parse_reply(once)), once) << k;
         EXPECT_NE(once.back(), ' ');
     }
-}
-
-TEST(Protocol, RejectsMalformedReplies)
-{
-    EXPECT_EQ(reply_error(""), ErrorCode::Syntax);
-    EXPECT_EQ(reply_error("MAYBE"), ErrorCode::Syntax);
-    EXPECT_EQ(reply_error("ERR #1"), ErrorCode::Syntax);
-    EXPECT_EQ(reply_error("ERR #1 abc text"), ErrorCode::BadArgument);
-    EXPECT_EQ(reply_error("OK #1 STATE t=1 pan=0 tilt=0 verge_l=0 moving=0,0,0,0"), ErrorCode::Syntax);
-    EXPECT_EQ(reply_error("OK #1 STATE t=1 pan=0 tilt=0 verge_l=0 verge_r=0 moving=0,0,2,0"), ErrorCode::Syntax);
-    EXPECT_EQ(reply_error("OK #1 STATE t=1 pan=0 tilt=0 verge_l=0 verge_r=0 moving=0,0,0"), ErrorCode::Syntax);
-    EXPECT_EQ(reply_error("OK #1 STATE t=x pan=0 tilt=0 verge_l=0 verge_r=0 moving=0,0,0,0"), ErrorCode::BadArgument);
-    EXPECT_EQ(reply_error("OK #1 STATE t=1 pan=inf tilt=0 verge_l=0 verge_r=0 moving=0,0,0,0"), ErrorCode::BadArgument);
-    EXPECT_EQ(reply_error("OK LIMITS pan=1:2:3:4"), ErrorCode::Syntax);
-    EXPECT_EQ(reply_error("OK LIMITS pan=-1:1:3 tilt=-1:1:1:1 verge_l=-1:1:1:1 verge_r=-1:1:1:1"), ErrorCode::Syntax);
-    EXPECT_EQ(reply_error("OK LIMITS pan=1:-1:3:4 tilt=-1:1:1:1 verge_l=-1:1:1:1 verge_r=-1:1:1:1"),
-              ErrorCode::BadArgument);
-    EXPECT_EQ(reply_error("OK #1 WEATHER sunny"), ErrorCode::Syntax);
 }
 
 TEST(Protocol, RepliesIgnoreUnknownFieldsOfLaterVersions)
