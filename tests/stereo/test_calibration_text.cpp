@@ -15,6 +15,7 @@
 #include <iterator>
 #include <string>
 #include <unistd.h>
+#include <utility>
 
 namespace {
 
@@ -242,13 +243,18 @@ TEST(CalibrationText, RefusesMatricesOutsideTheLimits)
     expect_refused(kYaml + yaml_matrix("M", "1", "2", "3d", "1, 2"), 6, "M", "unsupported element type dt '3d'");
     expect_refused(kYaml + yaml_matrix("M", "1", "2", "q", "1, 2"), 6, "M", "unsupported element type");
     expect_refused(kYaml + yaml_matrix("M", "1", "2", "i", "1, 2.5"), 7, "M", "fraction");
-    expect_refused(kYaml + yaml_matrix("M", "1", "2", "d", "1, abc"), 7, "M", "non-number 'abc'");
-    expect_refused(kYaml + yaml_matrix("M", "1", "2", "d", "1, 0x10"), 7, "M", "non-number '0x10'");
-    expect_refused(kYaml + yaml_matrix("M", "1", "2", "d", "1, 1e999"), 7, "M", "non-number");
-    expect_refused(kYaml + yaml_matrix("M", "1", "2", "d", "1,, 2"), 7, "M", "empty value");
-    expect_refused(kYaml + yaml_matrix("M", "1", "2", "d", "1, 2,"), 7, "M", "ends with a ','");
-    expect_refused(kYaml + yaml_matrix("M", "1", "2", "d", "1 2"), 7, "M", "separated by ','");
-    expect_refused(kYaml + yaml_matrix("M", "1", "2", "d", "1, 2 ] 3"), 7, "M", "after the matrix data");
+    // The data of a 1x2 matrix of doubles, refused on its line (7), and what the message says.
+    const std::pair<std::string, std::string> bad_data[] = {
+        {"1, abc", "non-number 'abc'"},
+        {"1, 0x10", "non-number '0x10'"},
+        {"1, 1e999", "non-number"},
+        {"1,, 2", "empty value"},
+        {"1, 2,", "ends with a ','"},
+        {"1 2", "separated by ','"},
+        {"1, 2 ] 3", "after the matrix data"},
+    };
+    for (const auto& [data, what] : bad_data)
+        expect_refused(kYaml + yaml_matrix("M", "1", "2", "d", data), 7, "M", what);
     expect_refused(kYaml + "M: !!opencv-matrix\n   rows: 1\n   cols: 1\n   data: [ 1 ]\nb: 2\n", 7, "M",
                    "incomplete matrix");
     expect_refused(kYaml + "M: !!opencv-matrix\n   rows: 1\n   rows: 1\n", 5, "M", "'rows' given twice");
