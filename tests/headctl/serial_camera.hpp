@@ -1,36 +1,15 @@
-// What the serial head tests share: the log of what a camera on a PtyPeer received, the
-// backend a URI names opened as a client would, and the text of the error a call throws.
+// What the serial head tests share: the backend a URI names opened as a client would, and the
+// text of the error a call throws; a camera keeps what it received in a SharedLog.
 #pragma once
 
 #include "headctl/head_backend.hpp"
+#include "shared_log.hpp"
 
 #include <chrono>
 #include <memory>
-#include <mutex>
 #include <string>
-#include <vector>
 
 namespace gc::headctl::testing {
-
-// Written by the camera's thread, read by the test's.
-template <class Message>
-class ReceivedLog {
-public:
-    void add(const Message& m)
-    {
-        std::lock_guard lock(mutex_);
-        messages_.push_back(m);
-    }
-    std::vector<Message> messages() const
-    {
-        std::lock_guard lock(mutex_);
-        return messages_;
-    }
-
-private:
-    mutable std::mutex mutex_;
-    std::vector<Message> messages_;
-};
 
 // The deadline of one step of a test: ample for a pty round trip.
 inline net::Clock::time_point step_deadline() { return net::Clock::now() + std::chrono::seconds(2); }

@@ -1,5 +1,6 @@
 // The asynchronous client against a loopback simulated head: connection, sampling, the
 // single command slot, the rate limit, reconnection with backoff, and a caller that never waits.
+#include "shared_log.hpp"
 #include "test_support.hpp"
 
 #include "headctl/gchp_backend.hpp"
@@ -13,7 +14,6 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
-#include <mutex>
 #include <vector>
 
 namespace gc::headctl::testing {
@@ -52,24 +52,13 @@ HeadClientConfig config_for(const std::string& uri)
 HeadClientConfig config_for(const RunningServer& server) { return config_for(server.uri()); }
 
 // The state changes a client reports, as its callback records them.
-class StateLog {
+class StateLog : public SharedLog<ConnectionState> {
 public:
     std::function<void(ConnectionState, const std::string&)> recorder()
     {
-        return [this](ConnectionState s, const std::string&) {
-            std::lock_guard lock(mutex_);
-            seen_.push_back(s);
-        };
+        return [this](ConnectionState s, const std::string&) { add(s); };
     }
-    std::vector<ConnectionState> seen() const
-    {
-        std::lock_guard lock(mutex_);
-        return seen_;
-    }
-
-private:
-    mutable std::mutex mutex_;
-    std::vector<ConnectionState> seen_;
+    std::vector<ConnectionState> seen() const { return items(); }
 };
 
 TEST(HeadClient, ConnectsSamplesAndInterpolates)

@@ -51,7 +51,7 @@ public:
     {
     }
     const std::string& path() const { return pty_.path(); }
-    std::vector<Message> received() const { return received_.messages(); }
+    std::vector<Message> received() const { return received_.items(); }
 
 private:
     std::vector<std::uint8_t> respond(std::span<const std::uint8_t> bytes)
@@ -98,7 +98,7 @@ private:
     }
 
     bool silent_;
-    testing::ReceivedLog<Message> received_;
+    testing::SharedLog<Message> received_;
     std::vector<std::uint8_t> stream_;
     int pan_ = 0, tilt_ = 0;
     std::map<int, std::pair<int, int>> presets_;

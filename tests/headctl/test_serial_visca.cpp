@@ -29,7 +29,7 @@ public:
     {
     }
     const std::string& path() const { return pty_.path(); }
-    std::vector<Bytes> received() const { return received_.messages(); }
+    std::vector<Bytes> received() const { return received_.items(); }
 
 private:
     Bytes respond(std::span<const std::uint8_t> bytes)
@@ -64,7 +64,7 @@ private:
     }
 
     Mode mode_;
-    testing::ReceivedLog<Bytes> received_;
+    testing::SharedLog<Bytes> received_;
     Bytes stream_;
     int pan_ = 0;
     testing::PtyPeer pty_;  // last: its thread starts once the rest is built
