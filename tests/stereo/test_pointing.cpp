@@ -79,6 +79,23 @@ gc::sim::SceneConfig scene_config()
     return c;
 }
 
+// Both views of `hand` at frame 0, and the estimates their truth gives.
+struct RenderedPair {
+    cv::Mat left, right;
+    gc::EyeEstimate left_estimate, right_estimate;
+};
+
+RenderedPair render_pair(const gc::sim::Scene& scene, const gc::sim::HandPose& hand)
+{
+    RenderedPair p;
+    gc::sim::EyeTruth lt, rt;
+    scene.render_pose(hand, 0, gc::Eye::Left, {}, p.left, &lt);
+    scene.render_pose(hand, 0, gc::Eye::Right, {}, p.right, &rt);
+    p.left_estimate = gc::test::estimate_from_truth(lt);
+    p.right_estimate = gc::test::estimate_from_truth(rt);
+    return p;
+}
+
 TEST(Pointing, AccurateWithExactCalibration)
 {
     const gc::sim::Scene scene(scene_config());
@@ -177,7 +194,6 @@ TEST(Pointing, UndoesLensDistortion)
     const Distorter dr(calibration.M2, calibration.D2, calibration.image_size);
     gc::PointingEstimator with_model(calibration);
     gc::PointingEstimator without_model(scene.calibration());
-    cv::Mat left, right;
     std::vector<double> errors, ignored;
     for (double yaw : {-30.0, 0.0, 30.0})
         for (double roll : {20.0, 160.0}) {
@@ -185,12 +201,10 @@ TEST(Pointing, UndoesLensDistortion)
             hand.palm_mm = {-80.0, 60.0, 1000.0};
             hand.yaw_deg = yaw;
             hand.roll_deg = roll;
-            gc::sim::EyeTruth lt, rt;
-            scene.render_pose(hand, 0, gc::Eye::Left, {}, left, &lt);
-            scene.render_pose(hand, 0, gc::Eye::Right, {}, right, &rt);
-            const cv::Mat l = dl.image(left), r = dr.image(right);
-            const gc::EyeEstimate le = dl.estimate(gc::test::estimate_from_truth(lt));
-            const gc::EyeEstimate re = dr.estimate(gc::test::estimate_from_truth(rt));
+            const RenderedPair views = render_pair(scene, hand);
+            const cv::Mat l = dl.image(views.left), r = dr.image(views.right);
+            const gc::EyeEstimate le = dl.estimate(views.left_estimate);
+            const gc::EyeEstimate re = dr.estimate(views.right_estimate);
             const cv::Vec3d truth = scene.hand_truth(hand).direction;
             const gc::Pointing3D p = with_model.estimate(l, r, le, re);
             ASSERT_TRUE(p.valid) << "yaw " << yaw << " roll " << roll;
@@ -208,12 +222,7 @@ TEST(Pointing, InvalidInputsGiveNoRayOrAClearError)
 {
     const gc::sim::Scene scene(scene_config());
     gc::PointingEstimator estimator(scene.calibration());
-    cv::Mat left, right;
-    gc::sim::EyeTruth lt, rt;
-    gc::sim::HandPose hand;
-    scene.render_pose(hand, 0, gc::Eye::Left, {}, left, &lt);
-    scene.render_pose(hand, 0, gc::Eye::Right, {}, right, &rt);
-    const gc::EyeEstimate le = gc::test::estimate_from_truth(lt), re = gc::test::estimate_from_truth(rt);
+    const auto [left, right, le, re] = render_pair(scene, gc::sim::HandPose{});
     ASSERT_TRUE(le.valid() && re.valid());
     EXPECT_TRUE(estimator.estimate(left, right, le, re).valid);
 
@@ -247,13 +256,9 @@ TEST(Pointing, FrameCostIsBounded)
 {
     const gc::sim::Scene scene(scene_config());
     gc::PointingEstimator estimator(scene.calibration());
-    cv::Mat left, right;
-    gc::sim::EyeTruth lt, rt;
     gc::sim::HandPose hand;
     hand.yaw_deg = 20;
-    scene.render_pose(hand, 0, gc::Eye::Left, {}, left, &lt);
-    scene.render_pose(hand, 0, gc::Eye::Right, {}, right, &rt);
-    const gc::EyeEstimate le = gc::test::estimate_from_truth(lt), re = gc::test::estimate_from_truth(rt);
+    const auto [left, right, le, re] = render_pair(scene, hand);
     const int runs = 60;
     std::vector<double> ms;
     int valid = 0;
