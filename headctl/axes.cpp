@@ -8,7 +8,10 @@ namespace gc::headctl {
 
 namespace {
 constexpr std::array<std::string_view, kAxisCount> kNames{"pan", "tilt", "verge_l", "verge_r", "zoom"};
-}
+// The pose's field of each axis, in the same order.
+constexpr std::array<double HeadPose::*, kAxisCount> kFields{
+    &HeadPose::pan_deg, &HeadPose::tilt_deg, &HeadPose::verge_left_deg, &HeadPose::verge_right_deg, &HeadPose::zoom};
+}  // namespace
 
 std::string_view axis_name(Axis axis) { return kNames[static_cast<std::size_t>(axis)]; }
 
@@ -22,43 +25,9 @@ std::optional<Axis> axis_from_name(std::string_view name)
     return std::nullopt;
 }
 
-double axis_value(const HeadPose& pose, Axis axis)
-{
-    switch (axis) {
-    case Axis::Pan:
-        return pose.pan_deg;
-    case Axis::Tilt:
-        return pose.tilt_deg;
-    case Axis::VergeLeft:
-        return pose.verge_left_deg;
-    case Axis::VergeRight:
-        return pose.verge_right_deg;
-    case Axis::Zoom:
-        return pose.zoom;
-    }
-    return 0.0;
-}
+double axis_value(const HeadPose& pose, Axis axis) { return pose.*kFields[static_cast<std::size_t>(axis)]; }
 
-void set_axis_value(HeadPose& pose, Axis axis, double deg)
-{
-    switch (axis) {
-    case Axis::Pan:
-        pose.pan_deg = deg;
-        break;
-    case Axis::Tilt:
-        pose.tilt_deg = deg;
-        break;
-    case Axis::VergeLeft:
-        pose.verge_left_deg = deg;
-        break;
-    case Axis::VergeRight:
-        pose.verge_right_deg = deg;
-        break;
-    case Axis::Zoom:
-        pose.zoom = deg;
-        break;
-    }
-}
+void set_axis_value(HeadPose& pose, Axis axis, double deg) { pose.*kFields[static_cast<std::size_t>(axis)] = deg; }
 
 bool AxisValues::empty() const
 {
