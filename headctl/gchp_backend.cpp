@@ -1,10 +1,40 @@
 #include "headctl/gchp_backend.hpp"
 
+#include <stdexcept>
+
 namespace gc::headctl {
 
 namespace {
 // Replies to requests abandoned after a timeout may still arrive; at most this many are skipped.
 constexpr int kMaxStaleReplies = 64;
+
+Command request_of(CommandKind kind)
+{
+    switch (kind) {
+    case CommandKind::Absolute:
+        return Command::MoveAbsolute;
+    case CommandKind::Relative:
+        return Command::MoveRelative;
+    case CommandKind::Velocity:
+        return Command::MoveVelocity;
+    case CommandKind::Stop:
+        return Command::Stop;
+    case CommandKind::Home:
+        return Command::Home;
+    case CommandKind::SavePreset:
+        return Command::PresetSave;
+    case CommandKind::RecallPreset:
+        return Command::PresetRecall;
+    }
+    throw std::invalid_argument("unknown command kind");
+}
+
+// Only moves carry axis values.
+bool is_move(CommandKind kind)
+{
+    return kind == CommandKind::Absolute || kind == CommandKind::Relative || kind == CommandKind::Velocity;
+}
+
 }  // namespace
 
 GchpBackend::GchpBackend(std::string host, std::uint16_t port, std::string token)
@@ -89,34 +119,8 @@ std::optional<HeadLimits> GchpBackend::query_limits(Deadline deadline)
 void GchpBackend::send(const HeadCommand& command, Deadline deadline)
 {
     Request r;
-    r.values = command.values;
-    switch (command.kind) {
-    case CommandKind::Absolute:
-        r.command = Command::MoveAbsolute;
-        break;
-    case CommandKind::Relative:
-        r.command = Command::MoveRelative;
-        break;
-    case CommandKind::Velocity:
-        r.command = Command::MoveVelocity;
-        break;
-    case CommandKind::Stop:
-        r.command = Command::Stop;
-        r.values = {};
-        break;
-    case CommandKind::Home:
-        r.command = Command::Home;
-        r.values = {};
-        break;
-    case CommandKind::SavePreset:
-        r.command = Command::PresetSave;
-        r.values = {};
-        break;
-    case CommandKind::RecallPreset:
-        r.command = Command::PresetRecall;
-        r.values = {};
-        break;
-    }
+    r.command = request_of(command.kind);
+    if (is_move(command.kind)) r.values = command.values;
     r.preset = command.preset;
     const Reply reply = transact(r, deadline);
     if (!reply.ok)
