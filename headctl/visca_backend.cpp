@@ -261,23 +261,18 @@ void ViscaBackend::send_pan_tilt(const HeadCommand& c, Deadline deadline)
         drive_dps_ = {};
         exchange(visca::pan_tilt_stop(a), visca::ReplyKind::Ack, deadline);
         return;
-    case CommandKind::Absolute: {
-        // One message moves both axes: an axis not named stays where it is.
-        HeadPose here = last_pose_ ? *last_pose_ : query_state(deadline).pose;
-        const double pan = c.values.has(Axis::Pan) ? c.values.get(Axis::Pan) : here.pan_deg;
-        const double tilt = c.values.has(Axis::Tilt) ? c.values.get(Axis::Tilt) : here.tilt_deg;
-        drive_dps_ = {};
-        exchange(visca::pan_tilt_absolute(a, pan_max, tilt_max, to_units(pan, settings_.pan_units_per_deg, "pan"),
-                                          to_units(tilt, settings_.tilt_units_per_deg, "tilt")),
-                 visca::ReplyKind::Ack, deadline);
-        return;
-    }
+    case CommandKind::Absolute:
     case CommandKind::Relative: {
-        const double pan = c.values.has(Axis::Pan) ? c.values.get(Axis::Pan) : 0.0;
-        const double tilt = c.values.has(Axis::Tilt) ? c.values.get(Axis::Tilt) : 0.0;
+        // One message moves both axes: an axis not named stays where it is (moves by 0).
+        const bool absolute = c.kind == CommandKind::Absolute;
+        HeadPose from;
+        if (absolute) from = last_pose_ ? *last_pose_ : query_state(deadline).pose;
+        const double pan = c.values.has(Axis::Pan) ? c.values.get(Axis::Pan) : from.pan_deg;
+        const double tilt = c.values.has(Axis::Tilt) ? c.values.get(Axis::Tilt) : from.tilt_deg;
+        const auto move = absolute ? visca::pan_tilt_absolute : visca::pan_tilt_relative;
         drive_dps_ = {};
-        exchange(visca::pan_tilt_relative(a, pan_max, tilt_max, to_units(pan, settings_.pan_units_per_deg, "pan"),
-                                          to_units(tilt, settings_.tilt_units_per_deg, "tilt")),
+        exchange(move(a, pan_max, tilt_max, to_units(pan, settings_.pan_units_per_deg, "pan"),
+                      to_units(tilt, settings_.tilt_units_per_deg, "tilt")),
                  visca::ReplyKind::Ack, deadline);
         return;
     }
