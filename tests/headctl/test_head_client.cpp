@@ -51,6 +51,14 @@ HeadClientConfig config_for(const std::string& uri)
 
 HeadClientConfig config_for(const RunningServer& server) { return config_for(server.uri()); }
 
+// The same, sending commands no closer together than `min_command_interval`.
+HeadClientConfig config_for(const RunningServer& server, std::chrono::milliseconds min_command_interval)
+{
+    HeadClientConfig c = config_for(server);
+    c.min_command_interval = min_command_interval;
+    return c;
+}
+
 // The state changes a client reports, as its callback records them.
 class StateLog : public SharedLog<ConnectionState> {
 public:
@@ -95,9 +103,7 @@ TEST(HeadClient, StampsSamplesWithTheCallersClock)
 TEST(HeadClient, LatestCommandWins)
 {
     RunningServer server;
-    HeadClientConfig config = config_for(server);
-    config.min_command_interval = 300ms;
-    HeadClient client(config);
+    HeadClient client(config_for(server, 300ms));
     ASSERT_TRUE(eventually([&] { return client.state() == ConnectionState::Connected; }));
     for (int i = 1; i <= 50; ++i) client.submit(absolute_pan(i));
     ASSERT_TRUE(eventually([&] {
@@ -113,9 +119,7 @@ TEST(HeadClient, LatestCommandWins)
 TEST(HeadClient, RateLimitsCommands)
 {
     RunningServer server;
-    HeadClientConfig config = config_for(server);
-    config.min_command_interval = 50ms;
-    HeadClient client(config);
+    HeadClient client(config_for(server, 50ms));
     ASSERT_TRUE(eventually([&] { return client.state() == ConnectionState::Connected; }));
     const auto start = std::chrono::steady_clock::now();
     int submitted = 0;

@@ -123,6 +123,14 @@ TEST_P(Refusal, EachLineEarnsItsErrorCode)
 INSTANTIATE_TEST_SUITE_P(Protocol, Refusal, ::testing::ValuesIn(kRefused),
                          [](const auto& info) { return info.param.name; });
 
+// Formats `r`, checks the line against `expected`, and parses it back.
+Reply round_trip(const Reply& r, const std::string& expected)
+{
+    const std::string line = format_reply(r);
+    EXPECT_EQ(line, expected);
+    return parse_reply(line);
+}
+
 TEST(Protocol, PeeksTheIdOfAMalformedRequest)
 {
     EXPECT_EQ(peek_request_id("#42 MOVE ABS pan=nan"), 42u);
@@ -140,9 +148,8 @@ TEST(Protocol, StateReplyRoundTrips)
     r.state.server_time_us = 123456789012;
     r.state.pose = HeadPose{12.5, -3.25, 4.0, -4.0, 2.5};
     r.state.moving = {false, true, false, false, true};
-    const std::string line = format_reply(r);
-    EXPECT_EQ(line, "OK #9 STATE t=123456789012 pan=12.5 tilt=-3.25 verge_l=4 verge_r=-4 zoom=2.5 moving=0,1,0,0,1");
-    const Reply back = parse_reply(line);
+    const Reply back =
+        round_trip(r, "OK #9 STATE t=123456789012 pan=12.5 tilt=-3.25 verge_l=4 verge_r=-4 zoom=2.5 moving=0,1,0,0,1");
     EXPECT_TRUE(back.ok);
     EXPECT_EQ(back.id, 9u);
     ASSERT_EQ(back.body, ReplyBody::State);
@@ -219,9 +226,7 @@ TEST(Protocol, LimitsReplyRoundTripsWithinTheLineBound)
 TEST(Protocol, ErrorReplyRoundTrips)
 {
     const Reply r = make_error_reply(5, ErrorCode::OutOfRange, "pan target 300 deg is outside [-170, 170]");
-    const std::string line = format_reply(r);
-    EXPECT_EQ(line, "ERR #5 416 pan target 300 deg is outside [-170, 170]");
-    const Reply back = parse_reply(line);
+    const Reply back = round_trip(r, "ERR #5 416 pan target 300 deg is outside [-170, 170]");
     EXPECT_FALSE(back.ok);
     EXPECT_EQ(back.id, 5u);
     EXPECT_EQ(back.error, ErrorCode::OutOfRange);
