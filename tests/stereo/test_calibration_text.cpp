@@ -157,6 +157,13 @@ TEST(CalibrationText, AgreesWithFileStorageOnSavedCalibrations)
     }
 }
 
+// The width and row vector R that both hand-edited files of rig 3 below hold.
+void expect_rig_3(const gc::CalibrationEntries& entries)
+{
+    EXPECT_EQ(scalar(entries, "width").value, 640.0);
+    EXPECT_EQ(matrix(entries, "R").data, (std::vector<double>{1.0, 2.0, 3.0}));
+}
+
 TEST(CalibrationText, AcceptsHandWrittenVariants)
 {
     const std::string yaml = "%YAML 1.0\r\n"
@@ -173,8 +180,7 @@ TEST(CalibrationText, AcceptsHandWrittenVariants)
                              "     +2e0 ,3 ]\r\n"
                              "scale: -.5\r\n";
     const gc::CalibrationEntries y = gc::read_calibration_text(yaml, "hand.yml");
-    EXPECT_EQ(scalar(y, "width").value, 640.0);
-    EXPECT_EQ(matrix(y, "R").data, (std::vector<double>{1.0, 2.0, 3.0}));
+    expect_rig_3(y);
     EXPECT_EQ(scalar(y, "scale").value, -0.5);
     EXPECT_EQ(y.at("scale").line, 13u);
 
@@ -191,8 +197,7 @@ TEST(CalibrationText, AcceptsHandWrittenVariants)
                             "</opencv_storage>\n"
                             "<!-- end -->\n";
     const gc::CalibrationEntries x = gc::read_calibration_text(xml, "hand.xml");
-    EXPECT_EQ(scalar(x, "width").value, 640.0);
-    EXPECT_EQ(matrix(x, "R").data, (std::vector<double>{1.0, 2.0, 3.0}));
+    expect_rig_3(x);
     EXPECT_EQ(x.at("R").line, 5u);
 }
 
