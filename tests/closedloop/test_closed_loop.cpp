@@ -35,6 +35,17 @@ using headctl::SteerMode;
 
 constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 
+TrackerParams loop_tracker_params()
+{
+    TrackerParams params;
+    params.particles = 500;
+    params.seed = 7;
+    // The loop is judged on the contour tracker's estimates: the learned key points are
+    // less exact on the renderer's rigid hand than on real hands (docs/benchmarks.md).
+    params.detector = HandDetector::Motion;
+    return params;
+}
+
 struct LoopFigures {
     int frames = 0;
     int first_tracked = -1;     // frame of acquisition
@@ -132,13 +143,7 @@ LoopFigures run_loop(const LoopOptions& o)
     headctl::HeadClient driver(driver_config);
     int saccade = 0;
 
-    TrackerParams params;
-    params.particles = 500;
-    params.seed = 7;
-    // The loop is judged on the contour tracker's estimates: the learned key points are
-    // less exact on the renderer's rigid hand than on real hands (docs/benchmarks.md).
-    params.detector = HandDetector::Motion;
-    PointingTracker tracker(params, cal);
+    PointingTracker tracker(loop_tracker_params(), cal);
 
     LoopFigures f;
     cv::Mat left, right;
@@ -307,13 +312,7 @@ PointFigures run_point(sim::Preset preset, std::uint64_t seed, double max_second
     HeadLink link(lc, cal);
     EXPECT_TRUE(eventually([&] { return link.client().latest().has_value(); }, 2000ms));
 
-    TrackerParams params;
-    params.particles = 500;
-    params.seed = 7;
-    // The loop is judged on the contour tracker's estimates: the learned key points are
-    // less exact on the renderer's rigid hand than on real hands (docs/benchmarks.md).
-    params.detector = HandDetector::Motion;
-    PointingTracker tracker(params, cal);
+    PointingTracker tracker(loop_tracker_params(), cal);
 
     PointFigures f;
     cv::Mat left, right;
