@@ -295,6 +295,30 @@ void draw_cable(cv::Mat3b& img, const Layout& L, Rng& rng, const cv::Rect& area)
                   cv::LINE_AA);
 }
 
+void draw_furnishing(Furnishing kind, cv::Mat3b& img, const Layout& L, Rng& rng, cv::RNG& cr, const cv::Rect& area)
+{
+    switch (kind) {
+    case Furnishing::Bookshelf:
+        return draw_bookshelf(img, L, rng, cr, area);
+    case Furnishing::Poster:
+        return draw_poster(img, L, rng, cr, area);
+    case Furnishing::Rack:
+        return draw_rack(img, L, rng, area);
+    case Furnishing::Monitor:
+        return draw_monitor(img, L, rng, area);
+    case Furnishing::Whiteboard:
+        return draw_whiteboard(img, L, rng, area);
+    case Furnishing::Plant:
+        return draw_plant(img, L, rng, area);
+    case Furnishing::Clock:
+        return draw_clock(img, L, rng, area);
+    case Furnishing::Door:
+        return draw_door(img, L, rng, area);
+    case Furnishing::Cable:
+        return draw_cable(img, L, rng, area);
+    }
+}
+
 void grain(cv::Mat3b& img, double period_px, double amplitude, Rng& rng, cv::RNG& cr)
 {
     // Wood: stripes along x, their phase wandering.

@@ -35,6 +35,10 @@ void draw_bookshelf(cv::Mat3b& img, const Layout& L, Rng& rng, cv::RNG& cr, cons
 void draw_rack(cv::Mat3b& img, const Layout& L, Rng& rng, const cv::Rect& area);
 void draw_cable(cv::Mat3b& img, const Layout& L, Rng& rng, const cv::Rect& area);
 
+enum class Furnishing { Bookshelf, Poster, Rack, Monitor, Whiteboard, Plant, Clock, Door, Cable };
+// Draws one furnishing of `kind` in `area` (those with a texture draw it from `cr`).
+void draw_furnishing(Furnishing kind, cv::Mat3b& img, const Layout& L, Rng& rng, cv::RNG& cr, const cv::Rect& area);
+
 // Wood: stripes along x whose phase wanders, `amplitude` of brightness.
 void grain(cv::Mat3b& img, double period_px, double amplitude, Rng& rng, cv::RNG& cr);
 

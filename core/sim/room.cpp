@@ -16,6 +16,30 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
+// A preset's furnishings and the share of each, as cumulative bounds on a uniform draw in
+// [0, 1): a draw below `below` (and not below the one before) picks `kind`.
+struct MixEntry {
+    double below;
+    Furnishing kind;
+};
+
+constexpr MixEntry kHeavyMix[] = {
+    {0.30, Furnishing::Bookshelf},  {0.45, Furnishing::Poster}, {0.58, Furnishing::Rack}, {0.70, Furnishing::Monitor},
+    {0.78, Furnishing::Whiteboard}, {0.86, Furnishing::Plant},  {1.00, Furnishing::Cable}};
+
+constexpr MixEntry kLightMix[] = {{0.40, Furnishing::Poster},  {0.52, Furnishing::Whiteboard},
+                                  {0.64, Furnishing::Monitor}, {0.76, Furnishing::Plant},
+                                  {0.86, Furnishing::Clock},   {1.00, Furnishing::Door}};
+
+// The last entry takes whatever the others leave.
+template <std::size_t N>
+Furnishing pick(const MixEntry (&mix)[N], double u)
+{
+    for (std::size_t i = 0; i + 1 < N; ++i)
+        if (u < mix[i].below) return mix[i].kind;
+    return mix[N - 1].kind;
+}
+
 }  // namespace
 
 double target_skin_area(Preset preset)
@@ -80,35 +104,7 @@ Wall build_wall(Preset preset, const cv::Vec3f& skin, const cv::Rect2d& view_mm,
         const int count = int(std::lround(wall_m2 * (heavy ? 2.2 : 0.8)));
         for (int i = 0; i < count; ++i) {
             const double u = uniform(rng, 0, 1);
-            if (heavy) {
-                if (u < 0.30)
-                    draw_bookshelf(wall.image, L, rng, cr, all);
-                else if (u < 0.45)
-                    draw_poster(wall.image, L, rng, cr, all);
-                else if (u < 0.58)
-                    draw_rack(wall.image, L, rng, all);
-                else if (u < 0.70)
-                    draw_monitor(wall.image, L, rng, all);
-                else if (u < 0.78)
-                    draw_whiteboard(wall.image, L, rng, all);
-                else if (u < 0.86)
-                    draw_plant(wall.image, L, rng, all);
-                else
-                    draw_cable(wall.image, L, rng, all);
-            } else {
-                if (u < 0.40)
-                    draw_poster(wall.image, L, rng, cr, all);
-                else if (u < 0.52)
-                    draw_whiteboard(wall.image, L, rng, all);
-                else if (u < 0.64)
-                    draw_monitor(wall.image, L, rng, all);
-                else if (u < 0.76)
-                    draw_plant(wall.image, L, rng, all);
-                else if (u < 0.86)
-                    draw_clock(wall.image, L, rng, all);
-                else
-                    draw_door(wall.image, L, rng, all);
-            }
+            draw_furnishing(heavy ? pick(kHeavyMix, u) : pick(kLightMix, u), wall.image, L, rng, cr, all);
         }
     }
     wall.skin_like_area = place_skin_like(wall.image, L, preset, skin, view, target_skin_area(preset), rng, cr);

@@ -200,35 +200,8 @@ void draw_furnishings(cv::Mat3b& img, const Layout& L, Rng& rng, cv::RNG& cr)
     const double m2 = double(img.total()) * L.texel_mm * L.texel_mm * 1e-6;
     const int count = int(std::lround(m2 * uniform(rng, 0.0, 2.0)));
     for (int i = 0; i < count; ++i) {
-        switch (irand(rng, 0, 8)) {
-        case 0:
-            draw_bookshelf(img, L, rng, cr, all);
-            break;
-        case 1:
-            draw_poster(img, L, rng, cr, all);
-            break;
-        case 2:
-            draw_rack(img, L, rng, all);
-            break;
-        case 3:
-            draw_monitor(img, L, rng, all);
-            break;
-        case 4:
-            draw_whiteboard(img, L, rng, all);
-            break;
-        case 5:
-            draw_plant(img, L, rng, all);
-            break;
-        case 6:
-            draw_clock(img, L, rng, all);
-            break;
-        case 7:
-            draw_door(img, L, rng, all);
-            break;
-        default:
-            draw_cable(img, L, rng, all);
-            break;
-        }
+        const auto kind = static_cast<Furnishing>(irand(rng, 0, static_cast<int>(Furnishing::Cable)));
+        draw_furnishing(kind, img, L, rng, cr, all);
     }
 }
 
