@@ -1,40 +1,16 @@
 #include "meta_estimate.hpp"
 
+#include "meta_enums.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
 namespace gc::gst {
 
-TrackState track_state(GstHandPointingState s)
-{
-    switch (s) {
-    case GST_HAND_POINTING_STATE_TRACKING:
-        return TrackState::Tracking;
-    case GST_HAND_POINTING_STATE_LOST:
-        return TrackState::Lost;
-    case GST_HAND_POINTING_STATE_ACQUIRING:
-        break;
-    }
-    return TrackState::Acquiring;
-}
+TrackState track_state(GstHandPointingState s) { return value_in(kMetaStates, s).value_or(TrackState::Acquiring); }
 
-Gesture track_gesture(GstHandPointingGesture g)
-{
-    switch (g) {
-    case GST_HAND_POINTING_GESTURE_POINTING:
-        return Gesture::Pointing;
-    case GST_HAND_POINTING_GESTURE_OPEN:
-        return Gesture::Open;
-    case GST_HAND_POINTING_GESTURE_FIST:
-        return Gesture::Fist;
-    case GST_HAND_POINTING_GESTURE_OTHER:
-        return Gesture::Other;
-    case GST_HAND_POINTING_GESTURE_UNKNOWN:
-        break;
-    }
-    return Gesture::Unknown;
-}
+Gesture track_gesture(GstHandPointingGesture g) { return value_in(kMetaGestures, g).value_or(Gesture::Unknown); }
 
 EyeEstimate eye_from_meta(const GstHandPointingMeta& meta, bool right, cv::Size buffer_size)
 {

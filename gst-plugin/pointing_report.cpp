@@ -1,5 +1,7 @@
 #include "pointing_report.hpp"
 
+#include "meta_enums.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -82,35 +84,9 @@ void set_vec3(GstStructure* s, const char* name, const cv::Vec3d& v)
     gst_structure_take_value(s, name, &array);
 }
 
-GstHandPointingGesture meta_gesture(Gesture g)
-{
-    switch (g) {
-    case Gesture::Pointing:
-        return GST_HAND_POINTING_GESTURE_POINTING;
-    case Gesture::Open:
-        return GST_HAND_POINTING_GESTURE_OPEN;
-    case Gesture::Fist:
-        return GST_HAND_POINTING_GESTURE_FIST;
-    case Gesture::Other:
-        return GST_HAND_POINTING_GESTURE_OTHER;
-    case Gesture::Unknown:
-        break;
-    }
-    return GST_HAND_POINTING_GESTURE_UNKNOWN;
-}
+GstHandPointingGesture meta_gesture(Gesture g) { return name_in(kMetaGestures, g, GST_HAND_POINTING_GESTURE_UNKNOWN); }
 
-GstHandPointingState meta_state(TrackState s)
-{
-    switch (s) {
-    case TrackState::Tracking:
-        return GST_HAND_POINTING_STATE_TRACKING;
-    case TrackState::Lost:
-        return GST_HAND_POINTING_STATE_LOST;
-    case TrackState::Acquiring:
-        break;
-    }
-    return GST_HAND_POINTING_STATE_ACQUIRING;
-}
+GstHandPointingState meta_state(TrackState s) { return name_in(kMetaStates, s, GST_HAND_POINTING_STATE_ACQUIRING); }
 
 void fill_meta(GstHandPointingMeta& meta, const FrameResult& result, const ReportContext& context,
                std::vector<float>& scratch)

@@ -1,24 +1,23 @@
 // Names of enum values kept in one table a type, read both ways: the value's name for output
-// and the value a typed name stands for.
+// and the value a name stands for. A name is text, or the value's counterpart in another
+// library's enum.
 #pragma once
 
 #include <array>
 #include <cstddef>
 #include <optional>
 #include <string_view>
+#include <type_traits>
 #include <utility>
 
 namespace gc {
 
-template <class Enum>
-using EnumName = std::pair<Enum, std::string_view>;
-
-template <class Enum, std::size_t N>
-using EnumNames = std::array<EnumName<Enum>, N>;
+template <class Enum, std::size_t N, class Name = std::string_view>
+using EnumNames = std::array<std::pair<Enum, Name>, N>;
 
 // The name of `value`, or `fallback` for a value the table lacks (a cast integer).
-template <class Enum, std::size_t N>
-constexpr std::string_view name_in(const EnumNames<Enum, N>& table, Enum value, std::string_view fallback)
+template <class Enum, std::size_t N, class Name>
+constexpr Name name_in(const EnumNames<Enum, N, Name>& table, Enum value, std::type_identity_t<Name> fallback)
 {
     for (const auto& [v, name] : table)
         if (v == value) return name;
@@ -26,8 +25,8 @@ constexpr std::string_view name_in(const EnumNames<Enum, N>& table, Enum value, 
 }
 
 // The value named `name` exactly, if the table has it.
-template <class Enum, std::size_t N>
-constexpr std::optional<Enum> value_in(const EnumNames<Enum, N>& table, std::string_view name)
+template <class Enum, std::size_t N, class Name>
+constexpr std::optional<Enum> value_in(const EnumNames<Enum, N, Name>& table, std::type_identity_t<Name> name)
 {
     for (const auto& [v, n] : table)
         if (n == name) return v;
