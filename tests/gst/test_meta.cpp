@@ -5,6 +5,8 @@
 #include <gst/gesturecam/gsthandpointingmeta.h>
 #include <gst/video/video.h>
 
+#include <memory>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -90,25 +92,39 @@ TEST(Meta, CopiesWithTheBuffer)
     gst_buffer_unref(buffer);
 }
 
+struct BufferUnref {
+    void operator()(GstBuffer* buffer) const { gst_buffer_unref(buffer); }
+};
+using BufferPtr = std::unique_ptr<GstBuffer, BufferUnref>;
+
+// A buffer with the filled meta and its copy through the scale transform; `meta` is the copy's.
+struct Scaled {
+    BufferPtr source, copy;
+    const GstHandPointingMeta* meta;
+};
+
 // Runs the scale transform as videoscale would, from 320x240 to 640x120.
-GstHandPointingMeta* scaled_copy(GstBuffer* src, GstBuffer* dst)
+Scaled scale_filled_meta(guint flags)
 {
+    gc::test::init_gstreamer();
+    BufferPtr source(gst_buffer_new_allocate(nullptr, 16, nullptr));
+    BufferPtr copy(gst_buffer_new_allocate(nullptr, 16, nullptr));
+    add_filled_meta(source.get(), flags);
     GstVideoInfo in, out;
     gst_video_info_set_format(&in, GST_VIDEO_FORMAT_BGR, 320, 240);
     gst_video_info_set_format(&out, GST_VIDEO_FORMAT_BGR, 640, 120);
     GstVideoMetaTransform trans = {&in, &out};
-    GstMeta* meta = GST_META_CAST(gst_buffer_get_hand_pointing_meta(src));
-    EXPECT_TRUE(meta->info->transform_func(dst, meta, src, gst_video_meta_transform_scale_get_quark(), &trans));
-    return gst_buffer_get_hand_pointing_meta(dst);
+    GstMeta* meta = GST_META_CAST(gst_buffer_get_hand_pointing_meta(source.get()));
+    EXPECT_TRUE(
+        meta->info->transform_func(copy.get(), meta, source.get(), gst_video_meta_transform_scale_get_quark(), &trans));
+    const GstHandPointingMeta* scaled = gst_buffer_get_hand_pointing_meta(copy.get());
+    return {std::move(source), std::move(copy), scaled};
 }
 
 TEST(Meta, ScaleTransformRescalesAFullView)
 {
-    gc::test::init_gstreamer();
-    GstBuffer* buffer = gst_buffer_new_allocate(nullptr, 16, nullptr);
-    add_filled_meta(buffer, GST_HAND_POINTING_FLAG_FULL_VIEW);
-    GstBuffer* scaled = gst_buffer_new_allocate(nullptr, 16, nullptr);
-    const GstHandPointingMeta* meta = scaled_copy(buffer, scaled);
+    const Scaled scaled = scale_filled_meta(GST_HAND_POINTING_FLAG_FULL_VIEW);
+    const GstHandPointingMeta* meta = scaled.meta;
     ASSERT_NE(meta, nullptr);
     EXPECT_DOUBLE_EQ(meta->left.x, 200.0);
     EXPECT_DOUBLE_EQ(meta->left.y, 25.0);
@@ -120,22 +136,15 @@ TEST(Meta, ScaleTransformRescalesAFullView)
     // 45 degrees becomes atan2(0.5, 2): the direction seen in the stretched image.
     EXPECT_NEAR(meta->left.pointing_deg, 14.036, 1e-3);
     EXPECT_EQ(meta->azimuth_deg, -12.5);  // 3D is unaffected by image scaling
-    gst_buffer_unref(scaled);
-    gst_buffer_unref(buffer);
 }
 
 TEST(Meta, ScaleTransformKeepsAnAttendedCrop)
 {
-    gc::test::init_gstreamer();
-    GstBuffer* buffer = gst_buffer_new_allocate(nullptr, 16, nullptr);
-    add_filled_meta(buffer, GST_HAND_POINTING_FLAG_NONE);
-    GstBuffer* scaled = gst_buffer_new_allocate(nullptr, 16, nullptr);
-    const GstHandPointingMeta* meta = scaled_copy(buffer, scaled);
+    const Scaled scaled = scale_filled_meta(GST_HAND_POINTING_FLAG_NONE);
+    const GstHandPointingMeta* meta = scaled.meta;
     ASSERT_NE(meta, nullptr);
     EXPECT_EQ(meta->left.x, 100.0);  // input pixels: the crop still shows the same region
     EXPECT_EQ(meta->view_width, 320);
-    gst_buffer_unref(scaled);
-    gst_buffer_unref(buffer);
 }
 
 TEST(Meta, EnumsHaveGTypesWithTheirNames)
