@@ -61,22 +61,32 @@ TEST(Multiview, PlainMonoCapsOnSinkAreRefusedWithTheWaysToDeclareThePacking)
     EXPECT_NE(r.error.find("sink_left and sink_right"), std::string::npos) << r.error;
 }
 
-TEST(Multiview, OverrideSplitsSideBySide)
+// A packing override and the region of the 640x240 source frame that is the left view.
+struct Packing {
+    std::string name;
+    std::string properties;
+    cv::Rect left_view;
+};
+
+class Unpacking : public ::testing::TestWithParam<Packing> {};
+
+TEST_P(Unpacking, TheLeftViewIsItsRegionOfTheFrame)
 {
     gc::test::init_gstreamer();
-    const auto [source, left] = source_and_left_view("input-mode-override=side-by-side");
-    ASSERT_EQ(left.size(), cv::Size(320, 240));
-    EXPECT_EQ(cv::norm(left, source(cv::Rect(0, 0, 320, 240)), cv::NORM_INF), 0.0);
+    const auto [source, left] = source_and_left_view(GetParam().properties);
+    ASSERT_EQ(left.size(), GetParam().left_view.size());
+    EXPECT_EQ(cv::norm(left, source(GetParam().left_view), cv::NORM_INF), 0.0);
 }
 
-TEST(Multiview, RightViewFirstPutsTheRightHalfOnTheRightEye)
-{
-    gc::test::init_gstreamer();
-    const auto [source, left] =
-        source_and_left_view("input-mode-override=side-by-side input-flags-override=right-view-first");
-    ASSERT_EQ(left.size(), cv::Size(320, 240));
-    EXPECT_EQ(cv::norm(left, source(cv::Rect(320, 0, 320, 240)), cv::NORM_INF), 0.0);
-}
+// right-view-first: the frame's left half is the right eye's view, the left eye's is the other.
+INSTANTIATE_TEST_SUITE_P(
+    Multiview, Unpacking,
+    ::testing::Values(Packing{"SideBySide", "input-mode-override=side-by-side", cv::Rect(0, 0, 320, 240)},
+                      Packing{"RightViewFirst",
+                              "input-mode-override=side-by-side input-flags-override=right-view-first",
+                              cv::Rect(320, 0, 320, 240)},
+                      Packing{"TopBottom", "input-mode-override=top-bottom", cv::Rect(0, 0, 640, 120)}),
+    [](const auto& info) { return info.param.name; });
 
 TEST(Multiview, HalfAspectViewsAreStretchedBackToFullWidth)
 {
@@ -87,14 +97,6 @@ TEST(Multiview, HalfAspectViewsAreStretchedBackToFullWidth)
     cv::Mat expected;
     cv::resize(source(cv::Rect(0, 0, 320, 240)), expected, cv::Size(640, 240), 0, 0, cv::INTER_LINEAR);
     EXPECT_LE(cv::norm(left, expected, cv::NORM_INF), 1.0);
-}
-
-TEST(Multiview, TopBottomCapsAreSplitByRows)
-{
-    gc::test::init_gstreamer();
-    const auto [source, left] = source_and_left_view("input-mode-override=top-bottom");
-    ASSERT_EQ(left.size(), cv::Size(640, 120));
-    EXPECT_EQ(cv::norm(left, source(cv::Rect(0, 0, 640, 120)), cv::NORM_INF), 0.0);
 }
 
 // gst-launch's `t.` names no pad: the first link gets sink_left, the second sink_right.
