@@ -195,6 +195,16 @@ TEST(HeadToken, AFileAuthenticatesAndACopyOfThePropertiesStillDoes)
     EXPECT_EQ(refused.connection_states, std::vector<std::string>{"disconnected"}) << refused.text;
 }
 
+// Sets `element`'s head to `uri` with the token, checks that it reads back hidden, and sets
+// back what was read.
+void set_head_with_token_and_read_back(GstElement* element, const std::string& uri)
+{
+    g_object_set(element, "head", (uri + "?token=" + kSecret).c_str(), nullptr);
+    const std::string shown = string_property(element, "head");
+    EXPECT_EQ(shown, uri + "?token=***");
+    g_object_set(element, "head", shown.c_str(), nullptr);
+}
+
 // The `head` property reads back with the token hidden; setting what was read keeps it.
 TEST(HeadToken, ATokenInTheUriIsHiddenWhenReadBackAndKeptWhenSetAgain)
 {
@@ -202,11 +212,7 @@ TEST(HeadToken, ATokenInTheUriIsHiddenWhenReadBackAndKeptWhenSetAgain)
     gc::closedloop_test::RunningHead head(head_with_token());
     ElementPtr pipeline = tracker_pipeline();
     ASSERT_TRUE(pipeline);
-    ElementPtr tracker = tracker_of(pipeline.get());
-    g_object_set(tracker.get(), "head", (head.uri() + "?token=" + kSecret).c_str(), nullptr);
-    const std::string shown = string_property(tracker.get(), "head");
-    EXPECT_EQ(shown, head.uri() + "?token=***");
-    g_object_set(tracker.get(), "head", shown.c_str(), nullptr);
+    set_head_with_token_and_read_back(tracker_of(pipeline.get()).get(), head.uri());
     const BusText run = play(pipeline.get());
     EXPECT_EQ(run.connection_states, std::vector<std::string>{"connected"}) << run.text;
 }
@@ -219,11 +225,7 @@ TEST(HeadToken, TheSceneSourceHidesItAndReadsItFromAFile)
     gc::closedloop_test::RunningHead head(head_with_token());
     ElementPtr pipeline = scene_source_pipeline();
     ASSERT_TRUE(pipeline);
-    ElementPtr source = scene_source_of(pipeline.get());
-    g_object_set(source.get(), "head", (head.uri() + "?token=" + kSecret).c_str(), nullptr);
-    const std::string shown = string_property(source.get(), "head");
-    EXPECT_EQ(shown, head.uri() + "?token=***");
-    g_object_set(source.get(), "head", shown.c_str(), nullptr);
+    set_head_with_token_and_read_back(scene_source_of(pipeline.get()).get(), head.uri());
     const BusText kept = play(pipeline.get());
     EXPECT_TRUE(kept.eos);
     EXPECT_EQ(kept.connection_states, std::vector<std::string>{"connected"}) << kept.text;
