@@ -1,6 +1,6 @@
 #include "headctl/gchp_backend.hpp"
 
-#include <stdexcept>
+#include "common/enum_names.hpp"
 
 namespace gc::headctl {
 
@@ -8,26 +8,16 @@ namespace {
 // Replies to requests abandoned after a timeout may still arrive; at most this many are skipped.
 constexpr int kMaxStaleReplies = 64;
 
-Command request_of(CommandKind kind)
-{
-    switch (kind) {
-    case CommandKind::Absolute:
-        return Command::MoveAbsolute;
-    case CommandKind::Relative:
-        return Command::MoveRelative;
-    case CommandKind::Velocity:
-        return Command::MoveVelocity;
-    case CommandKind::Stop:
-        return Command::Stop;
-    case CommandKind::Home:
-        return Command::Home;
-    case CommandKind::SavePreset:
-        return Command::PresetSave;
-    case CommandKind::RecallPreset:
-        return Command::PresetRecall;
-    }
-    throw std::invalid_argument("unknown command kind");
-}
+// The request that carries each kind of command.
+constexpr EnumNames<CommandKind, 7, Command> kRequests{{
+    {CommandKind::Absolute, Command::MoveAbsolute},
+    {CommandKind::Relative, Command::MoveRelative},
+    {CommandKind::Velocity, Command::MoveVelocity},
+    {CommandKind::Stop, Command::Stop},
+    {CommandKind::Home, Command::Home},
+    {CommandKind::SavePreset, Command::PresetSave},
+    {CommandKind::RecallPreset, Command::PresetRecall},
+}};
 
 // Only moves carry axis values.
 bool is_move(CommandKind kind)
@@ -119,7 +109,7 @@ std::optional<HeadLimits> GchpBackend::query_limits(Deadline deadline)
 void GchpBackend::send(const HeadCommand& command, Deadline deadline)
 {
     Request r;
-    r.command = request_of(command.kind);
+    r.command = name_in(kRequests, command.kind, Command::Stop);
     if (is_move(command.kind)) r.values = command.values;
     r.preset = command.preset;
     const Reply reply = transact(r, deadline);
