@@ -5,8 +5,6 @@
 #include "tools/cli_app.hpp"
 #include "tools/json_writer.hpp"
 
-#include <signal.h>
-
 #include <atomic>
 #include <charconv>
 #include <cmath>
@@ -194,10 +192,7 @@ void watch(HeadBackend& head, const CommandLine& c, const std::function<HeadBack
     const double count = c.args.size() >= 2 ? number("watch count", c.args[1]) : 0.0;
     if (interval < 1 || interval > 60'000) throw UsageError("watch interval must be 1..60000 ms");
     if (count < 0 || count != std::floor(count)) throw UsageError("watch count must be a whole number >= 0");
-    struct sigaction sa {};
-    sa.sa_handler = on_signal;
-    sigaction(SIGINT, &sa, nullptr);
-    sigaction(SIGTERM, &sa, nullptr);
+    gc::cli::on_stop_signals(on_signal);
     for (long n = 0; !g_interrupted && (count == 0 || n < static_cast<long>(count)); ++n) {
         if (n) std::this_thread::sleep_for(std::chrono::microseconds(static_cast<long long>(interval * 1000)));
         print_state(head.query_state(deadline()), c.json);

@@ -144,11 +144,7 @@ void serve(const HeadServerConfig& config)
         std::cerr << "headsim: warning: listening on " << config.host
                   << " without a token: anyone who can reach this port can move the head\n";
     g_server = &server;
-    struct sigaction sa {};
-    sa.sa_handler = on_signal;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGTERM, &sa, nullptr);
-    sigaction(SIGINT, &sa, nullptr);
+    gc::cli::on_stop_signals(on_signal);
     signal(SIGPIPE, SIG_IGN);
     const bool v6 = server.host().find(':') != std::string::npos;
     std::cout << "listening " << (v6 ? "[" + server.host() + "]" : server.host()) << ":" << server.port() << std::endl;
