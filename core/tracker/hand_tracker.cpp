@@ -77,6 +77,8 @@ const EyeEstimate& HandTracker::Impl::process(const cv::Mat& bgr, const ImageMot
     estimate.models_ran = false;
     const bool was_tracking = estimate.state == TrackState::Tracking;
     if (was_tracking) track(bgr, motion);
+    const bool carried = finder && was_tracking && estimate.state == TrackState::Tracking && flow.ready();
+    if (carried) carry_key_points(bgr);
     if (!finder) {
         if (!was_tracking) acquire(bgr);
     } else if (estimate.state == TrackState::Tracking) {
@@ -84,6 +86,7 @@ const EyeEstimate& HandTracker::Impl::process(const cv::Mat& bgr, const ImageMot
     } else {
         search_with_models(bgr);  // a hand lost on this frame is looked for at once
     }
+    if (finder) keep_key_points(bgr, carried);
     if (params.use_static_scene) learn_background(bgr);
     return estimate;
 }

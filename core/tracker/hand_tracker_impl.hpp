@@ -15,6 +15,7 @@
 #include "filter/quasi_random.hpp"
 #include "measure/contour_measurement.hpp"
 #include "skin/skin_model.hpp"
+#include "tracker/key_point_flow.hpp"
 #include "tracker/rim_survey.hpp"
 #include "tracker/template_trial.hpp"
 
@@ -85,6 +86,7 @@ struct TrackerSession {
     int frames_since_check = 0;  // tracked frames since the landmark model last looked
     int check_interval = 1;      // frames between its checks: longer while the contour agrees
     int search_turn = 0;         // frames searched by the palm detector without a hand
+    KeyPointFlow flow;           // carries the key points between the model's checks
 };
 
 struct HandTracker::Impl : TrackerSession {
@@ -152,6 +154,8 @@ struct HandTracker::Impl : TrackerSession {
     void check_with_models(const cv::Mat& bgr);
     bool adopt_found(const cv::Mat& bgr, const FoundHand& hand);
     void place_key_points(const HandState& s);
+    void carry_key_points(const cv::Mat& bgr);
+    void keep_key_points(const cv::Mat& bgr, bool carried);
 
     // tracker_maps.cpp: the maps the steps above read.
     const StaticBackground* known_scene() const;

@@ -31,6 +31,9 @@ constexpr int kSlowSearchEvery = 3;
 // index direction and at most this many times their tip's distance from the palm.
 constexpr double kContourTipAngle = 20.0 * std::numbers::pi / 180.0;
 constexpr double kContourTipReach = 2.5;
+// How far a key point the optical flow followed may lie from where the contour's state
+// placed it, in palm sizes.
+constexpr double kFlowReach = 0.3;
 // How far past the wrist key point the template's region runs, in palm sizes.
 constexpr double kWristReach = 0.6;
 
@@ -220,6 +223,40 @@ void HandTracker::Impl::place_key_points(const HandState& s)
     if (points_length > 0.0 && contour_length >= points_length && contour_length <= kContourTipReach * points_length &&
         along >= std::cos(kContourTipAngle) * contour_length * points_length)
         estimate.fingertip = placed[8] + (by_contour - by_points);
+}
+
+// The key points the contour placed on this frame, moved to where optical flow followed
+// them from the last frame, and re-expressed on the template so the contour carries them on.
+void HandTracker::Impl::carry_key_points(const cv::Mat& bgr)
+{
+    if (!has_key_points || estimate.landmarks.size() != KeyPointFlow::kPoints) return;
+    KeyPointFlow::Points points;
+    std::copy(estimate.landmarks.begin(), estimate.landmarks.end(), points.begin());
+    std::array<bool, KeyPointFlow::kPoints> moved;
+    const KeyPointFlow::Points placed = points;
+    flow.carry(bgr, points, moved);
+    // A point the flow took farther from where the contour put it than a finger can bend
+    // has slid onto something else.
+    const double reach = kFlowReach * palm_size(placed);
+    for (std::size_t i = 0; i < key_points.size(); ++i)
+        if (moved[i] && cv::norm(points[i] - placed[i]) <= reach) key_points[i] = unplace(previous, points[i]);
+    report(previous);
+}
+
+// After the frame: its key points are where the next frame's flow starts.
+void HandTracker::Impl::keep_key_points(const cv::Mat& bgr, bool carried)
+{
+    if (estimate.state != TrackState::Tracking || !has_key_points ||
+        estimate.landmarks.size() != KeyPointFlow::kPoints) {
+        flow.forget();
+        return;
+    }
+    KeyPointFlow::Points points;
+    std::copy(estimate.landmarks.begin(), estimate.landmarks.end(), points.begin());
+    if (carried)
+        flow.replace_points(points);  // carry() kept this frame already
+    else
+        flow.keep(bgr, points);
 }
 
 }  // namespace gc

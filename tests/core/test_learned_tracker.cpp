@@ -48,6 +48,17 @@ TEST(LearnedTracker, FollowsARealPointingHandInBothViews)
     EXPECT_LE(f.angle_median_deg, 8.0);
 }
 
+// The same frames: between the landmark model's checks the fingertip is carried about as
+// well as where the model ran, so that the model need not run on most frames.
+TEST(LearnedTracker, CarriesTheRealFingertipBetweenModelChecks)
+{
+    const gc::tools::RealPairFigures f = real_pair(14, 110);
+    for (const gc::tools::ViewFigures* view : {&f.left, &f.right}) {
+        EXPECT_LE(view->models_share, 0.7);
+        EXPECT_LE(view->median_px_carried, view->median_px_models + 2.5);
+    }
+}
+
 // Frames 230-329: an open hand and a fist; followed, but never reported as pointing.
 TEST(LearnedTracker, ClaimsNoPointingWhereTheRealHandDoesNotPoint)
 {
