@@ -29,7 +29,7 @@ rm -f "$out/demo.mp4" "$out/demo.jsonl" "$out/demo.bus.txt"
 
 # The simulated head on a free loopback port; stopped on exit.
 headsim_out=$(mktemp)
-"$gesturecam_build/core/tools/headsim" --listen 127.0.0.1:0 --latency-ms 20 >"$headsim_out" &
+"$gesturecam_build/gst-plugin/tools/headsim" --listen 127.0.0.1:0 --latency-ms 20 >"$headsim_out" &
 headsim_pid=$!
 trap 'kill "$headsim_pid" 2>/dev/null || true; wait "$headsim_pid" 2>/dev/null || true; rm -f "$headsim_out"' EXIT
 for _ in $(seq 100); do grep -q '^listening' "$headsim_out" && break; sleep 0.05; done

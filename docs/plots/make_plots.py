@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Turns gesturecam-bench --json output into the plots and tables of docs/benchmarks.md.
 
-    build/core/tools/gesturecam-bench --json > docs/plots/bench.json
+    build/gst-plugin/tools/gesturecam-bench --json > docs/plots/bench.json
     python3 docs/plots/make_plots.py
 
 Writes docs/plots/snr_vs_particles.png, docs/plots/ms_vs_particles.png,

@@ -3,7 +3,7 @@
 
     python3 docs/plots/make_step_plot.py --build build
 
-runs BUILD/core/tools/studies/step_response (simulated time, deterministic), keeps its CSV
+runs BUILD/gst-plugin/tools/studies/step_response (simulated time, deterministic), keeps its CSV
 in docs/plots/step_response.csv and writes docs/plots/step_response.png. With --csv FILE
 it plots an existing CSV instead of running the program. Needs matplotlib (Debian:
 apt-get install python3-matplotlib); only the documentation needs it.
@@ -50,7 +50,7 @@ def figures(t, x, target):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     src = ap.add_mutually_exclusive_group(required=True)
-    src.add_argument("--build", help="meson build directory holding core/tools/studies/step_response")
+    src.add_argument("--build", help="meson build directory holding gst-plugin/tools/studies/step_response")
     src.add_argument("--csv", help="plot this CSV instead of running the program")
     ap.add_argument("--out", default=str(HERE / "step_response.png"))
     args = ap.parse_args()

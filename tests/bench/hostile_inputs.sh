@@ -9,7 +9,7 @@
 set -uo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 build=$(cd "${1:-$root/build}" && pwd)
-track=$build/core/tools/gesturecam-track
+track=$build/gst-plugin/tools/gesturecam-track
 [ -x "$track" ] || { echo "no $track: build it first" >&2; exit 2; }
 [ -x /usr/bin/time ] || { echo "needs /usr/bin/time (apt install time)" >&2; exit 2; }
 work=$(mktemp -d)

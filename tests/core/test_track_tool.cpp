@@ -20,6 +20,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -403,20 +404,27 @@ TEST_F(TrackTool, UndecodableImageIsAnErrorUnlessSkipped)
     EXPECT_NE(stereo_stopped.err.find("frame 5 of 12"), std::string::npos) << stereo_stopped.err;
 }
 
+// The AVI cut in half ends inside a frame's JPEG. GStreamer's AVI demuxer rebuilds its index
+// from the chunks that remain, so the count named is theirs (at most the 24 written), and the
+// frame cut through is the undecodable one.
 TEST_F(TrackTool, TruncatedVideoIsAnErrorUnlessSkipped)
 {
     const std::string video = "--left " + quoted((dir_ / "cut.avi").string()) + " --particles 50";
     const RunResult stopped = run(video);
     EXPECT_EQ(stopped.status, 1) << stopped.err;
-    EXPECT_NE(stopped.err.find("of " + std::to_string(kVideoFrames) + " cannot be decoded"), std::string::npos)
+    std::smatch named;
+    ASSERT_TRUE(std::regex_search(stopped.err, named, std::regex("frame ([0-9]+) of ([0-9]+) cannot be decoded")))
         << stopped.err;
+    const std::size_t count = std::stoul(named[2].str());
+    EXPECT_LT(std::stoul(named[1].str()), count);
+    EXPECT_LE(count, static_cast<std::size_t>(kVideoFrames));
 
     const RunResult skipped = run(video + " --skip-bad-frames");
     ASSERT_EQ(skipped.status, 0) << skipped.err;
     const std::size_t lines = lines_of(skipped.out).size();
     EXPECT_GT(lines, 0u);
-    EXPECT_LT(lines, static_cast<std::size_t>(kVideoFrames));
-    EXPECT_NE(skipped.err.find(std::to_string(kVideoFrames - lines) + " undecodable skipped"), std::string::npos)
+    EXPECT_LT(lines, count);
+    EXPECT_NE(skipped.err.find(std::to_string(count - lines) + " undecodable skipped"), std::string::npos)
         << skipped.err;
 }
 

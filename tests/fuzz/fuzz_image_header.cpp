@@ -1,4 +1,4 @@
-// libFuzzer entry point for the image-header reader of the tools (core/tools/image_header.hpp):
+// libFuzzer entry point for the image-header reader of the tools (gst-plugin/tools/image_header.hpp):
 // arbitrary bytes as the start of an image file. It may only answer with a positive size or
 // nothing, without reading outside the bytes.
 #include "tools/image_header.hpp"

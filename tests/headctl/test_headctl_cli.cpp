@@ -18,11 +18,11 @@ struct Outcome {
     std::string err;
 };
 
-// Runs build/core/tools/`program` with args (and `env` added to the environment); bounded to 10 s.
+// Runs build/gst-plugin/tools/`program` with args (and `env` added to the environment); bounded to 10 s.
 Outcome run_program(const std::string& program, std::vector<std::string> args, const std::vector<std::string>& env = {})
 {
     const char* root = std::getenv("GESTURECAM_BUILD_ROOT");
-    const std::string path = std::string(root ? root : ".") + "/core/tools/" + program;
+    const std::string path = std::string(root ? root : ".") + "/gst-plugin/tools/" + program;
     Outcome o;
     Spawned child;
     try {

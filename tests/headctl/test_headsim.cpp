@@ -178,7 +178,7 @@ TEST(HeadSim, ThirtyTwoConcurrentClientsAllGetAnswers)
 std::string headsim_path()
 {
     const char* root = std::getenv("GESTURECAM_BUILD_ROOT");
-    return std::string(root ? root : ".") + "/core/tools/headsim";
+    return std::string(root ? root : ".") + "/gst-plugin/tools/headsim";
 }
 
 // The headsim executable run with `args` (and `env` added to the environment); its stdout

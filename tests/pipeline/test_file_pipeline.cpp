@@ -1,7 +1,8 @@
 // File-based pipeline: a stereo sequence recorded with handscenesrc to PNG files is tracked
 // back by gesturecam-track and by a multifilesrc -> handtracker pipeline. Both run the one
-// PointingTracker code path, so they must write the same JSON lines. pipelines/files.sh
-// refuses a picture over the frame limit from its header.
+// PointingTracker code path, so they must write the same JSON lines; so must they on the real
+// MP4 pair, which both decode through GStreamer. pipelines/files.sh refuses a picture over the
+// frame limit from its header.
 #include <gst/gst.h>
 #include <gtest/gtest.h>
 
@@ -53,15 +54,53 @@ std::string play(const std::string& description)
     return result;
 }
 
+// The lines of a file.
+std::vector<std::string> read_lines(const std::string& path)
+{
+    std::vector<std::string> lines;
+    std::ifstream in(path);
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+    return lines;
+}
+
 // JSON lines with the pts_ns values blanked: the tool derives them from --fps, the element
 // from the stream's timestamps, and the two may round the last nanosecond differently.
 std::vector<std::string> tracking_lines(const std::string& path)
 {
     static const std::regex pts(R"("pts_ns":(-?[0-9]+|null))");
-    std::vector<std::string> lines;
-    std::ifstream in(path);
-    for (std::string line; std::getline(in, line);) lines.push_back(std::regex_replace(line, pts, "\"pts_ns\":_"));
+    std::vector<std::string> lines = read_lines(path);
+    for (std::string& line : lines) line = std::regex_replace(line, pts, "\"pts_ns\":_");
     return lines;
+}
+
+// The element's lines must be the tool's, frame by frame. The comparison means something only
+// if the tracker did some tracking.
+void expect_same_lines(const std::vector<std::string>& tool, const std::vector<std::string>& element, int frames)
+{
+    ASSERT_EQ(tool.size(), size_t(frames));
+    ASSERT_EQ(element.size(), tool.size());
+    int tracking = 0;
+    for (size_t i = 0; i < tool.size(); ++i) {
+        ASSERT_EQ(element[i], tool[i]) << "frame " << i;
+        tracking += element[i].find("\"state\":\"tracking\"") != std::string::npos;
+    }
+    EXPECT_GT(tracking, 0);
+}
+
+// Runs gesturecam-track with `args`; a failure to start it or a non-zero exit fails the test.
+void run_tool(const std::string& tool, const std::vector<std::string>& args)
+{
+    std::vector<gchar*> argv{const_cast<gchar*>(tool.c_str())};
+    for (const std::string& a : args) argv.push_back(const_cast<gchar*>(a.c_str()));
+    argv.push_back(nullptr);
+    gint status = -1;
+    gchar* err = nullptr;
+    GError* spawn_error = nullptr;
+    ASSERT_TRUE(g_spawn_sync(nullptr, argv.data(), nullptr, G_SPAWN_STDOUT_TO_DEV_NULL, nullptr, nullptr, nullptr, &err,
+                             &status, &spawn_error))
+        << (spawn_error ? spawn_error->message : "");
+    EXPECT_TRUE(g_spawn_check_wait_status(status, nullptr)) << err;
+    g_free(err);
 }
 
 TEST(FilePipeline, ToolAndElementWriteTheSameJson)
@@ -91,24 +130,7 @@ TEST(FilePipeline, ToolAndElementWriteTheSameJson)
     const std::string tool_out = dir + "/tool.jsonl";
     const std::string left = dir + "/left/%05d.png";
     const std::string right = dir + "/right/%05d.png";
-    gchar* argv[] = {const_cast<gchar*>(tool.c_str()),
-                     const_cast<gchar*>("--left"),
-                     const_cast<gchar*>(left.c_str()),
-                     const_cast<gchar*>("--right"),
-                     const_cast<gchar*>(right.c_str()),
-                     const_cast<gchar*>("--fps"),
-                     const_cast<gchar*>("30"),
-                     const_cast<gchar*>("--out"),
-                     const_cast<gchar*>(tool_out.c_str()),
-                     nullptr};
-    gint status = -1;
-    gchar* err = nullptr;
-    GError* spawn_error = nullptr;
-    ASSERT_TRUE(g_spawn_sync(nullptr, argv, nullptr, G_SPAWN_STDOUT_TO_DEV_NULL, nullptr, nullptr, nullptr, &err,
-                             &status, &spawn_error))
-        << (spawn_error ? spawn_error->message : "");
-    EXPECT_TRUE(g_spawn_check_wait_status(status, nullptr)) << err;
-    g_free(err);
+    run_tool(tool, {"--left", left, "--right", right, "--fps", "30", "--out", tool_out});
 
     // Track with the element, reading the same files (pngdec gives RGB: no videoconvert).
     const std::string element_out = dir + "/element.jsonl";
@@ -121,17 +143,37 @@ TEST(FilePipeline, ToolAndElementWriteTheSameJson)
                  element_out + " ! fakesink sync=false");
     ASSERT_EQ(error, "");
 
-    const auto expected = tracking_lines(tool_out);
-    const auto actual = tracking_lines(element_out);
-    ASSERT_EQ(expected.size(), size_t(kFrames));
-    ASSERT_EQ(actual.size(), expected.size());
-    int tracking = 0;
-    for (size_t i = 0; i < expected.size(); ++i) {
-        ASSERT_EQ(actual[i], expected[i]) << "frame " << i;
-        tracking += actual[i].find("\"state\":\"tracking\"") != std::string::npos;
-    }
-    // The comparison means something only if the tracker did some tracking.
-    EXPECT_GT(tracking, 0);
+    expect_same_lines(tracking_lines(tool_out), tracking_lines(element_out), kFrames);
+}
+
+// The real MP4 pair (H.264, 4:2:0), its first frames, tracked by the tool and by the pipeline
+// pipelines/files.sh builds for video files: the tool must decode and convert the frames as
+// the element receives them, and take the times from the stream as the element does.
+TEST(FilePipeline, ToolAndElementWriteTheSameJsonOnTheRealMp4Pair)
+{
+    constexpr int kMp4Frames = 40;
+    gst_init(nullptr, nullptr);
+    const std::string tool = env("GESTURECAM_TRACK_EXE");
+    ASSERT_FALSE(tool.empty()) << "GESTURECAM_TRACK_EXE is not set";
+    const std::string data = env("GESTURECAM_SOURCE_ROOT") + "/tests/data/handpose3d/handpose3d_";
+    const std::string left = data + "cam0.mp4", right = data + "cam1.mp4", calibration = data + "calib.yml";
+    const std::string dir = env("GESTURECAM_BUILD_ROOT") + "/tests/pipeline/file_pipeline_mp4";
+    ASSERT_EQ(g_mkdir_with_parents(dir.c_str(), 0755), 0);
+
+    const std::string tool_out = dir + "/tool.jsonl";
+    run_tool(tool, {"--left", left, "--right", right, "--calibration", calibration, "--max-frames",
+                    std::to_string(kMp4Frames), "--out", tool_out});
+
+    const std::string element_out = dir + "/element.jsonl";
+    const std::string error =
+        play("filesrc location=" + left + " ! decodebin ! videoconvert ! t.sink_left " + "filesrc location=" + right +
+             " ! decodebin ! videoconvert ! t.sink_right " +
+             "handtracker name=t message-updates=none calibration=" + calibration + " json-location=" + element_out +
+             " ! identity eos-after=" + std::to_string(kMp4Frames) + " ! fakesink sync=false");
+    ASSERT_EQ(error, "");
+
+    // Times included: both take them from the stream.
+    expect_same_lines(read_lines(tool_out), read_lines(element_out), kMp4Frames);
 }
 
 // A PNG that is only its signature and a header declaring width x height (RGB, 8 bits).

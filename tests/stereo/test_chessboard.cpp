@@ -27,7 +27,7 @@ const fs::path kData = "/usr/share/doc/opencv-doc/examples/data";
 fs::path tool()
 {
     const char* root = std::getenv("GESTURECAM_BUILD_ROOT");
-    return fs::path(root ? root : ".") / "core/tools/gesturecam-calibrate";
+    return fs::path(root ? root : ".") / "gst-plugin/tools/gesturecam-calibrate";
 }
 
 struct ToolRun {

@@ -8,8 +8,6 @@
 #include "tools/frame_source.hpp"
 #include "tracker/pointing_tracker.hpp"
 
-#include <opencv2/core/utils/logger.hpp>
-
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
@@ -295,8 +293,6 @@ int main(int argc, char** argv)
     } catch (const gc::cli::UsageError& e) {
         return gc::cli::usage_hint("gesturecam-track", e.what());
     }
-    // The image-sequence reader warns when it reaches the end of a sequence: not news here.
-    cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_ERROR);
     try {
         std::ios::sync_with_stdio(false);
         run(options);

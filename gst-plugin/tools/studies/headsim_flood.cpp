@@ -4,7 +4,7 @@
 // sends requests, and reconnects whenever it is dropped or refused. Prints the round trip's
 // percentiles without and with the crowd, and what the crowd met.
 //
-//   build/core/tools/studies/headsim_flood [--connections N] [--seconds S] [--headsim PATH]
+//   build/gst-plugin/tools/studies/headsim_flood [--connections N] [--seconds S] [--headsim PATH]
 #include "headctl/net.hpp"
 
 #include <arpa/inet.h>
@@ -50,7 +50,7 @@ Options parse_options(int argc, char** argv)
 {
     Options o;
     const char* root = std::getenv("GESTURECAM_BUILD_ROOT");
-    o.headsim = root ? std::string(root) + "/core/tools/headsim" : "";
+    o.headsim = root ? std::string(root) + "/gst-plugin/tools/headsim" : "";
     if (o.headsim.empty()) {  // beside the build tree this program sits in
         char self[4096] = {};
         const ssize_t n = ::readlink("/proc/self/exe", self, sizeof self - 1);
