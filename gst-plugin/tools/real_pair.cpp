@@ -2,10 +2,9 @@
 
 #include "stereo/calibration.hpp"
 #include "tools/bench_stats.hpp"
+#include "tools/gst_frame_reader.hpp"
 #include "tools/json_reader.hpp"
 #include "tracker/pointing_tracker.hpp"
-
-#include <opencv2/videoio.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -104,11 +103,13 @@ struct ViewTally {
     }
 };
 
-cv::VideoCapture open_video(const std::string& path)
+// The next frame of a view; false at its end. The committed pair decodes whole, so a frame
+// it cannot decode means a broken copy.
+bool read_frame(GstFrameReader& view, cv::Mat& bgr, const std::string& path)
 {
-    cv::VideoCapture video(path);
-    if (!video.isOpened()) throw std::runtime_error("cannot decode " + path);
-    return video;
+    const FrameStatus status = view.read(bgr);
+    if (status == FrameStatus::Undecodable) throw std::runtime_error("cannot decode a frame of " + path);
+    return status == FrameStatus::Frame;
 }
 
 }  // namespace
@@ -135,14 +136,17 @@ RealPairFigures measure_real_pair(const RealPairOptions& o)
     const auto left_ref = view_reference(base + "cam0.mediapipe.json");
     const auto right_ref = view_reference(base + "cam1.mediapipe.json");
     const auto stereo_ref = stereo_reference(base + "ref3d.json");
-    cv::VideoCapture left = open_video(base + "cam0.mp4"), right = open_video(base + "cam1.mp4");
+    // Decoded as gesturecam-track and the element decode them (GStreamer, then the element's
+    // colour conversion), so the figures are the product's.
+    GstFrameReader left(base + "cam0.mp4"), right(base + "cam1.mp4");
     PointingTracker tracker(o.params, load_calibration(base + "calib.yml"));
 
     ViewTally lt, rt;
     std::vector<double> angles, ms, cpu_ms;
     int pointing = 0, other = 0, false_rays = 0, frame = 0;
     cv::Mat l, r;
-    for (; frame < o.last_frame && left.read(l) && right.read(r); ++frame) {
+    for (; frame < o.last_frame && read_frame(left, l, base + "cam0.mp4") && read_frame(right, r, base + "cam1.mp4");
+         ++frame) {
         if (frame < o.first_frame) continue;
         const auto t0 = BenchClock::now();
         const double cpu0 = process_cpu_ms();
