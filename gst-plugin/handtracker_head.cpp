@@ -30,6 +30,15 @@ GstClockTime input_running_time(GstVideoAggregatorPad* pad, const GstVideoFrame*
     return running;
 }
 
+gc::headctl::SteeringTimes steering_times(const Settings& settings)
+{
+    gc::headctl::SteeringTimes times;
+    times.dwell_s = settings.dwell_s;
+    times.look_s = settings.look_s;
+    times.manual_pause_s = settings.manual_pause_s;
+    return times;
+}
+
 // The head link for views of `size`, (re)built when there is none yet or when, without a
 // calibration file, the views changed size (the nominal rig depends on it). Connecting
 // happens on the link's own thread.
@@ -49,6 +58,8 @@ bool ensure_head_link(GstHandTracker* self, const Settings& settings, cv::Size s
     config.clock = gc::gst::element_clock(GST_ELEMENT(self));
     config.on_state_change = gc::gst::connection_reporter(GST_ELEMENT(self), settings.head);
     config.on_command = gc::gst::command_logger(GST_ELEMENT(self));
+    config.on_steering = gc::gst::steering_reporter(GST_ELEMENT(self));
+    config.times = steering_times(settings);
     // Only live views have an age: recorded ones are taken at their stream time, however
     // fast or slow they are read.
     if (!GST_CLOCK_TIME_IS_VALID(gst_aggregator_get_latency(GST_AGGREGATOR(self))))
@@ -93,6 +104,7 @@ GstFlowReturn head_at_capture(GstHandTracker* self, const Settings& settings, cv
     if (settings.head.empty()) return GST_FLOW_OK;
     if (!ensure_head_link(self, settings, size)) return GST_FLOW_ERROR;
     e.head->set_steering(settings.steer, settings.target_distance_mm);
+    e.head->set_times(steering_times(settings));
     // The views' own running time, not the output slot's: a live source that started
     // late, or a pad that is behind, gives the slot older views, and the pose must be
     // the one they were taken at.

@@ -32,8 +32,10 @@ enum {
     PROP_DWELL,
     PROP_TARGET_REGION,
     PROP_INPUT_FLAGS_OVERRIDE,
+    PROP_LOOK_TIME,
+    PROP_MANUAL_PAUSE,
 };
-static_assert(kStatsProperty > PROP_INPUT_FLAGS_OVERRIDE, "the stats property's id follows the settings'");
+static_assert(kStatsProperty > PROP_MANUAL_PAUSE, "the stats property's id follows the settings'");
 
 #define GST_TYPE_HAND_TRACKER_OUTPUT (gst_hand_tracker_output_get_type())
 static GType gst_hand_tracker_output_get_type()
@@ -73,7 +75,10 @@ static GType gst_hand_tracker_steer_get_type()
         {int(gc::headctl::SteerMode::Off), "Only read the head's pose (for the camera-motion offsets)", "off"},
         {int(gc::headctl::SteerMode::Fixate), "Keep the hand in the middle of the left view and verge on its depth",
          "fixate"},
-        {int(gc::headctl::SteerMode::Point), "Look where the hand points, target-distance along its ray", "point"},
+        {int(gc::headctl::SteerMode::Point),
+         "As fixate; a pointing held for dwell seconds turns the head to target-distance along its ray for "
+         "look-time seconds, then back to the hand",
+         "point"},
         {0, nullptr, nullptr},
     };
     if (g_once_init_enter(&type)) g_once_init_leave(&type, g_enum_register_static("GstHandTrackerSteer", values));
@@ -185,8 +190,22 @@ void install_head_properties(GObjectClass* gobject_class)
     g_object_class_install_property(
         gobject_class, PROP_TARGET_DISTANCE,
         g_param_spec_double("target-distance", "Target distance",
-                            "steer=point: how far along the pointing ray, from the fingertip, the head looks (mm)", 1.0,
-                            1.0e6, kDefaultTargetDistanceMm, kMutablePlaying));
+                            "How far along a held pointing's ray, from the fingertip, its target lies (mm): where "
+                            "steer=point looks and what output=attended frames",
+                            1.0, 1.0e6, kDefaultTargetDistanceMm, kMutablePlaying));
+    g_object_class_install_property(
+        gobject_class, PROP_LOOK_TIME,
+        g_param_spec_double("look-time", "Look time",
+                            "steer=point: seconds the head looks at a target a held pointing picked before it "
+                            "turns back to where it left the hand",
+                            0.1, 3600.0, kDefaultLookS, kMutablePlaying));
+    g_object_class_install_property(
+        gobject_class, PROP_MANUAL_PAUSE,
+        g_param_spec_double("manual-pause", "Manual pause",
+                            "steer=fixate or point: when the head moves without the element's command (someone "
+                            "runs headctl move), steering leaves it alone for this many seconds after the move, "
+                            "then resumes from there (a head-steering message says when); 0: never pause",
+                            0.0, 3600.0, kDefaultManualPauseS, kMutablePlaying));
 }
 
 // How the hand is found.
@@ -228,8 +247,9 @@ void install_detector_properties(GObjectClass* gobject_class)
     g_object_class_install_property(
         gobject_class, PROP_DWELL,
         g_param_spec_double("dwell", "Dwell",
-                            "Seconds a pointing must be held steady before output=attended frames what it points "
-                            "at (target-distance along the ray); lowering the hand for as long lets it go",
+                            "Seconds a pointing must be held steady before it picks what it points at "
+                            "(target-distance along the ray): output=attended frames it, steer=point looks at it; "
+                            "lowering the hand for as long lets it go",
                             0.1, 60.0, kDefaultDwellS,
                             GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_PLAYING)));
     g_object_class_install_property(
@@ -308,6 +328,12 @@ bool set_head_setting(TrackerSettings& s, guint prop_id, const GValue* value)
         break;
     case PROP_HOME_AFTER:
         s.home_after_s = g_value_get_double(value);
+        break;
+    case PROP_LOOK_TIME:
+        s.look_s = g_value_get_double(value);
+        break;
+    case PROP_MANUAL_PAUSE:
+        s.manual_pause_s = g_value_get_double(value);
         break;
     default:
         return false;
@@ -434,6 +460,12 @@ bool get_tracker_setting(const TrackerSettings& s, guint prop_id, GValue* value)
         break;
     case PROP_HOME_AFTER:
         g_value_set_double(value, s.home_after_s);
+        break;
+    case PROP_LOOK_TIME:
+        g_value_set_double(value, s.look_s);
+        break;
+    case PROP_MANUAL_PAUSE:
+        g_value_set_double(value, s.manual_pause_s);
         break;
     case PROP_DETECTOR:
         g_value_set_enum(value, int(s.detector));

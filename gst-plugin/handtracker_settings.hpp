@@ -25,6 +25,8 @@ constexpr gc::headctl::SteerMode kDefaultSteer = gc::headctl::SteerMode::Fixate;
 constexpr double kDefaultTargetDistanceMm = 2000.0;
 constexpr double kDefaultDwellS = 1.0;
 constexpr double kDefaultTargetRegionMm = 500.0;
+constexpr double kDefaultLookS = 4.0;
+constexpr double kDefaultManualPauseS = 10.0;
 
 // Property values, read and written under the object lock.
 struct TrackerSettings {
@@ -46,6 +48,8 @@ struct TrackerSettings {
     int home_preset = -1;        // the head's preset that steering returns to; -1: its home position
     double widen_after_s = 0.0;  // lost this long, the head zooms out; 0: never
     double home_after_s = 2.0;   // lost this long, the head goes home (or to home_preset)
+    double look_s = kDefaultLookS;                   // steer=point: how long the head looks at a target
+    double manual_pause_s = kDefaultManualPauseS;    // someone else moved the head: steering waits this long
     gc::HandDetector detector = gc::HandDetector::Learned;
     std::string model_dir;  // empty: the learned models are found without configuration
     // How `sink` frames hold both views when their caps do not say (or say wrongly).

@@ -98,6 +98,18 @@ std::function<void(headctl::ConnectionState, const std::string&)> connection_rep
         };
 }
 
+std::function<void(headctl::SteeringEvent, const std::string&)> steering_reporter(GstElement* element)
+{
+    init_head_debug();
+    return [element](headctl::SteeringEvent event, const std::string& detail) {
+        const std::string name(headctl::to_string(event));
+        GST_INFO_OBJECT(element, "steering %s: %s", name.c_str(), detail.c_str());
+        GstStructure* s = gst_structure_new("head-steering", "event", G_TYPE_STRING, name.c_str(), "detail",
+                                            G_TYPE_STRING, detail.c_str(), nullptr);
+        gst_element_post_message(element, gst_message_new_element(GST_OBJECT(element), s));
+    };
+}
+
 std::function<void(const headctl::HeadCommand&)> command_logger(GstElement* element)
 {
     init_head_debug();

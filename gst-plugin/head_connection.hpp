@@ -5,6 +5,7 @@
 
 #include "headctl/head_backend.hpp"
 #include "headctl/head_client.hpp"
+#include "headctl/steering/head_link.hpp"
 
 #include <gst/gst.h>
 
@@ -29,6 +30,12 @@ headctl::Timestamp capture_time(GstElement* element, GstClockTime running_time);
 // the gesturecam-head debug category (INFO).
 std::function<void(headctl::ConnectionState, const std::string&)> connection_reporter(GstElement* element,
                                                                                       const std::string& uri);
+
+// A steering-event callback for the head link: logs each event (INFO in the gesturecam-head
+// debug category) and posts a `head-steering` element message (event, detail), so an
+// application sees the head look at a target, come back, and pause after someone else
+// moved it.
+std::function<void(headctl::SteeringEvent, const std::string&)> steering_reporter(GstElement* element);
 
 // A command callback for the head link that logs each command sent to the head (DEBUG in
 // the gesturecam-head debug category, with the element as the object).

@@ -9,6 +9,11 @@
 # face-pass|varied, default light), MOTION (static|translate|rotate|scale|yaw|mixed|
 # leave-return, default translate), SEED (default 3), PARTICLES (default 1000), STEER
 # (off|fixate|point, default fixate). Names are handscenesrc's; face_pass is read as face-pass.
+# STEER=point runs the point-and-look loop: the head keeps the hand in view, and once the
+# rendered hand has held its pointing for DWELL seconds (default 1) it turns to the point
+# TARGET_DISTANCE mm along the ray (default 600: the rendered room's wall is 3 m away), looks
+# there for LOOK_TIME seconds (default 3) and comes back to the hand; the steering events
+# (look, return, follow) are printed with the figures.
 set -euo pipefail
 . "$(dirname "$0")/lib/plugin.sh"
 gesturecam_build_targets gstgesturecam headsim
@@ -24,6 +29,10 @@ motion=${motion//_/-}
 seed=${SEED:-3}
 particles=${PARTICLES:-1000}
 steer=${STEER:-fixate}
+point_options=""
+if [ "$steer" = point ]; then
+  point_options="dwell=${DWELL:-1} target-distance=${TARGET_DISTANCE:-600} look-time=${LOOK_TIME:-3}"
+fi
 mkdir -p "$out"
 rm -f "$out/demo.mp4" "$out/demo.jsonl" "$out/demo.bus.txt"
 
@@ -47,11 +56,11 @@ echo "Head: headsim at $head. Rendering $frames live stereo frames ($((frames / 
 echo "tracking with $particles particles per eye, steer=$steer..."
 start=$(date +%s.%N)
 # -m: the bus messages (the scene's ground truth among them) go to out/demo.bus.txt.
-# shellcheck disable=SC2046
+# shellcheck disable=SC2046,SC2086
 gst-launch-1.0 -m -e \
   $(eye left true) ! t.sink_left \
   $(eye right false) ! t.sink_right \
-  handtracker name=t particles="$particles" head="$head" steer="$steer" draw=true output=attended \
+  handtracker name=t particles="$particles" head="$head" steer="$steer" $point_options draw=true output=attended \
     message-updates=on-change json-location="$out/demo.jsonl" \
   ! videoconvert ! x264enc tune=zerolatency speed-preset=veryfast ! mp4mux ! filesink location="$out/demo.mp4" \
   >"$out/demo.bus.txt"
@@ -89,6 +98,13 @@ if first and truth:
           f"of {len(scored)} frames from 1 s after acquisition (steer={steer})")
     pans, tilts = [t[4] for t in truth], [t[5] for t in truth]
     print(f"head pan {min(pans):+.1f} .. {max(pans):+.1f} deg, tilt {min(tilts):+.1f} .. {max(tilts):+.1f} deg")
+if steer == "point":
+    events = [(field(line, "event", "string"), re.search(r'detail=\(string\)"?((?:[^"\\]|\\.)*)', line))
+              for line in open(f"{out}/demo.bus.txt") if "head-steering" in line]
+    print(f"steering events: {len(events)}" + ("" if events else " (no pointing held for the dwell time while "
+                                                             "the head was steered)"))
+    for event, detail in events:
+        print(f"  {event}: {detail.group(1).replace(chr(92), '') if detail else ''}")
 print(f"wall time: {end - start:.1f} s for {n / 30:.1f} s of video (live)")
 print(f"video: {out}/demo.mp4   JSON lines: {out}/demo.jsonl   bus messages: {out}/demo.bus.txt")
 PY

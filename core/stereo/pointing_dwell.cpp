@@ -50,6 +50,7 @@ std::optional<cv::Vec3d> PointingDwell::update(double t_s, const Pointing3D& poi
         held_ = target_sum_ * (1.0 / target_count_);
         held_direction_ = dwell_direction_;
         dwell_start_s_.reset();
+        ++picks_;
     }
     return held_;
 }

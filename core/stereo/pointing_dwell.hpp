@@ -28,6 +28,9 @@ public:
     // One frame taken at `t_s` (seconds, increasing) with what the tracker saw; returns the
     // target (head frame, millimetres) while one is held.
     std::optional<cv::Vec3d> update(double t_s, const Pointing3D& pointing, const DwellParams& params);
+    // How many targets have been picked so far: it grows on the frame of each pick, also
+    // when a pick lands where the previous target was.
+    int picks() const { return picks_; }
 
 private:
     void start_dwell(double t_s, const Pointing3D& pointing, const cv::Vec3d& target);
@@ -39,6 +42,7 @@ private:
     std::optional<cv::Vec3d> held_;
     cv::Vec3d held_direction_;
     double last_pointing_s_ = 0.0;
+    int picks_ = 0;
 };
 
 // A head-frame region of `size_mm` around `centre_mm` as the left camera sees it at `pose`:

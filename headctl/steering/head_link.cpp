@@ -3,9 +3,11 @@
 #include "stereo/camera_motion.hpp"
 #include "stereo/extrinsics.hpp"
 #include "stereo/head_geometry.hpp"
+#include "stereo/pointing_dwell.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <stdexcept>
 #include <utility>
@@ -33,6 +35,12 @@ std::pair<double, double> aim_at(const cv::Vec3d& target, const HeadGeometry& g)
     const cv::Vec3d q = rotation_about_y(pan).t() * target - g.tilt_centre_mm;
     const double tilt = std::atan2(-q[1], q[2]) * kRadToDeg;
     return {pan, tilt};
+}
+
+// Whether a velocity command names only axes at 0.
+bool holds_still(const AxisValues& values)
+{
+    return std::none_of(kAllAxes.begin(), kAllAxes.end(), [&](Axis a) { return values.has(a) && values.get(a) != 0.0; });
 }
 
 // A head-frame point in eye E's camera frame at pan/tilt with that eye not verged.
@@ -66,6 +74,33 @@ std::optional<SteerMode> steer_mode_from_string(std::string_view name)
     return std::nullopt;
 }
 
+std::string_view to_string(SteeringEvent event)
+{
+    switch (event) {
+    case SteeringEvent::Look:
+        return "look";
+    case SteeringEvent::Return:
+        return "return";
+    case SteeringEvent::Follow:
+        return "follow";
+    case SteeringEvent::ManualPause:
+        return "manual-pause";
+    case SteeringEvent::Resume:
+        return "resume";
+    }
+    return "unknown";
+}
+
+void SteeringTimes::validate() const
+{
+    auto check = [](double v, bool ok, const char* what) {
+        if (!std::isfinite(v) || !ok) throw std::invalid_argument(std::string("head link: ") + what);
+    };
+    check(dwell_s, dwell_s > 0.0, "dwell time must be finite and > 0 s");
+    check(look_s, look_s > 0.0, "look time must be finite and > 0 s");
+    check(manual_pause_s, manual_pause_s >= 0.0, "manual pause must be finite and >= 0 s");
+}
+
 void HeadLinkConfig::validate() const
 {
     auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
@@ -76,9 +111,8 @@ void HeadLinkConfig::validate() const
     if (!positive(vergence_gain_per_s)) throw std::invalid_argument("head link: vergence gain must be finite and > 0");
     if (!std::isfinite(vergence_dead_band_deg) || vergence_dead_band_deg < 0.0)
         throw std::invalid_argument("head link: vergence dead band must be finite and >= 0");
-    if (!std::isfinite(point_release_deg) || point_release_deg < 0.0)
-        throw std::invalid_argument("head link: point release angle must be finite and >= 0");
-    if (point_settle_frames < 1) throw std::invalid_argument("head link: point settle frames must be >= 1");
+    times.validate();
+    point.validate();
     if (reconnect_max.count() <= 0) throw std::invalid_argument("head link: reconnect interval must be > 0");
     if (max_view_age.count() <= 0) throw std::invalid_argument("head link: maximum view age must be > 0");
     fixate.validate();
@@ -109,13 +143,20 @@ struct HeadLink::Impl {
     double rate_tilt_dps = 0.0;
     bool head_has_vergence = true;
 
-    // Point: how long the pointing has been valid, and the last aim sent.
-    int pointing_run = 0;
-    std::optional<std::pair<double, double>> last_aim;
+    // Point: the dwell that picks targets, how many it had picked, and the plan.
+    PointingDwell dwell;
+    int dwell_picks = 0;
+    headctl::PointDirector director;
+
+    // Someone else moving the head pauses steering until then (seconds on the clock).
+    headctl::ManualMoveWatch watch;
+    std::optional<double> paused_until_s;
+    bool at_rest_sent = false;  // the last command sent held every axis it named at velocity 0
 
     Impl(HeadLinkConfig c, StereoCalibration cal)
-        : config(std::move(c)), calibration(std::move(cal)),
-          fixate(config.fixate), hand_depth_mm{config.nominal_depth_mm, config.nominal_depth_mm}
+        : config(std::move(c)), calibration(std::move(cal)), fixate(config.fixate),
+          hand_depth_mm{config.nominal_depth_mm, config.nominal_depth_mm}, director(director_config()),
+          watch(config.manual)
     {
         headctl::HeadClientConfig cc;
         cc.uri = config.uri;
@@ -125,6 +166,38 @@ struct HeadLink::Impl {
         cc.clock = config.clock;
         cc.on_state_change = config.on_state_change;
         client = std::make_unique<headctl::HeadClient>(std::move(cc));
+    }
+
+    headctl::PointDirectorConfig director_config() const
+    {
+        headctl::PointDirectorConfig pc = config.point;
+        pc.look_s = config.times.look_s;
+        return pc;
+    }
+
+    void report(SteeringEvent event, const std::string& detail) const
+    {
+        if (config.on_steering) config.on_steering(event, detail);
+    }
+
+    // The fixate law starts over from rest where the head is: its memory and the hand's rate
+    // are forgotten.
+    void restart_fixate()
+    {
+        hand_direction.reset();
+        rate_pan_dps = rate_tilt_dps = 0.0;
+        headctl::FixateConfig fc = config.fixate;
+        if (limits) fc.limits = *limits;
+        fixate = headctl::FixateController(fc);
+    }
+
+    // All of steering starts over: point mode's plan and dwell too.
+    void restart_steering()
+    {
+        restart_fixate();
+        director.reset();
+        dwell = PointingDwell{};
+        dwell_picks = 0;
     }
 
     ImageMotion motion_of(Eye eye, const HeadPose& before, const HeadPose& after) const
@@ -176,8 +249,14 @@ struct HeadLink::Impl {
         if (command.values.empty() && command.kind != CommandKind::Home && command.kind != CommandKind::Stop &&
             !headctl::is_preset(command.kind))
             return;
+        // A head already told to hold still is not told again: the repeat would cancel a move
+        // someone else makes meanwhile (headctl move), which the watch then could not see.
+        const bool at_rest = command.kind == CommandKind::Velocity && holds_still(command.values);
+        if (at_rest && at_rest_sent) return;
         try {
             client->submit(command);
+            at_rest_sent = at_rest;
+            watch.commanded(command, seconds(client->now()));
             if (config.on_command) config.on_command(command);
         } catch (const std::invalid_argument&) {
             if (!head_has_vergence) throw;
@@ -243,39 +322,106 @@ struct HeadLink::Impl {
         submit(*command);
     }
 
-    void steer_point(const FrameResult& r)
+    headctl::PointAim aim_for(const cv::Vec3d& target) const
     {
-        // Only a ray seen from a head at rest counts: frames taken while turning carry the
-        // pose's interpolation error and motion blur, and re-aiming on them makes the head hunt.
-        const std::optional<headctl::StateSample> latest = client->latest();
-        const bool moving =
-            latest && std::any_of(latest->state.moving.begin(), latest->state.moving.end(), [](bool m) { return m; });
-        pointing_run = r.pointing.valid && !moving ? pointing_run + 1 : 0;
-        if (pointing_run < config.point_settle_frames) return;
-        const cv::Vec3d target = r.pointing.fingertip_head_mm + config.target_distance_mm * r.pointing.direction_head;
         const double margin = config.fixate.limit_margin_deg;
         auto [pan, tilt] = aim_at(target, calibration.head);
-        pan = clamp_to(axis_limits(Axis::Pan), pan, margin);
-        tilt = clamp_to(axis_limits(Axis::Tilt), tilt, margin);
-        if (last_aim && std::hypot(pan - last_aim->first, tilt - last_aim->second) <= config.point_release_deg)
-            return;  // settled: small changes of the ray do not move the head
-        last_aim = std::pair{pan, tilt};
+        return {target, clamp_to(axis_limits(Axis::Pan), pan, margin), clamp_to(axis_limits(Axis::Tilt), tilt, margin)};
+    }
 
+    // Pan and tilt to the aim, each eye looking at the target itself (both lines of sight
+    // meet there).
+    HeadCommand look_command(const headctl::PointAim& aim) const
+    {
         HeadPose aimed;
-        aimed.pan_deg = pan;
-        aimed.tilt_deg = tilt;
+        aimed.pan_deg = aim.pan_deg;
+        aimed.tilt_deg = aim.tilt_deg;
         HeadCommand command{CommandKind::Absolute, {}};
-        command.values.set(Axis::Pan, pan);
-        command.values.set(Axis::Tilt, tilt);
-        // Each eye looks at the target itself (both lines of sight meet there).
+        command.values.set(Axis::Pan, aim.pan_deg);
+        command.values.set(Axis::Tilt, aim.tilt_deg);
         const Eye eyes[2] = {Eye::Left, Eye::Right};
         const Axis axes[2] = {Axis::VergeLeft, Axis::VergeRight};
         for (int i = 0; i < 2; ++i) {
-            const cv::Vec3d q = in_unverged_eye(calibration.head, aimed, eyes[i], target);
+            const cv::Vec3d q = in_unverged_eye(calibration.head, aimed, eyes[i], aim.target_mm);
             if (q[2] > 0.0)
                 command.values.set(axes[i], clamp_to(axis_limits(axes[i]), std::atan2(q[0], q[2]) * kRadToDeg, 0.0));
         }
-        submit(command);
+        return command;
+    }
+
+    HeadCommand return_command(const HeadPose& pose) const
+    {
+        HeadCommand command{CommandKind::Absolute, {}};
+        command.values.set(Axis::Pan, clamp_to(axis_limits(Axis::Pan), pose.pan_deg, 0.0));
+        command.values.set(Axis::Tilt, clamp_to(axis_limits(Axis::Tilt), pose.tilt_deg, 0.0));
+        command.values.set(Axis::VergeLeft, clamp_to(axis_limits(Axis::VergeLeft), pose.verge_left_deg, 0.0));
+        command.values.set(Axis::VergeRight, clamp_to(axis_limits(Axis::VergeRight), pose.verge_right_deg, 0.0));
+        return command;
+    }
+
+    // Point mode's frame: feeds the dwell and carries out the director's step. True when
+    // the fixate law steers this frame.
+    bool steer_point(const FrameResult& r, double t_s, const HeadPose& head)
+    {
+        DwellParams params;
+        params.dwell_s = config.times.dwell_s;
+        params.release_s = config.times.dwell_s;
+        params.target_distance_mm = config.target_distance_mm;
+        const std::optional<cv::Vec3d> target = dwell.update(t_s, r.pointing, params);
+        std::optional<headctl::PointAim> pick;
+        if (target && dwell.picks() != dwell_picks) pick = aim_for(*target);
+        dwell_picks = dwell.picks();
+        const headctl::PointPhase before = director.phase();
+        const headctl::PointStep step = director.update(t_s, pick, r.pointing.valid, r.left.valid(), head);
+        char detail[160];
+        switch (step.kind) {
+        case headctl::PointStep::Kind::Follow:
+            if (before != headctl::PointPhase::Following) {
+                restart_fixate();
+                report(SteeringEvent::Follow, "back where the hand was: following it again");
+            }
+            return true;
+        case headctl::PointStep::Kind::Hold:
+            return false;
+        case headctl::PointStep::Kind::Aim:
+            std::snprintf(detail, sizeof detail, "a held pointing picked (%.0f, %.0f, %.0f) mm: looking there, pan %.1f tilt %.1f deg",
+                          step.aim.target_mm[0], step.aim.target_mm[1], step.aim.target_mm[2], step.aim.pan_deg,
+                          step.aim.tilt_deg);
+            submit(look_command(step.aim));
+            report(SteeringEvent::Look, detail);
+            return false;
+        case headctl::PointStep::Kind::Return:
+            std::snprintf(detail, sizeof detail, "looked %.1f s: back to the hand at pan %.1f tilt %.1f deg",
+                          config.times.look_s, step.pose.pan_deg, step.pose.tilt_deg);
+            submit(return_command(step.pose));
+            report(SteeringEvent::Return, detail);
+            return false;
+        }
+        return false;
+    }
+
+    // Whether steering waits because someone else moved the head; starts and ends the pause.
+    bool manual_pause(double t_s)
+    {
+        const std::optional<headctl::StateSample> latest = client->latest();
+        if (config.times.manual_pause_s > 0.0 && latest &&
+            watch.moved_by_someone_else(latest->state, seconds(latest->time))) {
+            if (!paused_until_s) {
+                char detail[120];
+                std::snprintf(detail, sizeof detail, "the head was moved by someone else: steering pauses for %.1f s",
+                              config.times.manual_pause_s);
+                report(SteeringEvent::ManualPause, detail);
+            }
+            paused_until_s = t_s + config.times.manual_pause_s;  // from the last move seen
+            watch.reset();
+            at_rest_sent = false;
+        }
+        if (!paused_until_s) return false;
+        if (t_s < *paused_until_s) return true;
+        paused_until_s.reset();
+        restart_steering();
+        report(SteeringEvent::Resume, "steering resumes from where the head is");
+        return false;
     }
 
     void end_frame(const FrameResult& r)
@@ -292,22 +438,20 @@ struct HeadLink::Impl {
             return;  // a command would only wait in the slot and be stale when it is sent
         }
         refresh_limits();
-        if (config.steer == SteerMode::Point) {
-            if (view_stale) {
-                pointing_run = 0;
-                return;
-            }
-            steer_point(r);
-            return;
-        }
+        const double t_s = seconds(*capture_time);
+        if (manual_pause(t_s)) return;
+        static const FrameResult kNothingSeen{};
+        const FrameResult& seen = view_stale ? kNothingSeen : r;
+        const std::optional<headctl::StateSample> latest = client->latest();
+        const HeadPose head = latest ? latest->state.pose : *capture_pose;
+        if (config.steer == SteerMode::Point && !steer_point(seen, t_s, head)) return;
         if (!previous) return;
         const double dt = seconds(*capture_time - *previous);
         if (!(dt > 0.0) || dt > 10.0) {
             hand_direction.reset();
             return;
         }
-        const std::optional<headctl::StateSample> latest = client->latest();
-        steer_fixate(view_stale ? FrameResult{} : r, *capture_pose, latest ? latest->state.pose : *capture_pose, dt);
+        steer_fixate(seen, *capture_pose, head, dt);
     }
 };
 
@@ -344,19 +488,27 @@ void HeadLink::set_steering(SteerMode mode, double target_distance_mm)
     const bool new_mode = mode != s.config.steer;
     s.config.steer = mode;
     s.config.target_distance_mm = target_distance_mm;
-    s.last_aim.reset();  // point mode re-aims at the new distance at once
     if (!new_mode) return;
-    s.pointing_run = 0;
-    s.hand_direction.reset();
-    s.rate_pan_dps = s.rate_tilt_dps = 0.0;
     s.steer_time.reset();
+    s.paused_until_s.reset();
     s.refresh_limits();
-    headctl::FixateConfig fc = s.config.fixate;
-    if (s.limits) fc.limits = *s.limits;
-    s.fixate = headctl::FixateController(fc);
+    s.restart_steering();
     // Leaving a mode that was driving the head by velocity: stop it where it is.
     if (s.client->state() == headctl::ConnectionState::Connected) s.submit(HeadCommand{CommandKind::Stop, {}});
 }
+
+void HeadLink::set_times(const SteeringTimes& times)
+{
+    Impl& s = *impl_;
+    if (times == s.config.times) return;
+    times.validate();
+    s.director.set_look_time(times.look_s);
+    s.config.times = times;
+    if (times.manual_pause_s == 0.0) s.paused_until_s.reset();
+}
+
+headctl::PointPhase HeadLink::point_phase() const { return impl_->director.phase(); }
+bool HeadLink::paused() const { return impl_->paused_until_s.has_value(); }
 
 bool HeadLink::last_view_stale() const { return impl_->view_stale; }
 double HeadLink::last_view_age_ms() const { return impl_->view_age_ms; }

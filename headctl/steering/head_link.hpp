@@ -4,8 +4,10 @@
 // network traffic happens on the head client's own thread, so no call here waits on it.
 #pragma once
 
-#include "headctl/steering/fixate_controller.hpp"
 #include "headctl/head_client.hpp"
+#include "headctl/steering/fixate_controller.hpp"
+#include "headctl/steering/manual_move_watch.hpp"
+#include "headctl/steering/point_director.hpp"
 #include "stereo/calibration.hpp"
 #include "tracker/pointing_tracker.hpp"
 
@@ -19,11 +21,31 @@
 namespace gc::headctl {
 
 // off: only read the pose; fixate: keep the hand in the middle of the left view and verge on
-// its depth; point: look at where the hand points, target_distance_mm along its ray.
+// its depth; point: as fixate, and a pointing held for the dwell time turns the head to
+// target_distance_mm along its ray for the look time, then back to the hand.
 enum class SteerMode { Off, Fixate, Point };
 
 std::string_view to_string(SteerMode mode);
 std::optional<SteerMode> steer_mode_from_string(std::string_view name);
+
+// What steering did that a person watching the head wants to know.
+enum class SteeringEvent {
+    Look,         // point: the head turns to a picked target
+    Return,       // point: the look is over, the head goes back to where it left the hand
+    Follow,       // point: back there, the fixate law follows the hand again
+    ManualPause,  // someone else moved the head: steering leaves it alone
+    Resume,       // the pause is over: steering starts again from where the head is
+};
+std::string_view to_string(SteeringEvent event);
+
+// The times of point mode and of the manual pause, changeable while running.
+struct SteeringTimes {
+    double dwell_s = 1.0;          // point: a pointing held this long picks its target
+    double look_s = 4.0;           // point: the head looks at the target this long, then comes back
+    double manual_pause_s = 10.0;  // after someone else moved the head, steering waits this long; 0: never
+    bool operator==(const SteeringTimes&) const = default;
+    void validate() const;  // throws std::invalid_argument naming the field
+};
 
 struct HeadLinkConfig {
     std::string uri;  // e.g. tcp://127.0.0.1:5050 (headctl/uri.hpp)
@@ -35,9 +57,9 @@ struct HeadLinkConfig {
     headctl::FixateConfig fixate;
     double vergence_gain_per_s = 6.0;  // vergence velocity per degree of error
     double vergence_dead_band_deg = 0.3;
-    double point_release_deg = 2.0;                // point mode: re-aim when the target moved this far
-    int point_settle_frames = 5;                   // ...and the pointing held valid this many frames
-                                                   // with the head at rest
+    SteeringTimes times;
+    headctl::PointDirectorConfig point;  // its look_s is times.look_s
+    headctl::ManualMoveConfig manual;
     std::chrono::milliseconds reconnect_max{500};  // longest wait between connection attempts
     // Views that reach the tracker later than this after their capture do not steer the
     // head (fixate brakes as on a loss): a loop closed over old views turns too far and
@@ -51,6 +73,9 @@ struct HeadLinkConfig {
     // Called on the thread of end_frame() with each command handed to the head client, so a
     // host can log it with its own logging; must not block.
     std::function<void(const headctl::HeadCommand&)> on_command;
+    // Called on the thread of end_frame() at each steering event, with a sentence for a log;
+    // must not block.
+    std::function<void(SteeringEvent, const std::string& detail)> on_steering;
 
     void validate() const;  // throws std::invalid_argument naming the field
 };
@@ -80,6 +105,13 @@ public:
     // connection stays); a new mode starts from rest: the fixate law's memory and the
     // last aim are forgotten. Throws std::invalid_argument for a distance that is not > 0.
     void set_steering(SteerMode mode, double target_distance_mm);
+    // Changes the dwell, look and manual-pause times while running (std::invalid_argument for
+    // bad ones); a look under way keeps the time it started with.
+    void set_times(const SteeringTimes& times);
+    // Where point mode is (Following in the other modes), and whether steering is paused
+    // because someone else moved the head.
+    headctl::PointPhase point_phase() const;
+    bool paused() const;
     // Whether the last frame passed to end_frame was too old to steer from (max_view_age),
     // and how old it was (ms; 0 before any frame).
     bool last_view_stale() const;

@@ -309,6 +309,11 @@ PointFigures run_point(sim::Preset preset, std::uint64_t seed, double max_second
     // obliquely upwards to the side: at the default 2000 mm their targets lie 45 to 70 deg
     // off. At 600 mm they are 20 to 35 deg off, a move the room allows.
     lc.target_distance_mm = 600.0;
+    lc.times.look_s = 30.0;  // the run ends while the head looks
+    bool looking = false;    // the link turned the head to a picked target
+    lc.on_steering = [&](headctl::SteeringEvent e, const std::string&) {
+        looking = looking || e == headctl::SteeringEvent::Look;
+    };
     HeadLink link(lc, cal);
     EXPECT_TRUE(eventually([&] { return link.client().latest().has_value(); }, 2000ms));
 
@@ -343,7 +348,7 @@ PointFigures run_point(sim::Preset preset, std::uint64_t seed, double max_second
                                std::abs(pose.tilt_deg - previous->tilt_deg) < 1e-3 &&
                                std::abs(pose.verge_left_deg - previous->verge_left_deg) < 1e-3 &&
                                std::abs(pose.verge_right_deg - previous->verge_right_deg) < 1e-3;
-            moved = moved || !still;
+            moved = moved || (looking && !still);  // the fixate law's moves before the look do not count
             resting = moved && still ? resting + 1 : 0;
         }
         previous = pose;

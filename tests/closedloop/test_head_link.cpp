@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <mutex>
 #include <numbers>
 #include <thread>
@@ -62,6 +63,19 @@ HeadPose latest_pose(const HeadLink& link)
 {
     const auto s = link.client().latest();
     return s ? s->state.pose : HeadPose{};
+}
+
+// What `headctl move AXIS=VALUE` does while the link runs: another client's absolute move.
+// The client is returned so that it lives until the move is sent.
+std::unique_ptr<headctl::HeadClient> move_from_outside(const std::string& uri, headctl::Axis axis, double value)
+{
+    headctl::HeadClientConfig config;
+    config.uri = uri;
+    auto client = std::make_unique<headctl::HeadClient>(config);
+    headctl::HeadCommand move{headctl::CommandKind::Absolute, {}};
+    move.values.set(axis, value);
+    client->submit(move);
+    return client;
 }
 
 // Runs the link at 30 frames per second for `duration`, feeding it `frame(pose at capture)`.
@@ -142,12 +156,7 @@ TEST(HeadLink, FixateWidensTheViewWhileTheHandIsLostAndResumesWhenItIsBack)
     config.fixate.hold_s = 30.0;
     HeadLink link(config, calibration());
     ASSERT_TRUE(eventually([&] { return link.client().limits().has_value(); }, 2000ms));
-    headctl::HeadClientConfig driver_config;
-    driver_config.uri = head.uri();
-    headctl::HeadClient driver(driver_config);
-    headctl::HeadCommand zoom_in{headctl::CommandKind::Absolute, {}};
-    zoom_in.values.set(headctl::Axis::Zoom, 6.0);
-    driver.submit(zoom_in);
+    const auto driver = move_from_outside(head.uri(), headctl::Axis::Zoom, 6.0);
     ASSERT_TRUE(eventually([&] { return latest_pose(link).zoom == 6.0; }, 3000ms));
 
     const FrameResult centred = left_hand_at(calibration().M1(0, 2), calibration().M1(1, 2));
@@ -218,30 +227,136 @@ TEST(HeadLink, FixateVergesOnTheHandsDepth)
     EXPECT_NEAR(p.tilt_deg, 0.0, 2.0);
 }
 
-TEST(HeadLink, PointAimsAlongTheRayAndSettles)
+// A still hand whose fingertip is 800 mm ahead of the head, pointing along `direction`, seen
+// where the pose at capture puts it in the left view; nothing when it is out of view.
+FrameResult pointing_along(const HeadAtCapture& at, const cv::Vec3d& direction)
+{
+    const cv::Vec3d palm_head(-80.0, 0.0, 800.0);
+    const HeadPose pose = at.pose.value_or(HeadPose{});
+    const cv::Vec3d c = camera_to_head(calibration().head, pose, Eye::Left).inverse().apply(palm_head);
+    if (c[2] <= 0.0 || std::abs(c[0] / c[2]) > 0.55) return FrameResult{};
+    const cv::Matx33d& K = calibration().M1;
+    FrameResult r = left_hand_at(K(0, 0) * c[0] / c[2] + K(0, 2), K(1, 1) * c[1] / c[2] + K(1, 2));
+    r.pointing.valid = true;
+    r.pointing.fingertip_head_mm = {0.0, 0.0, 800.0};
+    r.pointing.palm_head_mm = palm_head;
+    r.pointing.palm_mm = c;
+    r.pointing.direction_head = cv::normalize(direction);
+    return r;
+}
+
+struct Recorded {
+    std::vector<headctl::SteeringEvent> events;
+    void attach(HeadLinkConfig& c)
+    {
+        c.on_steering = [this](headctl::SteeringEvent e, const std::string& detail) {
+            std::printf("  %s: %s\n", std::string(headctl::to_string(e)).c_str(), detail.c_str());
+            events.push_back(e);
+        };
+    }
+    long count(headctl::SteeringEvent e) const { return std::count(events.begin(), events.end(), e); }
+};
+
+TEST(HeadLink, PointLooksAtAHeldPointingForTheLookTimeAndComesBack)
 {
     RunningHead head(loopback_head());
     HeadLinkConfig config = link_config(head.uri(), SteerMode::Point);
     config.target_distance_mm = 1000.0;
+    config.times.dwell_s = 1.0;
+    config.times.look_s = 1.5;
+    Recorded recorded;
+    recorded.attach(config);
     HeadLink link(config, calibration());
     ASSERT_TRUE(eventually([&] { return link.client().latest().has_value(); }, 2000ms));
 
-    // The hand at 800 mm ahead points to the right and a little up.
-    FrameResult r = left_hand_at(320, 240);
-    r.pointing.valid = true;
-    r.pointing.fingertip_head_mm = {0.0, 0.0, 800.0};
-    r.pointing.palm_head_mm = {-80.0, 0.0, 800.0};
-    r.pointing.direction_head = cv::normalize(cv::Vec3d(1.0, -0.2, 0.0));
-    run_frames(link, 2000ms, [&](const HeadAtCapture&) { return r; });
-
-    const cv::Vec3d target = r.pointing.fingertip_head_mm + 1000.0 * r.pointing.direction_head;
+    // The hand points to the right and a little up, and holds it.
+    const cv::Vec3d direction = cv::normalize(cv::Vec3d(1.0, -0.2, 0.0));
+    const auto held = [&](const HeadAtCapture& at) { return pointing_along(at, direction); };
+    const cv::Vec3d target = cv::Vec3d(0.0, 0.0, 800.0) + 1000.0 * direction;
     const double pan = std::atan2(target[0], target[2]) * 180.0 / std::numbers::pi;
-    const HeadPose p = latest_pose(link);
+    run_frames(link, 800ms, held);
+    const HeadPose before = latest_pose(link);  // keeping the hand in view
+    EXPECT_LT(std::abs(before.pan_deg), 10.0) << "it turned before the dwell was over";
+    // Dwell (1 s) and the turn: the head looks at the target for the look time.
+    run_frames(link, 1000ms, held);
+    HeadPose p = latest_pose(link);
     EXPECT_NEAR(p.pan_deg, pan, 0.5);
     EXPECT_GT(p.tilt_deg, 3.0);                      // up
     EXPECT_GT(p.verge_left_deg, p.verge_right_deg);  // converging on the target
-    // Settled: one aim for an unchanging ray, not one per frame.
-    EXPECT_EQ(link.client().stats().commands_submitted, 1u);
+    EXPECT_EQ(link.point_phase(), headctl::PointPhase::Looking);
+    // Then back to the pose it left, where the hand was; the pointing, still held, is not
+    // looked at again.
+    run_frames(link, 3000ms, held);
+    p = latest_pose(link);
+    EXPECT_NEAR(p.pan_deg, before.pan_deg, 1.5);
+    EXPECT_NEAR(p.tilt_deg, before.tilt_deg, 1.5);
+    EXPECT_EQ(link.point_phase(), headctl::PointPhase::Following);
+    EXPECT_EQ(recorded.count(headctl::SteeringEvent::Look), 1);
+    EXPECT_EQ(recorded.count(headctl::SteeringEvent::Return), 1);
+    EXPECT_EQ(recorded.count(headctl::SteeringEvent::Follow), 1);
+}
+
+TEST(HeadLink, PointMovesNothingForATalkingHand)
+{
+    RunningHead head(loopback_head());
+    HeadLinkConfig config = link_config(head.uri(), SteerMode::Point);
+    config.target_distance_mm = 1000.0;
+    Recorded recorded;
+    recorded.attach(config);
+    HeadLink link(config, calibration());
+    ASSERT_TRUE(eventually([&] { return link.client().latest().has_value(); }, 2000ms));
+    // A hand in the middle of the view whose pointing swings 15 deg every half second (each
+    // direction held long enough for the old re-aim on five steady frames), then is lowered.
+    int frame = 0;
+    run_frames(link, 3000ms, [&](const HeadAtCapture& at) {
+        const bool left = (frame++ / 15) % 2 == 0;
+        return pointing_along(at, left ? cv::Vec3d(0.3, -0.2, 1.0) : cv::Vec3d(0.6, -0.2, 1.0));
+    });
+    run_frames(link, 1000ms, [&](const HeadAtCapture& at) {
+        FrameResult r = pointing_along(at, {0.0, 1.0, 0.0});
+        r.pointing = {};  // lowered: no pointing
+        return r;
+    });
+    EXPECT_EQ(recorded.count(headctl::SteeringEvent::Look), 0);
+    // The fixate law only keeps the hand in the left view (it is 8 deg right of that eye's axis).
+    EXPECT_LT(std::abs(latest_pose(link).pan_deg), 10.0);
+    EXPECT_LT(std::abs(latest_pose(link).tilt_deg), 2.0);
+}
+
+TEST(HeadLink, AManualMovePausesSteeringThenItResumes)
+{
+    RunningHead head(loopback_head());
+    HeadLinkConfig config = link_config(head.uri(), SteerMode::Fixate);
+    config.times.manual_pause_s = 1.5;
+    Recorded recorded;
+    recorded.attach(config);
+    HeadLink link(config, calibration());
+    ASSERT_TRUE(eventually([&] { return link.client().limits().has_value(); }, 2000ms));
+    // A still hand 1 m straight ahead, seen where each frame's pose puts it.
+    const cv::Vec3d palm_head(0.0, 0.0, 1000.0);
+    const cv::Matx33d& K = calibration().M1;
+    const auto still_hand = [&](const HeadAtCapture& at) {
+        const HeadPose pose = at.pose.value_or(HeadPose{});
+        const cv::Vec3d c = camera_to_head(calibration().head, pose, Eye::Left).inverse().apply(palm_head);
+        if (c[2] <= 0.0 || std::abs(c[0] / c[2]) > 0.55) return FrameResult{};  // out of view
+        return left_hand_at(K(0, 0) * c[0] / c[2] + K(0, 2), K(1, 1) * c[1] / c[2] + K(1, 2));
+    };
+    run_frames(link, 1500ms, still_hand);
+    const HeadPose before = latest_pose(link);  // the hand in the middle of the left view
+    ASSERT_LT(std::abs(before.pan_deg), 5.0);
+
+    // Someone runs `headctl move pan=20` while the element steers.
+    const auto driver = move_from_outside(head.uri(), headctl::Axis::Pan, 20.0);
+    run_frames(link, 1000ms, still_hand);
+    EXPECT_NEAR(latest_pose(link).pan_deg, 20.0, 0.1) << "the element undid the move";
+    EXPECT_TRUE(link.paused());
+    EXPECT_EQ(recorded.count(headctl::SteeringEvent::ManualPause), 1);
+    EXPECT_EQ(recorded.count(headctl::SteeringEvent::Resume), 0);
+    // The pause runs from the end of the move; then the head follows the hand again.
+    run_frames(link, 2500ms, still_hand);
+    EXPECT_FALSE(link.paused());
+    EXPECT_EQ(recorded.count(headctl::SteeringEvent::Resume), 1);
+    EXPECT_NEAR(latest_pose(link).pan_deg, before.pan_deg, 2.0);
 }
 
 TEST(HeadLink, OffOnlyReadsThePose)
@@ -351,6 +466,12 @@ TEST(HeadLink, RejectsBadConfiguration)
     }
     c = link_config("tcp://127.0.0.1:1", SteerMode::Fixate);
     c.max_view_age = 0ms;
+    EXPECT_THROW(HeadLink(c, calibration()), std::invalid_argument);
+    c = link_config("tcp://127.0.0.1:1", SteerMode::Point);
+    c.times.look_s = 0.0;
+    EXPECT_THROW(HeadLink(c, calibration()), std::invalid_argument);
+    c.times.look_s = 4.0;
+    c.times.manual_pause_s = -1.0;
     EXPECT_THROW(HeadLink(c, calibration()), std::invalid_argument);
     EXPECT_EQ(steer_mode_from_string("fixate"), SteerMode::Fixate);
     EXPECT_EQ(steer_mode_from_string("point"), SteerMode::Point);

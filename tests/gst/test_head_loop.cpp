@@ -1,7 +1,8 @@
 // The whole loop through GStreamer, in real time: two live handscenesrc rendering from the
 // simulated head's pose -> handtracker steering that head over loopback TCP -> fakesink.
 // The hand must stay in the middle of the left view; a head killed and restarted mid-stream
-// must not stop the pipeline, must be reported, and must be back within 2 s.
+// must not stop the pipeline, must be reported, and must be back within 2 s; a head moved by
+// someone else is left there for manual-pause seconds, with head-steering messages.
 #include "gst_fixture.hpp"
 
 #include "../closedloop/running_head.hpp"
@@ -15,6 +16,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <vector>
 
 namespace {
 
@@ -160,6 +162,60 @@ TEST(HeadLoop, AHeadRestartedMidStreamIsBackWithinTwoSeconds)
                 "between output frames %.0f ms; %zu outputs\n",
                 killed_s, restarted_s, 1000.0 * (*back_s - restarted_s), 1000.0 * largest_gap_s, outputs.size());
     EXPECT_LT(*back_s - restarted_s, 2.0);
+}
+
+TEST(HeadLoop, AManualMoveIsLeftAloneForManualPauseAndReported)
+{
+    // The hand waves and holds still; the element keeps it in view with the head at rest.
+    // Once the head has rested for half a second (from 3 s in), someone moves it with another
+    // client (as `headctl move pan=15` does). A move made while the element itself turns the
+    // head is overridden by its next command (docs/steering.md), so the test waits for rest.
+    gc::test::init_gstreamer();
+    RunningHead head(loopback_head(0, 0.02));
+    const std::string common = " is-live=true scene=light motion=static seed=3 head=" + head.uri() +
+                               " num-buffers=" + std::to_string(10 * kFps) + " ";
+    gc::headctl::HeadClientConfig driver_config;
+    driver_config.uri = head.uri();
+    gc::headctl::HeadClient driver(driver_config);
+    bool moved = false;
+    std::thread mover([&] {
+        const auto start = std::chrono::steady_clock::now();
+        std::this_thread::sleep_for(3000ms);
+        for (int resting = 0; resting < 25 && std::chrono::steady_clock::now() - start < 7000ms;) {
+            std::this_thread::sleep_for(20ms);
+            const auto s = driver.latest();
+            const bool still = s && std::none_of(s->state.moving.begin(), s->state.moving.end(), [](bool m) { return m; });
+            resting = still ? resting + 1 : 0;
+            moved = resting == 25;
+        }
+        if (!moved) return;
+        gc::headctl::HeadCommand turn{gc::headctl::CommandKind::Absolute, {}};
+        turn.values.set(gc::headctl::Axis::Pan, 15.0);
+        driver.submit(turn);
+    });
+    const gc::test::RunResult r = gc::test::run_pipeline(
+        "handscenesrc name=l eye=left" + common + "! t.sink_left handscenesrc name=r eye=right truth-messages=false" +
+        common + "! t.sink_right handtracker name=t particles=500 seed=7 head=" + head.uri() +
+        " steer=fixate manual-pause=1.5 message-updates=none ! fakesink");
+    mover.join();
+    ASSERT_TRUE(r.eos) << r.error;
+    ASSERT_TRUE(moved) << "the element never held the head still for half a second";
+    std::vector<std::string> events;
+    for (size_t i = 0; i < r.messages.size(); ++i)
+        if (r.sources[i] == "t" && gst_structure_has_name(r.messages[i].get(), "head-steering")) {
+            events.emplace_back(gst_structure_get_string(r.messages[i].get(), "event"));
+            std::printf("%.2f s: %s: %s\n", r.received_s[i], events.back().c_str(),
+                        gst_structure_get_string(r.messages[i].get(), "detail"));
+        }
+    ASSERT_EQ(events.size(), 2u);
+    EXPECT_EQ(events[0], "manual-pause");
+    EXPECT_EQ(events[1], "resume");
+    // The move stayed: the views were rendered from the head at 15 deg (before, the
+    // element's next command stopped the head within a frame of the move).
+    double largest_pan = 0.0;
+    for (const GstStructure* t : r.named("hand-truth", "l"))
+        largest_pan = std::max(largest_pan, gc::test::get_double(t, "head-pan-deg"));
+    EXPECT_GT(largest_pan, 14.5) << "the element undid the move";
 }
 
 TEST(HeadLoop, AHeadTurnedPastTheSimulatedRoomDoesNotStopTheScene)

@@ -9,7 +9,8 @@ pipelines/ and tests/ lead to the tree under test, with these changes only:
   - `headctl ... watch` without a count reads the head a few times;
   - commands left in the background end with their block;
   - FRAMES is set, which the scripts in pipelines/ take as a frame limit.
-The scripts run with the environment the table SCRIPTS gives (FRAMES, SOURCE=scene, SINK).
+The scripts run with the environment the table SCRIPTS gives (FRAMES, SOURCE=scene, SINK),
+and again with each option of the table VARIANTS (demo.sh STEER=point).
 A run fails on a non-zero exit, an ERROR line, a timeout, or a sink's warning that the
 pipeline's latency cannot be met ("Pipeline construction is invalid, please add queues").
 
@@ -41,6 +42,10 @@ SCRIPTS = {
     "webcams.sh": ([], {"SOURCE": "scene", "FRAMES": str(FRAMES), "SINK": "fakesink"}),
     "throughput.sh": (["100", "1", "20"], {}),
 }
+# Further short runs of a script with another option.
+VARIANTS = [
+    ("demo.sh", [], {"FRAMES": str(FRAMES), "STEER": "point"}),
+]
 
 
 def examples():
@@ -139,6 +144,12 @@ class DocsCommands(unittest.TestCase):
             with self.subTest(script=name):
                 result = self.scratch.run(["bash", os.path.join("pipelines", name), *args], env=env)
                 self.assertIsNone(failure(result), name)
+
+    def test_script_variants(self):
+        for name, args, env in VARIANTS:
+            with self.subTest(script=name, env=env):
+                result = self.scratch.run(["bash", os.path.join("pipelines", name), *args], env=env)
+                self.assertIsNone(failure(result), f"{name} {env}")
 
 
 if __name__ == "__main__":

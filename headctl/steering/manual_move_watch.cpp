@@ -1,0 +1,69 @@
+#include "headctl/steering/manual_move_watch.hpp"
+
+#include <cmath>
+
+namespace gc::headctl {
+
+namespace {
+
+double axis_angle(const HeadPose& pose, Axis axis) { return axis == Axis::Pan ? pose.pan_deg : pose.tilt_deg; }
+
+}  // namespace
+
+void ManualMoveWatch::release(AxisWatch& axis, double t_s, bool driven)
+{
+    axis.held = false;
+    axis.driven = driven;
+    axis.commanded_s = t_s;
+}
+
+void ManualMoveWatch::commanded(const HeadCommand& command, double t_s)
+{
+    for (std::size_t i = 0; i < kAxes.size(); ++i) {
+        AxisWatch& axis = axes_[i];
+        switch (command.kind) {
+        case CommandKind::Velocity:
+            if (!command.values.has(kAxes[i])) break;
+            // Holding still an axis that is held changes nothing; any other velocity moves it.
+            if (command.values.get(kAxes[i]) != 0.0)
+                release(axis, t_s, true);
+            else if (!axis.held)
+                release(axis, t_s, false);
+            break;
+        case CommandKind::Absolute:
+        case CommandKind::Relative:
+            if (command.values.has(kAxes[i])) release(axis, t_s, false);
+            break;
+        case CommandKind::Stop:
+        case CommandKind::Home:
+        case CommandKind::RecallPreset:
+            release(axis, t_s, false);
+            break;
+        case CommandKind::SavePreset:
+            break;
+        }
+    }
+}
+
+bool ManualMoveWatch::moved_by_someone_else(const HeadState& state, double t_s)
+{
+    bool moved = false;
+    for (std::size_t i = 0; i < kAxes.size(); ++i) {
+        AxisWatch& axis = axes_[i];
+        const double angle = axis_angle(state.pose, kAxes[i]);
+        if (axis.held) {
+            moved = moved || std::abs(angle - axis.rest_deg) > config_.tolerance_deg;
+        } else if (!axis.driven && !state.moving_axis(kAxes[i]) && t_s - axis.commanded_s >= config_.settle_s) {
+            axis.held = true;
+            axis.rest_deg = angle;
+        }
+    }
+    return moved;
+}
+
+void ManualMoveWatch::reset()
+{
+    for (AxisWatch& axis : axes_) axis = AxisWatch{};
+}
+
+}  // namespace gc::headctl

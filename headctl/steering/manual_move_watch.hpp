@@ -1,0 +1,47 @@
+// Tells when someone else moved the head: the link reports each command it sends and each
+// state the head reports, and the watch says when pan or tilt left the place where the
+// link's own commands hold it still. Plain C++, no clock of its own (docs/steering.md).
+#pragma once
+
+#include "headctl/head_backend.hpp"
+
+#include <array>
+#include <limits>
+
+namespace gc::headctl {
+
+struct ManualMoveConfig {
+    double tolerance_deg = 0.3;  // pose readings wander this much at rest without anyone moving the head
+    double settle_s = 0.25;      // after a command, the head is let come to rest this long before it is held
+};
+
+class ManualMoveWatch {
+public:
+    explicit ManualMoveWatch(const ManualMoveConfig& config = {}) : config_(config) {}
+
+    // The link handed `command` to the head at `t_s` (seconds, the states' clock).
+    void commanded(const HeadCommand& command, double t_s);
+    // A state the head reported at `t_s`: true when pan or tilt moved away from where the
+    // link's commands hold it at rest (someone else moved the head).
+    bool moved_by_someone_else(const HeadState& state, double t_s);
+    // Forgets where the axes were held: they are held again once at rest.
+    void reset();
+
+private:
+    // Free: moving on a command, or settling after one; Held: at rest at `rest_deg` with
+    // nothing of the link's to move it.
+    struct AxisWatch {
+        bool held = false;
+        bool driven = false;  // a velocity other than 0 is in force
+        double rest_deg = 0.0;
+        double commanded_s = -std::numeric_limits<double>::infinity();
+    };
+    static constexpr std::array<Axis, 2> kAxes{Axis::Pan, Axis::Tilt};
+
+    void release(AxisWatch& axis, double t_s, bool driven);
+
+    ManualMoveConfig config_;
+    std::array<AxisWatch, 2> axes_{};
+};
+
+}  // namespace gc::headctl
