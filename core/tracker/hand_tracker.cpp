@@ -71,18 +71,29 @@ const EyeEstimate& HandTracker::Impl::process(const cv::Mat& bgr, const ImageMot
         membership = cv::Mat1b(frame_size, uchar(0));
         membership_roi = {};
     }
+    // The view moved without a word from the head (moved by someone else, a bumped tripod):
+    // the hypotheses follow the scene's shift, and the landmark model checks the contour on
+    // this very frame. Without the learned models nothing could check, and nothing looks.
+    const bool told = motion.dx != 0.0 || motion.dy != 0.0 || motion.drotation != 0.0 || motion.scale_factor != 1.0;
+    const ViewChange seen = finder ? view.update(bgr) : ViewChange{};
+    const bool unannounced = !told && (seen.shifted || seen.cut);
+    ImageMotion moved = motion;
+    if (!told && seen.shifted) {
+        moved.dx = seen.dx;
+        moved.dy = seen.dy;
+    }
     // A turn of the head moves the scene in the image: its median starts again.
-    if (motion.dx != 0.0 || motion.dy != 0.0 || motion.drotation != 0.0 || motion.scale_factor != 1.0)
-        background.reset();
+    if (told || unannounced) background.reset();
+    if (unannounced) detector.reset();
     estimate.models_ran = false;
     const bool was_tracking = estimate.state == TrackState::Tracking;
-    if (was_tracking) track(bgr, motion);
+    if (was_tracking) track(bgr, moved);
     const bool carried = finder && was_tracking && estimate.state == TrackState::Tracking && flow.ready();
     if (carried) carry_key_points(bgr);
     if (!finder) {
         if (!was_tracking) acquire(bgr);
     } else if (estimate.state == TrackState::Tracking) {
-        check_with_models(bgr);
+        check_with_models(bgr, unannounced);
     } else {
         search_with_models(bgr);  // a hand lost on this frame is looked for at once
     }

@@ -11,6 +11,7 @@
 #include "contour/hand_template.hpp"
 #include "detect/hand_finder.hpp"
 #include "detect/motion_detector.hpp"
+#include "detect/view_shift.hpp"
 #include "filter/adaptive_noise.hpp"
 #include "filter/quasi_random.hpp"
 #include "measure/contour_measurement.hpp"
@@ -49,6 +50,7 @@ struct TrackerSession {
     QuasiNormalSampler sampler;
     std::mt19937_64 rng;
     MotionDetector detector;
+    ViewShift view;  // the view's own motion, for a camera that moved unannounced
     StaticBackground background;
     AdaptiveNoise noise;
 
@@ -151,7 +153,7 @@ struct HandTracker::Impl : TrackerSession {
     // learned_custody.cpp: the learned models find the hand, check the contour, give key points.
     void search_with_models(const cv::Mat& bgr);
     std::optional<FoundHand> propose_by_motion(const cv::Mat& bgr);
-    void check_with_models(const cv::Mat& bgr);
+    void check_with_models(const cv::Mat& bgr, bool view_changed);
     bool adopt_found(const cv::Mat& bgr, const FoundHand& hand);
     void place_key_points(const HandState& s);
     void carry_key_points(const cv::Mat& bgr);

@@ -133,15 +133,15 @@ std::optional<FoundHand> HandTracker::Impl::propose_by_motion(const cv::Mat& bgr
     return finder->confirm(bgr, cv::Point2f(shape_points.palm), cv::Point2f(shape_points.fingertip));
 }
 
-// A tracked frame: the landmark model checks the contour when the check is due or the
-// edges are weak. No hand where the contour is: lost. Key points far from where the
-// contour carried them: a new template from this frame. Else the key points and gesture
-// are the model's, re-expressed on the template, and the next check waits longer while
-// the two agree.
-void HandTracker::Impl::check_with_models(const cv::Mat& bgr)
+// A tracked frame: the landmark model checks the contour when the check is due, the edges
+// are weak or the view changed under it. No hand where the contour is: lost. Key points
+// far from where the contour carried them: a new template from this frame. Else the key
+// points and gesture are the model's, re-expressed on the template, and the next check
+// waits longer while the two agree.
+void HandTracker::Impl::check_with_models(const cv::Mat& bgr, bool view_changed)
 {
     ++frames_since_check;
-    const bool doubt = estimate.confidence < params.lost_ratio;
+    const bool doubt = view_changed || estimate.confidence < params.lost_ratio;
     if (!doubt && frames_since_check < check_interval) return;
     frames_since_check = 0;
     estimate.models_ran = true;

@@ -1,4 +1,5 @@
 #include "detect/motion_detector.hpp"
+#include "detect/view_shift.hpp"
 
 #include "background/static_background.hpp"
 #include "contour/hand_template.hpp"
@@ -298,6 +299,28 @@ TEST(MotionDetector, NoiseThresholdFollowsTheSensorNoise)
     }
     EXPECT_EQ(gc::frame_noise_threshold(cv::Mat1b(480, 640, uchar(0))), 0);
     EXPECT_EQ(gc::frame_noise_threshold(cv::Mat1b()), 0);
+}
+
+// The view moving as a whole is told from a hand moving in front of a still view, and its
+// shift is measured to within the small copy's pixel (here 3 frame pixels).
+TEST(ViewShift, TellsAMovedViewFromAHandMovingInFrontOfIt)
+{
+    const DrawnScene scene(11);
+    cv::setRNGSeed(11);
+    const cv::Rect view(40, 30, 240, 180);
+    gc::ViewShift shift;
+    cv::Mat3b frame;
+    cv::Mat1b mask;
+    for (int i = 0; i < 8; ++i) {
+        scene.render({150.0 + 12.0 * (i % 2), 130.0 - 6.0 * (i % 3)}, 35.0 + 20.0 * (i % 3), frame, mask);
+        const gc::ViewChange c = shift.update(frame(view).clone());
+        EXPECT_FALSE(c.shifted || c.cut) << "frame " << i;
+    }
+    scene.render({150.0, 130.0}, 35.0, frame, mask);
+    const gc::ViewChange moved = shift.update(frame(view - cv::Point(24, -16)).clone());
+    ASSERT_TRUE(moved.shifted);
+    EXPECT_NEAR(moved.dx, 24.0, 3.0);
+    EXPECT_NEAR(moved.dy, -16.0, 3.0);
 }
 
 TEST(MotionDetector, BadInputsThrow)

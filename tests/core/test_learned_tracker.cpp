@@ -1,6 +1,7 @@
 // The tracker with its default, learned detector: on real footage (the calibrated pair in
 // tests/data/handpose3d, scored against its reference key points), on a rendered hand in
-// clutter, without a hand, after a head jump, and with a broken model folder.
+// clutter, without a hand, after a head jump, after a view jump nobody reported, and with
+// a broken model folder.
 #include "sim/scene.hpp"
 #include "tools/real_pair.hpp"
 #include "tracker/hand_tracker.hpp"
@@ -164,6 +165,44 @@ TEST(LearnedTracker, SurvivesAHeadJumpAndFindsTheHandAgain)
         if (tracker.process(frame).valid()) back = f;
     }
     EXPECT_GE(back, 0) << "not found again within 30 frames";
+}
+
+// The view jumps under a tracked hand and nobody says so (a PTZ head moved by someone else,
+// a bumped tripod): the contour stays where the hand was, on the background. Within 30
+// frames the tracker is back on the hand, and it does not report the background as the hand
+// for more than a few frames meanwhile.
+TEST(LearnedTracker, NoticesAnUnreportedViewJumpAndFindsTheHandAgain)
+{
+    // A room whose bookshelf the palm detector and the landmark model, searching the whole
+    // frame, take for a hand: only a search where the scene says the hand went finds it.
+    const gc::sim::Scene scene(scene_config(gc::sim::Preset::Light, 1));
+    const gc::HeadPose jumps[] = {{7.0, 0.0}, {-7.0, 0.0}, {0.0, -6.0}, {-5.0, -5.0}};
+    for (const gc::HeadPose& moved : jumps) {
+        gc::HandTracker tracker;
+        cv::Mat frame;
+        gc::sim::EyeTruth truth;
+        for (int f = 0; f < 40; ++f) {
+            scene.render(f, gc::Eye::Left, gc::HeadPose{}, frame, &truth);
+            tracker.process(frame);
+        }
+        ASSERT_TRUE(tracker.estimate().valid() && (tracker.estimate().bbox & truth.bbox).area() > 0)
+            << "not on the hand before the jump";
+        int back = -1, on_background = 0;
+        std::string states;  // from the jump: T on the hand, t elsewhere, . nothing tracked
+        for (int f = 40; f < 70; ++f) {
+            scene.render(f, gc::Eye::Left, moved, frame, &truth);
+            ASSERT_TRUE(truth.visible) << "the jump must leave the hand in view";
+            const gc::EyeEstimate& e = tracker.process(frame);
+            const bool on_hand = e.valid() && (e.bbox & truth.bbox).area() > 0;
+            states += !e.valid() ? '.' : on_hand ? 'T' : 't';
+            if (on_hand && back < 0) back = f - 40;
+            on_background += e.valid() && !on_hand;
+        }
+        const std::string what =
+            "jump " + std::to_string(moved.pan_deg) + "/" + std::to_string(moved.tilt_deg) + " deg: " + states;
+        EXPECT_GE(back, 0) << what;
+        EXPECT_LE(on_background, 3) << what;
+    }
 }
 
 // A model folder the user named but got wrong is an error that names the file, not a
