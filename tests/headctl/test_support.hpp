@@ -16,8 +16,10 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -43,6 +45,20 @@ private:
         return config;
     }
 };
+
+// The longest of `count` calls of `call(i)`, in microseconds: what a caller that must never
+// wait on the network waited at worst.
+inline double longest_call_us(int count, const std::function<void(int)>& call)
+{
+    double worst_us = 0.0;
+    for (int i = 0; i < count; ++i) {
+        const auto start = std::chrono::steady_clock::now();
+        call(i);
+        worst_us = std::max(
+            worst_us, std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count());
+    }
+    return worst_us;
+}
 
 // A program started with its output on pipes, whose read ends are non-blocking.
 struct Spawned {
@@ -136,10 +152,13 @@ private:
 };
 
 // Accepts connections on 127.0.0.1, sends each one `script` and closes it: a head that
-// connects and then fails, or one that sends a line of a chosen length.
+// connects and then fails, or one that sends a line of a chosen length. With `hold_open` it
+// sends the script a moment after accepting (once a request has arrived, unread) and keeps
+// the connection open: a camera that answers garbage, or nothing when the script is empty.
 class ScriptedServer {
 public:
-    explicit ScriptedServer(std::string script) : script_(std::move(script))
+    explicit ScriptedServer(std::string script, bool hold_open = false)
+        : script_(std::move(script)), hold_open_(hold_open)
     {
         listener_ = net::Fd(::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0));
         sockaddr_in a{};
@@ -165,17 +184,21 @@ public:
 private:
     void run()
     {
+        std::vector<net::Fd> held;
         while (!stop_) {
             pollfd p{listener_.get(), POLLIN, 0};
             if (::poll(&p, 1, 20) <= 0) continue;
             net::Fd c(::accept4(listener_.get(), nullptr, nullptr, SOCK_CLOEXEC));
             if (!c) continue;
             ++accepted_;
+            if (hold_open_) std::this_thread::sleep_for(20ms);
             [[maybe_unused]] const ssize_t n = ::send(c.get(), script_.data(), script_.size(), MSG_NOSIGNAL);
+            if (hold_open_) held.push_back(std::move(c));
         }
     }
 
     std::string script_;
+    bool hold_open_ = false;
     net::Fd listener_;
     std::uint16_t port_ = 0;
     std::atomic<bool> stop_{false};
