@@ -287,7 +287,10 @@ std::string OnvifResponder::authentication_error(const onvif::Envelope& envelope
         const auto token = onvif::username_token(envelope);
         if (!token) return "a WS-Security UsernameToken with a password digest is required";
         const std::string expected = onvif::password_digest(token->nonce, token->created, config_.password);
-        ok = same_secret(token->user, config_.user) & same_secret(token->digest, expected);
+        // Both compared whatever the first gives, so timing does not tell a known user.
+        const bool user_ok = same_secret(token->user, config_.user);
+        const bool digest_ok = same_secret(token->digest, expected);
+        ok = user_ok && digest_ok;
     } catch (const onvif::SoapError&) {
         ok = false;
     }
