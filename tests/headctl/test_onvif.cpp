@@ -5,7 +5,6 @@
 #include "headctl/head_client.hpp"
 #include "headctl/onvif_backend.hpp"
 #include "headctl/onvif_soap.hpp"
-#include "headctl/sim/onvif_responder.hpp"
 
 #include <cmath>
 
@@ -14,42 +13,7 @@ namespace {
 
 constexpr const char* kPassword = "pa55-Word";
 
-// A simulated head serving GCHP and ONVIF on loopback, each on any free port.
-class OnvifHead {
-public:
-    explicit OnvifHead(OnvifResponderConfig onvif = {}) : server_(gchp_config()), onvif_(free_port(onvif), server_)
-    {
-        thread_ = std::thread([this] { server_.run(); });
-    }
-    ~OnvifHead()
-    {
-        server_.request_stop();
-        thread_.join();
-    }
-    std::string onvif_uri(const std::string& query = "") const
-    {
-        return "onvif://127.0.0.1:" + std::to_string(onvif_.port()) + query;
-    }
-    std::string gchp_uri() const { return "tcp://127.0.0.1:" + std::to_string(server_.port()); }
-    std::uint16_t onvif_port() const { return onvif_.port(); }
-    OnvifResponder& responder() { return onvif_; }
-
-private:
-    static HeadServerConfig gchp_config()
-    {
-        HeadServerConfig c;
-        c.port = 0;
-        return c;
-    }
-    static OnvifResponderConfig free_port(OnvifResponderConfig c)
-    {
-        c.port = 0;
-        return c;
-    }
-    HeadServer server_;
-    OnvifResponder onvif_;
-    std::thread thread_;
-};
+using OnvifHead = RunningOnvifHead;
 
 OnvifResponderConfig with_password()
 {

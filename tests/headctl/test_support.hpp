@@ -5,6 +5,7 @@
 
 #include "../closedloop/running_head.hpp"
 #include "headctl/sim/head_server.hpp"
+#include "headctl/sim/onvif_responder.hpp"
 #include "headctl/net.hpp"
 
 #include <gtest/gtest.h>
@@ -44,6 +45,45 @@ private:
         if (config.port == 5050) config.port = 0;
         return config;
     }
+};
+
+// A simulated head serving GCHP and ONVIF (headsim --onvif) on 127.0.0.1, each on any free
+// port, from its own threads for the lifetime of the object.
+class RunningOnvifHead {
+public:
+    explicit RunningOnvifHead(OnvifResponderConfig onvif = {})
+        : server_(gchp_config()), onvif_(free_port(onvif), server_)
+    {
+        thread_ = std::thread([this] { server_.run(); });
+    }
+    ~RunningOnvifHead()
+    {
+        server_.request_stop();
+        thread_.join();
+    }
+    std::string onvif_uri(const std::string& query = "") const
+    {
+        return "onvif://127.0.0.1:" + std::to_string(onvif_.port()) + query;
+    }
+    std::string gchp_uri() const { return "tcp://127.0.0.1:" + std::to_string(server_.port()); }
+    std::uint16_t onvif_port() const { return onvif_.port(); }
+    OnvifResponder& responder() { return onvif_; }
+
+private:
+    static HeadServerConfig gchp_config()
+    {
+        HeadServerConfig c;
+        c.port = 0;
+        return c;
+    }
+    static OnvifResponderConfig free_port(OnvifResponderConfig c)
+    {
+        c.port = 0;
+        return c;
+    }
+    HeadServer server_;
+    OnvifResponder onvif_;
+    std::thread thread_;
 };
 
 // The longest of `count` calls of `call(i)`, in microseconds: what a caller that must never
