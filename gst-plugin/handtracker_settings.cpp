@@ -167,15 +167,16 @@ void install_head_properties(GObjectClass* gobject_class)
 {
     g_object_class_install_property(
         gobject_class, PROP_HEAD,
-        g_param_spec_string(
-            "head", "Head URI",
-            "The motorised head carrying the cameras: tcp://host:port[?token=...] (the GCHP "
-            "protocol, e.g. headsim), visca-udp://host[:port], visca-tcp://host[:port], "
-            "visca-serial:///dev/ttyUSB0?baud=9600 or pelco-d:///dev/ttyUSB0?address=1&baud=2400; unset: "
-            "static cameras. Its pose at each frame's capture enters the tracker as camera motion; "
-            "`steer` says how it is moved. Connection changes are posted as head-connection "
-            "messages and a warning. A token reads back as token=***: prefer head-token-file",
-            nullptr, GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
+        g_param_spec_string("head", "Head URI",
+                            "The motorised head carrying the cameras: tcp://host:port[?token=...] (the GCHP "
+                            "protocol, e.g. headsim), visca-udp://host[:port], visca-tcp://host[:port], "
+                            "visca-serial:///dev/ttyUSB0?baud=9600, pelco-d:///dev/ttyUSB0?address=1&baud=2400 or "
+                            "onvif://host[:port][/path]?user=U (the token is its password); unset: "
+                            "static cameras. Its pose at each frame's capture enters the tracker as camera motion; "
+                            "`steer` says how it is moved. Connection changes are posted as head-connection "
+                            "messages and a warning. A token reads back as token=***: prefer head-token-file",
+                            nullptr,
+                            GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
     g_object_class_install_property(
         gobject_class, PROP_HEAD_TOKEN_FILE,
         g_param_spec_string("head-token-file", "Head token file",

@@ -1,6 +1,7 @@
 #include "headctl/head_backend.hpp"
 
 #include "headctl/gchp_backend.hpp"
+#include "headctl/onvif_backend.hpp"
 #include "headctl/pelco_backend.hpp"
 #include "headctl/visca_backend.hpp"
 
@@ -63,6 +64,9 @@ std::unique_ptr<HeadBackend> make_backend(const HeadUri& uri, const std::string&
     case HeadScheme::ViscaTcp:
         return std::make_unique<ViscaBackend>(uri.host, uri.port, ViscaBackend::Transport::Tcp,
                                               ViscaSettings::from_uri(uri));
+    case HeadScheme::Onvif:
+        return std::make_unique<OnvifBackend>(uri.host, uri.port, uri.path, OnvifSettings::from_uri(uri),
+                                              token.empty() ? uri.param("token").value_or("") : token);
     }
     throw std::invalid_argument("unknown head URI scheme");
 }

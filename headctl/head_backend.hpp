@@ -59,8 +59,8 @@ public:
 // changed since `last` as moving, then remembers this state's pose in `last`.
 void flag_motion_since(HeadState& state, std::optional<HeadPose>& last);
 
-// The backend for a URI's scheme (tcp: GCHP; visca-udp, visca-tcp: VISCA). The token
-// argument overrides a token in the URI. Throws std::invalid_argument for bad parameters.
+// The backend for a URI's scheme (tcp: GCHP; visca-udp, visca-tcp: VISCA; onvif: ONVIF PTZ,
+// the token being the password). The token argument overrides a token in the URI. Throws std::invalid_argument for bad parameters.
 std::unique_ptr<HeadBackend> make_backend(const HeadUri& uri, const std::string& token = {});
 
 }  // namespace gc::headctl

@@ -48,6 +48,8 @@ std::string errno_text(const char* what) { return std::string(what) + ": " + std
 CancelScope::CancelScope(const std::atomic<bool>& flag) : previous_(t_cancel) { t_cancel = &flag; }
 CancelScope::~CancelScope() { t_cancel = previous_; }
 
+bool cancel_requested() { return t_cancel && t_cancel->load(); }
+
 Fd& Fd::operator=(Fd&& o) noexcept
 {
     if (this != &o) {

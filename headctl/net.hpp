@@ -34,6 +34,10 @@ private:
     const std::atomic<bool>* previous_;
 };
 
+// Whether the CancelScope of this thread, if any, has been told to stop: for waits done
+// elsewhere (a GLib main loop) that must end as promptly as these.
+bool cancel_requested();
+
 // Owns a file descriptor.
 class Fd {
 public:

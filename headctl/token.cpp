@@ -19,6 +19,13 @@ void check_token(std::string_view token)
         throw std::invalid_argument("a token is 1 to 64 printable characters without blanks");
 }
 
+bool same_secret(std::string_view a, std::string_view b)
+{
+    unsigned diff = a.size() == b.size() ? 0u : 1u;
+    for (std::size_t i = 0; i < a.size(); ++i) diff |= static_cast<unsigned>(a[i] ^ (i < b.size() ? b[i] : 0));
+    return diff == 0;
+}
+
 std::string read_token_file(const std::string& path)
 {
     std::ifstream in(path, std::ios::binary);

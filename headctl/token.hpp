@@ -14,6 +14,9 @@ inline constexpr const char* kTokenEnvironmentVariable = "GESTURECAM_HEAD_TOKEN"
 // blanks (what AUTH can carry).
 void check_token(std::string_view token);
 
+// Compares without an early exit, so timing does not reveal how much of a secret matched.
+bool same_secret(std::string_view a, std::string_view b);
+
 // The token in the file's first line (a '\r' before its '\n' ignored). Throws
 // std::invalid_argument naming the file, never its content, when it cannot be read or
 // holds no valid token.

@@ -16,12 +16,13 @@ struct SchemeInfo {
     std::string_view name;
     std::uint16_t port;
 };
-constexpr std::array<SchemeInfo, 5> kSchemes{{
+constexpr std::array<SchemeInfo, 6> kSchemes{{
     {HeadScheme::Gchp, "tcp", 5050},
     {HeadScheme::ViscaUdp, "visca-udp", 52381},
     {HeadScheme::ViscaTcp, "visca-tcp", 5678},
     {HeadScheme::ViscaSerial, "visca-serial", 0},
     {HeadScheme::PelcoD, "pelco-d", 0},
+    {HeadScheme::Onvif, "onvif", 80},
 }};
 
 constexpr std::array<std::string_view, 1> kGchpKeys{"token"};
@@ -30,6 +31,9 @@ constexpr std::array<std::string_view, 6> kPelcoKeys{"address",  "baud",      "p
 constexpr std::array<std::string_view, 10> kViscaKeys{
     "address",  "pan_units_per_deg", "tilt_units_per_deg", "pan_max_speed_dps", "tilt_max_speed_dps",
     "zoom_max", "zoom_tele_units",   "zoom_max_speed",     "timeout_ms",        "baud"};
+constexpr std::array<std::string_view, 12> kOnvifKeys{
+    "user",         "token",    "profile",           "pan_min_deg",        "pan_max_deg",    "tilt_min_deg",
+    "tilt_max_deg", "zoom_max", "pan_max_speed_dps", "tilt_max_speed_dps", "zoom_max_speed", "timeout_ms"};
 
 [[noreturn]] void fail(const std::string& message) { throw std::invalid_argument("head URI: " + message); }
 
@@ -93,7 +97,6 @@ namespace {
 // The query's key=value pairs into uri.params, each key checked against the scheme's.
 void parse_query(HeadUri& uri, std::string_view query, std::string_view scheme)
 {
-    const bool visca = uri.scheme != HeadScheme::Gchp;
     while (!query.empty()) {
         const auto amp = query.find('&');
         const std::string_view pair = query.substr(0, amp);
@@ -106,13 +109,37 @@ void parse_query(HeadUri& uri, std::string_view query, std::string_view scheme)
         if (!std::all_of(value.begin(), value.end(), is_param_char))
             fail("value of " + shown(key) + " contains a blank or reserved character");
         const auto among = [&](const auto& keys) { return std::find(keys.begin(), keys.end(), key) != keys.end(); };
-        const bool known = uri.scheme == HeadScheme::PelcoD ? among(kPelcoKeys)
-                           : visca                          ? among(kViscaKeys)
-                                                            : among(kGchpKeys);
+        bool known = false;
+        switch (uri.scheme) {
+        case HeadScheme::Gchp:
+            known = among(kGchpKeys);
+            break;
+        case HeadScheme::PelcoD:
+            known = among(kPelcoKeys);
+            break;
+        case HeadScheme::Onvif:
+            known = among(kOnvifKeys);
+            break;
+        default:
+            known = among(kViscaKeys);
+        }
         if (!known) fail("parameter " + shown(key) + " is not known for " + std::string(scheme) + "://");
         if (uri.param(key)) fail("parameter " + shown(key) + " given twice");
         uri.params.emplace_back(std::string(key), std::string(value));
     }
+}
+
+// onvif://host:port/path: the path after the authority, of plain characters.
+void split_service_path(HeadUri& uri, std::string_view& rest)
+{
+    const auto slash = rest.find('/', rest.empty() || rest.front() != '[' ? 0 : rest.find(']'));
+    if (slash == std::string_view::npos) return;
+    const std::string_view path = rest.substr(slash);
+    const bool plain = std::all_of(path.begin(), path.end(), [](char c) { return is_host_char(c) || c == '/'; });
+    if (!plain || path.find("..") != std::string_view::npos || path.size() > 256)
+        fail("service path " + shown(path) + " may contain only letters, digits, '-', '_', '.' and '/'");
+    uri.path = std::string(path);
+    rest = rest.substr(0, slash);
 }
 
 }  // namespace
@@ -126,7 +153,7 @@ HeadUri parse_head_uri(std::string_view text)
     HeadUri uri;
     const auto info = std::find_if(kSchemes.begin(), kSchemes.end(), [&](const auto& s) { return s.name == scheme; });
     if (info == kSchemes.end())
-        fail("unknown scheme " + shown(scheme) + " (tcp, visca-udp, visca-tcp, visca-serial, pelco-d)");
+        fail("unknown scheme " + shown(scheme) + " (tcp, visca-udp, visca-tcp, visca-serial, pelco-d, onvif)");
     uri.scheme = info->scheme;
     uri.port = info->port;
 
@@ -137,6 +164,7 @@ HeadUri parse_head_uri(std::string_view text)
         rest = rest.substr(0, q);
     }
     if (!rest.empty() && rest.back() == '/') rest.remove_suffix(1);
+    if (uri.scheme == HeadScheme::Onvif) split_service_path(uri, rest);
 
     std::string_view host;
     std::string_view port;
@@ -226,7 +254,7 @@ std::string to_string(const HeadUri& uri)
     if (is_serial(uri.scheme))
         out += uri.path;
     else
-        out += (v6 ? "[" + uri.host + "]" : uri.host) + ":" + std::to_string(uri.port);
+        out += (v6 ? "[" + uri.host + "]" : uri.host) + ":" + std::to_string(uri.port) + uri.path;
     char sep = '?';
     for (const auto& [k, v] : uri.params) {
         out += sep + k + "=" + v;

@@ -1,4 +1,5 @@
-// Head addresses: "tcp://host:port" (GCHP), "visca-udp://host[:port]", "visca-tcp://host[:port]".
+// Head addresses: "tcp://host:port" (GCHP), "visca-udp://host[:port]", "visca-tcp://host[:port]",
+// "onvif://host[:port][/path]".
 #pragma once
 
 #include <cstdint>
@@ -10,7 +11,7 @@
 
 namespace gc::headctl {
 
-enum class HeadScheme { Gchp, ViscaUdp, ViscaTcp, ViscaSerial, PelcoD };
+enum class HeadScheme { Gchp, ViscaUdp, ViscaTcp, ViscaSerial, PelcoD, Onvif };
 
 // Serial schemes name a device path instead of a host and port.
 inline bool is_serial(HeadScheme scheme) { return scheme == HeadScheme::ViscaSerial || scheme == HeadScheme::PelcoD; }
@@ -21,7 +22,7 @@ struct HeadUri {
     HeadScheme scheme = HeadScheme::Gchp;
     std::string host;  // a name or an address; IPv6 without its brackets
     std::uint16_t port = 0;
-    std::string path;                                         // serial schemes: the device, e.g. /dev/ttyUSB0
+    std::string path;  // serial schemes: the device, e.g. /dev/ttyUSB0; onvif: the service path, e.g. /onvif/ptz
     std::vector<std::pair<std::string, std::string>> params;  // the query, in order
 
     std::optional<std::string> param(std::string_view key) const;
@@ -35,7 +36,9 @@ std::uint16_t default_port(HeadScheme scheme);
 // Throws std::invalid_argument naming the offending part. Query keys are checked
 // against those the scheme knows (tcp: token; visca-*: address, pan_units_per_deg,
 // tilt_units_per_deg, pan_max_speed_dps, tilt_max_speed_dps, zoom_*, timeout_ms; and baud for
-// visca-serial; pelco-d: address, baud, pan_max_speed_dps, tilt_max_speed_dps, zoom_max, timeout_ms).
+// visca-serial; pelco-d: address, baud, pan_max_speed_dps, tilt_max_speed_dps, zoom_max, timeout_ms;
+// onvif: user, token (the password), profile, pan_min_deg, pan_max_deg, tilt_min_deg, tilt_max_deg,
+// zoom_max, pan_max_speed_dps, tilt_max_speed_dps, zoom_max_speed, timeout_ms).
 HeadUri parse_head_uri(std::string_view text);
 // The full URI, token included: for connecting, never for showing.
 std::string to_string(const HeadUri& uri);

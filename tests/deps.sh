@@ -8,7 +8,7 @@ GESTURECAM_PACKAGES=(
   gstreamer1.0-libav time
   libgtest-dev valgrind python3
   gobject-introspection libgirepository1.0-dev python3-gi gir1.2-gst-plugins-base-1.0
-  libcli11-dev
+  libcli11-dev libsoup-3.0-dev libxml2-dev
 )
 
 gesturecam_install_deps() {

@@ -36,8 +36,9 @@ Commands:
   preset save|recall N           store where the head is as preset N (0..127), or go back there
 URI: tcp://HOST:PORT (GCHP, default tcp://127.0.0.1:5050), visca-udp://HOST[:52381],
      visca-tcp://HOST[:5678], visca-serial:///dev/ttyUSB0?baud=9600,
-     pelco-d:///dev/ttyUSB0?address=1&baud=2400. Axes: pan, tilt, verge_l, verge_r, zoom.
-Token (GCHP): --token-file FILE (its first line), else --token, else the URI's ?token=,
+     pelco-d:///dev/ttyUSB0?address=1&baud=2400, onvif://HOST[:80][/PATH]?user=USER.
+     Axes: pan, tilt, verge_l, verge_r, zoom.
+Token (GCHP; ONVIF: the password): --token-file FILE (its first line), else --token, else the URI's ?token=,
      else GESTURECAM_HEAD_TOKEN. A token on the command line is blanked there once read.
 --json: one JSON object per line: status and watch {"t_us", "pan", "tilt", "verge_l", "verge_r",
      "pan_moving", ...}, limits one {"axis", "min", "max", "max_velocity", "max_acceleration"}

@@ -1,5 +1,6 @@
 // headsim: the simulated head server (GCHP/1 over TCP).
 #include "headctl/sim/head_server.hpp"
+#include "headctl/sim/onvif_responder.hpp"
 #include "headctl/token.hpp"
 #include "tools/cli_app.hpp"
 
@@ -31,6 +32,9 @@ Simulated motorised head serving GCHP/1 (docs/head-protocol.md).
                          request (or set GESTURECAM_HEAD_TOKEN)
   --token TOKEN          the same, given on the command line (blanked there once read, but
                          visible to other users until then: prefer the file)
+  --onvif ADDR:PORT      also serve the ONVIF PTZ service (SOAP over HTTP) on the same head;
+                         with a token, requests need a UsernameToken digest of it
+  --onvif-user USER      the ONVIF user name (default gesturecam)
   --allow-remote         listen beyond loopback without a token (anyone reaching the port
                          moves the head)
   --max-clients N        connections served at once (default 16)
@@ -45,7 +49,8 @@ Simulated motorised head serving GCHP/1 (docs/head-protocol.md).
   --verbose              log connections on stderr
   --version              the version
   -h, --help             this text
-On start it prints "listening ADDR:PORT" on stdout. SIGTERM or SIGINT stops it cleanly.
+On start it prints "listening ADDR:PORT" on stdout, and "onvif listening ADDR:PORT" with --onvif.
+SIGTERM or SIGINT stops it cleanly.
 )";
 
 double number(const char* option, std::string_view text)
@@ -57,15 +62,16 @@ double number(const char* option, std::string_view text)
     return v;
 }
 
-void parse_listen(std::string_view text, HeadServerConfig& config)
+template <class Config>
+void parse_listen(std::string_view text, Config& config, const std::string& option = "--listen")
 {
     const auto colon = text.rfind(':');
-    if (colon == std::string_view::npos || colon == 0) throw std::invalid_argument("--listen: expected ADDR:PORT");
+    if (colon == std::string_view::npos || colon == 0) throw std::invalid_argument(option + ": expected ADDR:PORT");
     std::string_view host = text.substr(0, colon);
     if (host.size() >= 2 && host.front() == '[' && host.back() == ']') host = host.substr(1, host.size() - 2);
-    const double port = number("--listen port", text.substr(colon + 1));
+    const double port = number((option + " port").c_str(), text.substr(colon + 1));
     if (port < 0 || port > 65535 || port != std::floor(port))
-        throw std::invalid_argument("--listen: port must be 0..65535");
+        throw std::invalid_argument(option + ": port must be 0..65535");
     config.host = std::string(host);
     config.port = static_cast<std::uint16_t>(port);
 }
@@ -91,6 +97,7 @@ void parse_limits(std::string_view text, HeadLimits& limits)
 // The options' texts as CLI11 read them, converted by apply().
 struct GivenText {
     std::optional<std::string> listen, token, token_file, max_clients, latency_ms, angle_error, seed, velocity_timeout;
+    std::optional<std::string> onvif, onvif_user;
     std::vector<std::string> limits;
 };
 
@@ -100,6 +107,8 @@ void add_options(CLI::App& app, HeadServerConfig& config, GivenText& t)
     CLI::Option* token = app.add_option("--token", t.token);
     app.add_option("--token-file", t.token_file)->excludes(token);
     app.add_flag("--allow-remote", config.allow_remote_without_token);
+    app.add_option("--onvif", t.onvif);
+    app.add_option("--onvif-user", t.onvif_user);
     app.add_option("--max-clients", t.max_clients);
     app.add_option("--latency-ms", t.latency_ms);
     app.add_option("--angle-error", t.angle_error);
@@ -107,6 +116,18 @@ void add_options(CLI::App& app, HeadServerConfig& config, GivenText& t)
     app.add_option("--limits", t.limits)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
     app.add_option("--velocity-timeout", t.velocity_timeout);
     app.add_flag("--verbose", config.verbose);
+}
+
+// The ONVIF responder's settings, when --onvif asks for one (after apply()).
+std::optional<OnvifResponderConfig> onvif_config(const GivenText& t, const HeadServerConfig& config)
+{
+    if (!t.onvif) return std::nullopt;
+    OnvifResponderConfig onvif;
+    parse_listen(*t.onvif, onvif, "--onvif");
+    if (t.onvif_user) onvif.user = *t.onvif_user;
+    onvif.password = config.token;
+    onvif.allow_remote_without_password = config.allow_remote_without_token;
+    return onvif;
 }
 
 // Checks and converts the texts into `config`; throws std::invalid_argument.
@@ -137,9 +158,11 @@ void apply(const GivenText& t, HeadServerConfig& config)
 }
 
 // Serves until SIGTERM or SIGINT.
-void serve(const HeadServerConfig& config)
+void serve(const HeadServerConfig& config, const std::optional<OnvifResponderConfig>& onvif_config)
 {
     HeadServer server(config);
+    std::optional<OnvifResponder> onvif;
+    if (onvif_config) onvif.emplace(*onvif_config, server);
     if (config.token.empty() && !is_loopback_address(config.host))
         std::cerr << "headsim: warning: listening on " << config.host
                   << " without a token: anyone who can reach this port can move the head\n";
@@ -148,6 +171,11 @@ void serve(const HeadServerConfig& config)
     signal(SIGPIPE, SIG_IGN);
     const bool v6 = server.host().find(':') != std::string::npos;
     std::cout << "listening " << (v6 ? "[" + server.host() + "]" : server.host()) << ":" << server.port() << std::endl;
+    if (onvif) {
+        const bool onvif_v6 = onvif->host().find(':') != std::string::npos;
+        std::cout << "onvif listening " << (onvif_v6 ? "[" + onvif->host() + "]" : onvif->host()) << ":"
+                  << onvif->port() << std::endl;
+    }
     server.run();
     g_server = nullptr;
     std::cerr << "headsim: stopped\n";
@@ -164,13 +192,15 @@ int main(int argc, char** argv)
     add_options(app, config, given);
     if (const int status = gc::cli::parse(app, argc, argv); status >= 0) return status;
     hide_secret_arguments(argc, argv);
+    std::optional<OnvifResponderConfig> onvif;
     try {
         apply(given, config);
+        onvif = onvif_config(given, config);
     } catch (const std::exception& e) {
         return gc::cli::usage_hint("headsim", e.what());
     }
     try {
-        serve(config);
+        serve(config, onvif);
     } catch (const std::invalid_argument& e) {
         std::cerr << "headsim: " << e.what() << "\n";
         return 2;

@@ -230,4 +230,11 @@ HeadState HeadModel::state(double now_s)
     return s;
 }
 
+std::vector<int> HeadModel::preset_numbers() const
+{
+    std::vector<int> out;
+    for (const auto& [number, pose] : presets_) out.push_back(number);
+    return out;
+}
+
 }  // namespace gc::headctl

@@ -9,6 +9,7 @@
 #include <deque>
 #include <map>
 #include <random>
+#include <vector>
 
 namespace gc::headctl {
 
@@ -43,6 +44,8 @@ public:
     // it is then); recalling moves there. Recalling one never saved throws std::out_of_range.
     void save_preset(int number, double now_s);
     void recall_preset(int number, double now_s);
+    // The numbers of the presets saved so far, in increasing order.
+    std::vector<int> preset_numbers() const;
 
     // Integrates the motion up to now_s (earlier times are ignored) and reports it.
     HeadState state(double now_s);

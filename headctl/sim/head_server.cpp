@@ -41,14 +41,6 @@ constexpr auto kAcceptPause = std::chrono::milliseconds(100);
 
 std::string errno_text(const char* what) { return std::string(what) + ": " + std::strerror(errno); }
 
-// Compares without an early exit, so timing does not reveal how much of a token matched.
-bool same_token(std::string_view a, std::string_view b)
-{
-    unsigned diff = a.size() == b.size() ? 0u : 1u;
-    for (std::size_t i = 0; i < a.size(); ++i) diff |= static_cast<unsigned>(a[i] ^ (i < b.size() ? b[i] : 0));
-    return diff == 0;
-}
-
 std::string peer_text(const sockaddr_storage& addr)
 {
     char text[INET6_ADDRSTRLEN] = "?";
@@ -132,6 +124,12 @@ void HeadServer::request_stop() noexcept
 {
     const char byte = 1;
     [[maybe_unused]] const ssize_t n = ::write(wake_write_.get(), &byte, 1);
+}
+
+void HeadServer::with_model(const std::function<void(HeadModel&, double)>& f)
+{
+    std::lock_guard lock(model_mutex_);
+    f(model_, now_s());
 }
 
 double HeadServer::now_s() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
@@ -370,6 +368,7 @@ void HeadServer::handle_line(Client& c, std::string_view line)
         reply(c, make_error_reply(req.id, ErrorCode::AuthRequired, "authenticate first: AUTH <token>"));
         return;
     }
+    std::lock_guard lock(model_mutex_);
     const double now = now_s();
     try {
         switch (req.command) {
@@ -426,7 +425,7 @@ void HeadServer::handle_line(Client& c, std::string_view line)
 // Checks an AUTH now; a wrong token makes the next one from that address wait.
 void HeadServer::authenticate(Client& c, const Request& auth)
 {
-    if (!same_token(auth.token, config_.token)) {
+    if (!same_secret(auth.token, config_.token)) {
         throttle_.failed(c.address, Clock::now());
         if (++c.auth_failures >= config_.max_auth_failures) c.closing = true;
         reply(c, make_error_reply(auth.id, ErrorCode::AuthFailed, "wrong token"));

@@ -13,7 +13,9 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -63,6 +65,9 @@ public:
     void run();
     // Safe from any thread and from a signal handler.
     void request_stop() noexcept;
+    // Runs `f` on the head with the server's clock (seconds), under the lock the server's own
+    // requests take: other front ends (the ONVIF responder) drive the same head from their threads.
+    void with_model(const std::function<void(HeadModel&, double now_s)>& f);
 
 private:
     struct Client;
@@ -85,6 +90,7 @@ private:
     double now_s() const;
 
     HeadServerConfig config_;
+    std::mutex model_mutex_;
     HeadModel model_;
     AuthThrottle throttle_;
     net::Fd listener_;

@@ -104,17 +104,21 @@ TEST(HeadctlCli, ZoomIsAMagnification)
     EXPECT_NE(limits.out.find("zoom     min=1.000 max=20.000"), std::string::npos) << limits.out;
 }
 
+// Whether `headctl --uri URI status` shows `text` within about 3 s.
+bool headctl_status_shows(const std::string& uri, const std::string& text)
+{
+    std::string seen;
+    for (int i = 0; i < 150 && seen.find(text) == std::string::npos; ++i) {
+        std::this_thread::sleep_for(20ms);
+        seen = run_headctl({"--uri", uri, "status"}).out;
+    }
+    return seen.find(text) != std::string::npos;
+}
+
 TEST(HeadctlCli, PresetsAreSavedAndRecalledOnTheHead)
 {
     RunningServer server;
-    const auto status_shows = [&](const std::string& text) {
-        std::string seen;
-        for (int i = 0; i < 150 && seen.find(text) == std::string::npos; ++i) {
-            std::this_thread::sleep_for(20ms);
-            seen = run_headctl({"--uri", server.uri(), "status"}).out;
-        }
-        return seen.find(text) != std::string::npos;
-    };
+    const auto status_shows = [&](const std::string& text) { return headctl_status_shows(server.uri(), text); };
     EXPECT_EQ(run_headctl({"--uri", server.uri(), "preset", "recall", "2"}).exit_code, 4);  // never saved
     EXPECT_EQ(run_headctl({"--uri", server.uri(), "move", "pan=12", "zoom=3"}).exit_code, 0);
     ASSERT_TRUE(status_shows("pan=12.000 "));
@@ -130,6 +134,27 @@ TEST(HeadctlCli, PresetsAreSavedAndRecalledOnTheHead)
     EXPECT_EQ(run_headctl({"--uri", server.uri(), "preset", "save"}).exit_code, 2);
     EXPECT_EQ(run_headctl({"--uri", server.uri(), "preset", "save", "128"}).exit_code, 2);
     EXPECT_EQ(run_headctl({"--uri", server.uri(), "preset", "keep", "1"}).exit_code, 2);
+}
+
+// The same commands over ONVIF, to the head headsim --onvif serves.
+TEST(HeadctlCli, SpeaksOnvifToTheSimulatedHead)
+{
+    RunningOnvifHead head;
+    const std::string uri = head.onvif_uri();
+    const Outcome move = run_headctl({"--uri", uri, "move", "pan=10", "tilt=5", "zoom=2"});
+    EXPECT_EQ(move.exit_code, 0) << move.err;
+    EXPECT_EQ(move.out, "ok move abs pan=10 tilt=5 zoom=2\n");
+    ASSERT_TRUE(headctl_status_shows(uri, "pan=10.000 tilt=5.000 verge_l=0.000 verge_r=0.000 zoom=2.000 "));
+    EXPECT_EQ(run_headctl({"--uri", uri, "preset", "save", "3"}).out, "ok preset save 3\n");
+    EXPECT_EQ(run_headctl({"--uri", uri, "home"}).out, "ok home\n");
+    ASSERT_TRUE(headctl_status_shows(uri, "pan=0.000 tilt=0.000 "));
+    EXPECT_EQ(run_headctl({"--uri", uri, "preset", "recall", "3"}).out, "ok preset recall 3\n");
+    EXPECT_TRUE(headctl_status_shows(uri, "pan=10.000 tilt=5.000 "));
+    EXPECT_EQ(run_headctl({"--uri", uri, "stop"}).out, "ok stop\n");
+    EXPECT_TRUE(headctl_status_shows(head.gchp_uri(), "pan=10.000 tilt=5.000 "));  // one head behind both
+    const Outcome unsaved = run_headctl({"--uri", uri, "preset", "recall", "9"});
+    EXPECT_EQ(unsaved.exit_code, 4);
+    EXPECT_NE(unsaved.err.find("GotoPreset refused (NoToken)"), std::string::npos) << unsaved.err;
 }
 
 TEST(HeadctlCli, ExitCodesTellUsageConnectionAndRefusal)

@@ -2,6 +2,7 @@
 // headsim executable's clean shutdown on SIGTERM.
 #include "test_support.hpp"
 
+#include "headctl/head_backend.hpp"
 #include "headctl/protocol.hpp"
 
 #include <fcntl.h>
@@ -335,6 +336,33 @@ TEST(HeadSim, ExecutableRefusesToListenBeyondLoopbackWithoutAToken)
     const int status = headsim.exit_status();
     EXPECT_EQ(status, 2) << "headsim listens on every interface without a token";
     EXPECT_NE(headsim.err_text().find("--allow-remote"), std::string::npos);
+}
+
+// --onvif serves the same head over ONVIF; its token is the ONVIF password.
+TEST(HeadSim, ServesOnvifOnTheSameHeadWithItsTokenAsPassword)
+{
+    const TempFile file("onvif-pass\n");
+    HeadsimProcess headsim(
+        {"--listen", "127.0.0.1:0", "--onvif", "127.0.0.1:0", "--onvif-user", "op", "--token-file", file.path});
+    const std::uint16_t gchp = headsim.listening_port();
+    const auto line = headsim.out_line();
+    ASSERT_TRUE(line && starts_with(*line, "onvif listening 127.0.0.1:")) << line.value_or("<nothing>");
+    const std::string uri = "onvif://127.0.0.1:" + line->substr(line->rfind(':') + 1) + "?user=op";
+
+    auto onvif = make_backend(parse_head_uri(uri), "onvif-pass");
+    onvif->open(net::Clock::now() + 2s);
+    HeadCommand move{CommandKind::Absolute, {}};
+    move.values.set(Axis::Pan, 12);
+    onvif->send(move, net::Clock::now() + 1s);
+    LineClient c(gchp);
+    c.line();
+    EXPECT_EQ(c.request("AUTH onvif-pass"), "OK");
+    EXPECT_TRUE(
+        closedloop_test::eventually([&] { return c.request("STATUS").find(" pan=12 ") != std::string::npos; }, 3000ms))
+        << c.request("STATUS");
+
+    auto wrong = make_backend(parse_head_uri(uri), "onvif-guess");
+    EXPECT_THROW(wrong->open(net::Clock::now() + 2s), net::NetError);
 }
 
 }  // namespace

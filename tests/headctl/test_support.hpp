@@ -5,6 +5,7 @@
 
 #include "../closedloop/running_head.hpp"
 #include "headctl/sim/head_server.hpp"
+#include "headctl/sim/onvif_responder.hpp"
 #include "headctl/net.hpp"
 
 #include <gtest/gtest.h>
@@ -16,8 +17,10 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -43,6 +46,59 @@ private:
         return config;
     }
 };
+
+// A simulated head serving GCHP and ONVIF (headsim --onvif) on 127.0.0.1, each on any free
+// port, from its own threads for the lifetime of the object.
+class RunningOnvifHead {
+public:
+    explicit RunningOnvifHead(OnvifResponderConfig onvif = {})
+        : server_(gchp_config()), onvif_(free_port(onvif), server_)
+    {
+        thread_ = std::thread([this] { server_.run(); });
+    }
+    ~RunningOnvifHead()
+    {
+        server_.request_stop();
+        thread_.join();
+    }
+    std::string onvif_uri(const std::string& query = "") const
+    {
+        return "onvif://127.0.0.1:" + std::to_string(onvif_.port()) + query;
+    }
+    std::string gchp_uri() const { return "tcp://127.0.0.1:" + std::to_string(server_.port()); }
+    std::uint16_t onvif_port() const { return onvif_.port(); }
+    OnvifResponder& responder() { return onvif_; }
+
+private:
+    static HeadServerConfig gchp_config()
+    {
+        HeadServerConfig c;
+        c.port = 0;
+        return c;
+    }
+    static OnvifResponderConfig free_port(OnvifResponderConfig c)
+    {
+        c.port = 0;
+        return c;
+    }
+    HeadServer server_;
+    OnvifResponder onvif_;
+    std::thread thread_;
+};
+
+// The longest of `count` calls of `call(i)`, in microseconds: what a caller that must never
+// wait on the network waited at worst.
+inline double longest_call_us(int count, const std::function<void(int)>& call)
+{
+    double worst_us = 0.0;
+    for (int i = 0; i < count; ++i) {
+        const auto start = std::chrono::steady_clock::now();
+        call(i);
+        worst_us = std::max(
+            worst_us, std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count());
+    }
+    return worst_us;
+}
 
 // A program started with its output on pipes, whose read ends are non-blocking.
 struct Spawned {
@@ -136,10 +192,13 @@ private:
 };
 
 // Accepts connections on 127.0.0.1, sends each one `script` and closes it: a head that
-// connects and then fails, or one that sends a line of a chosen length.
+// connects and then fails, or one that sends a line of a chosen length. With `hold_open` it
+// sends the script a moment after accepting (once a request has arrived, unread) and keeps
+// the connection open: a camera that answers garbage, or nothing when the script is empty.
 class ScriptedServer {
 public:
-    explicit ScriptedServer(std::string script) : script_(std::move(script))
+    explicit ScriptedServer(std::string script, bool hold_open = false)
+        : script_(std::move(script)), hold_open_(hold_open)
     {
         listener_ = net::Fd(::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0));
         sockaddr_in a{};
@@ -165,17 +224,21 @@ public:
 private:
     void run()
     {
+        std::vector<net::Fd> held;
         while (!stop_) {
             pollfd p{listener_.get(), POLLIN, 0};
             if (::poll(&p, 1, 20) <= 0) continue;
             net::Fd c(::accept4(listener_.get(), nullptr, nullptr, SOCK_CLOEXEC));
             if (!c) continue;
             ++accepted_;
+            if (hold_open_) std::this_thread::sleep_for(20ms);
             [[maybe_unused]] const ssize_t n = ::send(c.get(), script_.data(), script_.size(), MSG_NOSIGNAL);
+            if (hold_open_) held.push_back(std::move(c));
         }
     }
 
     std::string script_;
+    bool hold_open_ = false;
     net::Fd listener_;
     std::uint16_t port_ = 0;
     std::atomic<bool> stop_{false};

@@ -1,4 +1,5 @@
 // Head URIs: the three schemes, defaults, IPv6, query parameters and every rejection.
+#include "headctl/onvif_backend.hpp"
 #include "headctl/uri.hpp"
 #include "headctl/visca_backend.hpp"
 
@@ -34,6 +35,28 @@ TEST(HeadUri, ParsesIpv6AndQueryAndRoundTrips)
     EXPECT_EQ(to_string(u), "visca-udp://[::1]:1259?address=2&pan_units_per_deg=-14.4");
     EXPECT_EQ(parse_head_uri(to_string(u)).params, u.params);
     EXPECT_EQ(parse_head_uri("tcp://h:1?token=abc").param("token"), "abc");
+}
+
+TEST(HeadUri, OnvifTakesAServicePathAndItsSettings)
+{
+    const HeadUri u = parse_head_uri("onvif://[::1]:8080/onvif/PTZ?user=op&token=pw&pan_min_deg=0&pan_max_deg=350");
+    EXPECT_EQ(u.scheme, HeadScheme::Onvif);
+    EXPECT_EQ(u.host, "::1");
+    EXPECT_EQ(u.port, 8080);
+    EXPECT_EQ(u.path, "/onvif/PTZ");
+    EXPECT_EQ(parse_head_uri(to_string(u)).path, "/onvif/PTZ");
+    EXPECT_EQ(parse_head_uri("onvif://camera").port, 80);
+    EXPECT_EQ(parse_head_uri("onvif://camera").path, "");
+    const OnvifSettings s = OnvifSettings::from_uri(u);
+    EXPECT_EQ(s.user, "op");
+    EXPECT_DOUBLE_EQ(s.pan_min_deg, 0.0);
+    EXPECT_DOUBLE_EQ(s.pan_max_deg, 350.0);
+    EXPECT_DOUBLE_EQ(s.tilt_max_deg, 45.0);
+    EXPECT_EQ(redact_uri("onvif://camera:80/x?user=op&token=pw"), "onvif://camera:80/x?user=op&token=***");
+    EXPECT_THROW(parse_head_uri("onvif://camera/../etc"), std::invalid_argument);
+    EXPECT_THROW(parse_head_uri("onvif://camera?address=1"), std::invalid_argument);
+    EXPECT_THROW(OnvifSettings::from_uri(parse_head_uri("onvif://camera?pan_min_deg=10&pan_max_deg=-10")),
+                 std::invalid_argument);
 }
 
 TEST(HeadUri, RejectsMalformedUris)
