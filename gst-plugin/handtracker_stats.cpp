@@ -11,10 +11,17 @@ std::optional<GstClockTime> TrackerStats::frame_processed(GstClockTime took, boo
     tracked_ += tracked ? 1 : 0;
     recent_.push_back(took);
     if (recent_.size() > kWindow) recent_.pop_front();
-    // Whole milliseconds, so that small wobbles do not post a latency message each time.
+    // Whole milliseconds. A longer frame raises the latency at once, never under-reporting it,
+    // with a quarter's headroom so that a slowly growing maximum does not post a latency
+    // message on every frame; it comes down only when the longest took under three quarters.
     const GstClockTime longest = *std::max_element(recent_.begin(), recent_.end());
-    const GstClockTime latency = (longest + GST_MSECOND - 1) / GST_MSECOND * GST_MSECOND;
-    if (latency * 4 > reported_ * 5 || latency * 4 < reported_ * 3) {
+    const auto whole_ms = [](GstClockTime t) { return (t + GST_MSECOND - 1) / GST_MSECOND * GST_MSECOND; };
+    const GstClockTime latency = whole_ms(longest);
+    if (latency > reported_) {
+        reported_ = whole_ms(longest + longest / 4);
+        return reported_;
+    }
+    if (latency * 4 < reported_ * 3) {
         reported_ = latency;
         return latency;
     }

@@ -50,8 +50,10 @@ std::string scene_sources(const std::string& extra)
 TEST(ScenePipeline, MetaAndMessagesFollowTheGroundTruth)
 {
     gc::test::init_gstreamer();
+    // dwell=60: no pointing is held long enough to pick a target in these 3 s, so the attended
+    // view keeps framing the hand and every tracked frame carries its region of interest.
     gc::test::ElementPtr pipeline =
-        gc::test::parse_pipeline(scene_sources("") + "handtracker name=t draw=true output=attended ! "
+        gc::test::parse_pipeline(scene_sources("") + "handtracker name=t draw=true output=attended dwell=60 ! "
                                                      "video/x-raw,width=320,height=240 ! fakesink sync=false");
     ASSERT_TRUE(pipeline);
     Captured captured;
