@@ -116,12 +116,13 @@ TEST_P(OutputFormat, MatchesVideoconvert)
               1)
         << GetParam();
     const bool yuv = std::string(GetParam()) == "I420" || std::string(GetParam()) == "NV12";
-    if (yuv)
+    if (yuv) {
         EXPECT_LE(difference(std::string("video/x-raw,format=BGR,") + kSize,
                              "handtracker output=left ! " + format + ",colorimetry=bt709 ! videoconvert",
                              "videoconvert ! " + format + ",colorimetry=bt709 ! videoconvert"),
                   1)
             << GetParam() << " bt709";
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(Handtracker, OutputFormat,

@@ -135,7 +135,7 @@ TEST(HeadSim, MisbehavingClientsDoNotDisturbAGoodOne)
     double worst_ms = 0.0;
     for (int i = 0; i < 100; ++i) {
         const auto start = std::chrono::steady_clock::now();
-        const std::string reply = good.request("#" + std::to_string(i) + " STATUS");
+        const std::string reply = good.request(std::string("#") + std::to_string(i) + " STATUS");
         worst_ms = std::max(
             worst_ms, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
         ASSERT_TRUE(starts_with(reply, "OK #" + std::to_string(i) + " STATE ")) << reply;
