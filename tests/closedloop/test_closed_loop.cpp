@@ -25,9 +25,9 @@ namespace gc {
 namespace {
 
 using namespace std::chrono_literals;
-using closedloop_test::eventually;
-using closedloop_test::loopback_head;
-using closedloop_test::RunningHead;
+using loopback::eventually;
+using loopback::loopback_head;
+using loopback::RunningHead;
 using headctl::HeadAtCapture;
 using headctl::HeadLink;
 using headctl::HeadLinkConfig;

@@ -1,4 +1,5 @@
-// The simulated head served on 127.0.0.1 from its own thread, for the closed-loop tests.
+// The simulated head served on 127.0.0.1 from its own thread, for the closed-loop tests and
+// the studies that steer it in real time.
 #pragma once
 
 #include "headctl/sim/head_server.hpp"
@@ -9,7 +10,7 @@
 #include <string>
 #include <thread>
 
-namespace gc::closedloop_test {
+namespace gc::loopback {
 
 class RunningHead {
 public:
@@ -29,6 +30,7 @@ public:
         thread_.join();
     }
     std::uint16_t port() const { return server_->port(); }
+    headctl::HeadServer& server() { return *server_; }
     std::string uri() const { return "tcp://127.0.0.1:" + std::to_string(port()); }
 
 private:
@@ -57,4 +59,4 @@ inline bool eventually(const std::function<bool()>& condition, std::chrono::mill
     return condition();
 }
 
-}  // namespace gc::closedloop_test
+}  // namespace gc::loopback
