@@ -23,13 +23,25 @@ namespace {
 constexpr const char* kRawCaps = "video/x-raw, format = (string) { " GC_INPUT_FORMATS " }";
 
 // The first error on the bus as text ("" when none); pops it.
-std::string pop_error(GstBus* bus)
+// The first error on the bus, waiting up to `wait` for it (an element that fails the state
+// change may post its error just after). "Internal data stream error." says little: then the
+// debug text's last line, or "no video stream" when the stream found nothing to link to.
+std::string pop_error(GstBus* bus, GstClockTime wait = 0)
 {
-    GstMessage* m = gst_bus_pop_filtered(bus, GST_MESSAGE_ERROR);
+    GstMessage* m = gst_bus_timed_pop_filtered(bus, wait, GST_MESSAGE_ERROR);
     if (!m) return "";
     GError* err = nullptr;
-    gst_message_parse_error(m, &err, nullptr);
+    gchar* debug = nullptr;
+    gst_message_parse_error(m, &err, &debug);
     std::string text = err ? err->message : "unknown error";
+    if (debug && err && g_error_matches(err, GST_STREAM_ERROR, GST_STREAM_ERROR_FAILED)) {
+        const std::string d = debug;
+        if (d.find("not-linked") != std::string::npos)
+            text = "no video stream";  // decodebin found streams, none of them video
+        else
+            text.append(" ").append(d.substr(d.find_last_of('\n') + 1));
+    }
+    g_free(debug);
     g_clear_error(&err);
     gst_message_unref(m);
     return text;
@@ -137,7 +149,7 @@ void GstFrameReader::Pipeline::preroll()
 {
     gst_element_set_state(pipeline, GST_STATE_PAUSED);
     if (gst_element_get_state(pipeline, nullptr, nullptr, GST_CLOCK_TIME_NONE) == GST_STATE_CHANGE_FAILURE) {
-        const std::string why = pop_error(bus);
+        const std::string why = pop_error(bus, GST_SECOND);
         throw std::runtime_error("cannot be decoded" + (why.empty() ? std::string() : " (" + why + ")"));
     }
     read_caps();

@@ -376,6 +376,34 @@ TEST_F(TrackTool, ProgressLinesOnStderr)
 
 namespace {
 
+// A WAV file of one second of silence at 8 kHz, 16-bit mono: a stream, but not a video.
+std::string silent_wav()
+{
+    auto le = [](std::uint32_t v, int bytes) {
+        std::string out;
+        for (int i = 0; i < bytes; ++i) out.push_back(static_cast<char>((v >> (8 * i)) & 0xff));
+        return out;
+    };
+    const std::uint32_t data_bytes = 16000;
+    return "RIFF" + le(36 + data_bytes, 4) + "WAVEfmt " + le(16, 4) + le(1, 2) + le(1, 2) + le(8000, 4) +
+           le(16000, 4) + le(2, 2) + le(16, 2) + "data" + le(data_bytes, 4) + std::string(data_bytes, '\0');
+}
+
+// What GStreamer found wrong is part of the error: a file of no known type, a stream that is
+// not video. Before, both said "cannot be decoded" and nothing more.
+TEST_F(TrackTool, InputsThatAreNotVideoSayWhy)
+{
+    write_bytes(dir_ / "text.mp4", "this is not a video\n");
+    write_bytes(dir_ / "silence.wav", silent_wav());
+    const RunResult text = run("--left " + quoted((dir_ / "text.mp4").string()));
+    EXPECT_EQ(text.status, 1) << text.err;
+    EXPECT_NE(text.err.find("cannot be decoded (Could not determine type of stream.)"), std::string::npos)
+        << text.err;
+    const RunResult audio = run("--left " + quoted((dir_ / "silence.wav").string()));
+    EXPECT_EQ(audio.status, 1) << audio.err;
+    EXPECT_NE(audio.err.find("cannot be decoded (no video stream)"), std::string::npos) << audio.err;
+}
+
 TEST_F(TrackTool, UndecodableImageIsAnErrorUnlessSkipped)
 {
     const std::string mono = "--left " + quoted(pattern("corrupt")) + " --particles 50";
