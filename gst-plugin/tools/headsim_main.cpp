@@ -1,4 +1,4 @@
-// headsim: the simulated head server (GCHP/1 over TCP; ONVIF PTZ and VISCA over IP on request).
+// headsim: the simulated head server (GCHP/1 over TCP; ONVIF PTZ and VISCA on request).
 #include "headctl/sim/head_server.hpp"
 #include "headctl/sim/onvif_responder.hpp"
 #include "headctl/sim/visca_responder.hpp"
@@ -36,8 +36,9 @@ Simulated motorised head serving GCHP/1 (docs/head-protocol.md).
   --onvif ADDR:PORT      also serve the ONVIF PTZ service (SOAP over HTTP) on the same head;
                          with a token, requests need a UsernameToken digest of it
   --onvif-user USER      the ONVIF user name (default gesturecam)
-  --visca ADDR:PORT      also serve VISCA over IP (UDP) on the same head: 16 units per degree,
-                         zoom position 0x4000 at the largest magnification; no authentication
+  --visca ADDR:PORT      also serve VISCA over IP (UDP) and raw VISCA over TCP on that port of
+                         the same head: 16 units per degree, zoom position 0x4000 at the
+                         largest magnification; no authentication
   --allow-remote         listen beyond loopback without a token, and serve VISCA there (anyone
                          reaching the port moves the head)
   --max-clients N        connections served at once (default 16)

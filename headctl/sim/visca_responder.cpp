@@ -13,9 +13,11 @@ namespace gc::headctl {
 namespace {
 
 constexpr int kCommandSocket = 1;  // the socket a command's ACK and completion name
+constexpr int kMessageLengthError = 0x01;
 constexpr int kSyntaxError = 0x02;
 constexpr int kNotExecutable = 0x41;
 constexpr int kPollMs = 50;  // how soon the thread sees a stop request
+constexpr std::size_t kMaxStreams = 4;
 
 double sign(visca::Direction d) { return static_cast<double>(static_cast<int>(d)); }
 
@@ -155,23 +157,50 @@ std::vector<visca::Bytes> answer_visca_datagram(HeadModel& model, double now, st
     return out;
 }
 
+namespace {
+
+// A socket of `type` bound to host:port, non-blocking; invalid (errno set) when binding fails.
+net::Fd bound_socket(int type, const std::string& host, std::uint16_t port)
+{
+    sockaddr_storage addr{};
+    const socklen_t len = numeric_address(host, port, addr);
+    net::Fd fd(::socket(addr.ss_family, type | SOCK_CLOEXEC | SOCK_NONBLOCK, 0));
+    const int one = 1;
+    if (fd && type == SOCK_STREAM) ::setsockopt(fd.get(), SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
+    if (fd && ::bind(fd.get(), reinterpret_cast<sockaddr*>(&addr), len) != 0) fd.reset();
+    return fd;
+}
+
+}  // namespace
+
 ViscaResponder::ViscaResponder(const ViscaResponderConfig& config, HeadServer& head) : config_(config), head_(head)
 {
     if (config_.units.units_per_deg <= 0.0 || config_.units.zoom_tele_units < 1 ||
         config_.units.zoom_tele_units > 0xFFFF)
         throw std::invalid_argument("VISCA units must be positive (zoom positions up to 65535)");
     sockaddr_storage addr{};
-    const socklen_t len = numeric_address(config_.host, config_.port, addr);
+    numeric_address(config_.host, config_.port, addr);  // throws for a host that is not numeric
     if (!config_.allow_remote && !is_loopback_address(config_.host))
         throw std::invalid_argument("refusing to serve VISCA on " + config_.host +
                                     ": VISCA has no authentication, anyone who reaches it could move the head "
                                     "(allow it: headsim --allow-remote)");
-    socket_ = net::Fd(::socket(addr.ss_family, SOCK_DGRAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0));
-    if (!socket_ || ::bind(socket_.get(), reinterpret_cast<sockaddr*>(&addr), len) != 0)
-        throw std::runtime_error("cannot bind VISCA " + config_.host + ":" + std::to_string(config_.port) + ": " +
-                                 std::strerror(errno));
-    port_ = bound_port(socket_.get());
+    bind_sockets();
     thread_ = std::thread([this] { serve(); });
+}
+
+// UDP first; TCP on the port UDP got. Any free port may be taken for TCP: then try another.
+void ViscaResponder::bind_sockets()
+{
+    for (int attempt = 0;; ++attempt) {
+        udp_ = bound_socket(SOCK_DGRAM, config_.host, config_.port);
+        if (!udp_) break;
+        port_ = bound_port(udp_.get());
+        listener_ = bound_socket(SOCK_STREAM, config_.host, port_);
+        if (listener_ && ::listen(listener_.get(), 4) == 0) return;
+        if (config_.port != 0 || attempt == 8) break;
+    }
+    throw std::runtime_error("cannot bind VISCA " + config_.host + ":" + std::to_string(config_.port) + ": " +
+                             std::strerror(errno));
 }
 
 ViscaResponder::~ViscaResponder()
@@ -180,25 +209,84 @@ ViscaResponder::~ViscaResponder()
     if (thread_.joinable()) thread_.join();
 }
 
+std::vector<visca::Bytes> ViscaResponder::answer(std::span<const std::uint8_t> message)
+{
+    std::vector<visca::Bytes> replies;
+    head_.with_model([&](HeadModel& model, double now) { replies = answer_visca(model, now, message, config_.units); });
+    return replies;
+}
+
 void ViscaResponder::serve()
 {
-    std::array<std::uint8_t, 512> buffer{};
+    std::vector<pollfd> polled;
     while (!stop_) {
-        pollfd p{socket_.get(), POLLIN, 0};
-        if (::poll(&p, 1, kPollMs) <= 0) continue;
-        sockaddr_storage from{};
-        socklen_t from_len = sizeof from;
-        const ssize_t n =
-            ::recvfrom(socket_.get(), buffer.data(), buffer.size(), 0, reinterpret_cast<sockaddr*>(&from), &from_len);
-        if (n <= 0) continue;
-        std::vector<visca::Bytes> replies;
-        head_.with_model([&](HeadModel& model, double now) {
-            replies = answer_visca_datagram(model, now, std::span<const std::uint8_t>(buffer.data(), n), config_.units);
-        });
-        // A peer that cannot take a reply loses it, as over any UDP link.
-        for (const visca::Bytes& r : replies)
-            ::sendto(socket_.get(), r.data(), r.size(), MSG_DONTWAIT, reinterpret_cast<sockaddr*>(&from), from_len);
+        polled = {{udp_.get(), POLLIN, 0}, {listener_.get(), POLLIN, 0}};
+        for (const Stream& s : streams_) polled.push_back({s.fd.get(), POLLIN, 0});
+        if (::poll(polled.data(), polled.size(), kPollMs) <= 0) continue;
+        if (polled[0].revents) serve_datagram();
+        // Streams before accepting, while the poll set still matches them.
+        for (std::size_t i = streams_.size(); i-- > 0;)
+            if (polled[2 + i].revents && !serve_stream(streams_[i])) streams_.erase(streams_.begin() + i);
+        if (polled[1].revents) accept_stream();
     }
+}
+
+void ViscaResponder::serve_datagram()
+{
+    std::array<std::uint8_t, 512> buffer{};
+    sockaddr_storage from{};
+    socklen_t from_len = sizeof from;
+    const ssize_t n =
+        ::recvfrom(udp_.get(), buffer.data(), buffer.size(), 0, reinterpret_cast<sockaddr*>(&from), &from_len);
+    if (n <= 0) return;
+    std::vector<visca::Bytes> replies;
+    head_.with_model([&](HeadModel& model, double now) {
+        replies = answer_visca_datagram(model, now, std::span<const std::uint8_t>(buffer.data(), n), config_.units);
+    });
+    // A peer that cannot take a reply loses it, as over any UDP link.
+    for (const visca::Bytes& r : replies)
+        ::sendto(udp_.get(), r.data(), r.size(), MSG_DONTWAIT, reinterpret_cast<sockaddr*>(&from), from_len);
+}
+
+// A camera serves few TCP peers: beyond kMaxStreams the one quiet the longest makes way.
+void ViscaResponder::accept_stream()
+{
+    net::Fd fd(::accept4(listener_.get(), nullptr, nullptr, SOCK_CLOEXEC | SOCK_NONBLOCK));
+    if (!fd) return;
+    if (streams_.size() >= kMaxStreams)
+        streams_.erase(std::min_element(streams_.begin(), streams_.end(), [](const Stream& a, const Stream& b) {
+            return a.last_active < b.last_active;
+        }));
+    streams_.push_back(Stream{std::move(fd), {}, false, std::chrono::steady_clock::now()});
+}
+
+bool ViscaResponder::serve_stream(Stream& s)
+{
+    std::array<std::uint8_t, 256> buffer{};
+    const ssize_t n = ::recv(s.fd.get(), buffer.data(), buffer.size(), 0);
+    if (n == 0 || (n < 0 && errno != EAGAIN && errno != EINTR)) return false;
+    if (n < 0) return true;
+    s.last_active = std::chrono::steady_clock::now();
+    std::vector<visca::Bytes> replies;
+    for (std::uint8_t byte : std::span<const std::uint8_t>(buffer.data(), static_cast<std::size_t>(n))) {
+        if (!s.discarding) s.input.push_back(byte);
+        if (byte == 0xFF && s.discarding) {
+            s.discarding = false;
+        } else if (byte == 0xFF) {
+            for (visca::Bytes& r : answer(s.input)) replies.push_back(std::move(r));
+            s.input.clear();
+        } else if (s.input.size() >= visca::kMaxMessageSize) {  // no end within 16 bytes
+            replies.push_back(visca::error_reply(1, 0, kMessageLengthError));
+            s.input.clear();
+            s.discarding = true;
+        }
+    }
+    // Replies are a few bytes: one that does not fit the socket's buffer means the peer
+    // reads nothing, and it is dropped rather than waited for.
+    for (const visca::Bytes& r : replies)
+        if (::send(s.fd.get(), r.data(), r.size(), MSG_DONTWAIT | MSG_NOSIGNAL) != static_cast<ssize_t>(r.size()))
+            return false;
+    return true;
 }
 
 }  // namespace gc::headctl

@@ -1,13 +1,14 @@
-// The simulated head as a VISCA-over-IP camera (UDP, Sony's 8-byte header): a thread of its
-// own answers pan-tilt, lens and memory messages by driving the same HeadModel as a
-// HeadServer. VISCA has no authentication, so only loopback is served unless the
-// configuration says otherwise.
+// The simulated head as a VISCA camera: VISCA over IP (UDP, Sony's 8-byte header) and raw
+// VISCA over TCP on the same port number. A thread of its own answers pan-tilt, lens and
+// memory messages by driving the same HeadModel as a HeadServer. VISCA has no
+// authentication, so only loopback is served unless the configuration says otherwise.
 #pragma once
 
 #include "headctl/sim/head_server.hpp"
 #include "headctl/visca.hpp"
 
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -25,7 +26,7 @@ struct ViscaUnits {
 
 struct ViscaResponderConfig {
     std::string host = "127.0.0.1";  // numeric IPv4 or IPv6 address to bind
-    std::uint16_t port = 52381;      // 0 = any free port
+    std::uint16_t port = 52381;      // UDP and TCP; 0 = any free port (the same for both)
     // Anyone who reaches the port moves the head: beyond loopback only when this says so.
     bool allow_remote = false;
     ViscaUnits units;
@@ -53,11 +54,26 @@ public:
     const std::string& host() const { return config_.host; }
 
 private:
+    // One TCP connection: its unfinished message, or the rest of an over-long one to drop.
+    struct Stream {
+        net::Fd fd;
+        visca::Bytes input;
+        bool discarding = false;
+        std::chrono::steady_clock::time_point last_active;
+    };
+
+    void bind_sockets();
     void serve();
+    void serve_datagram();
+    void accept_stream();
+    bool serve_stream(Stream& stream);  // false: close it
+    std::vector<visca::Bytes> answer(std::span<const std::uint8_t> message);
 
     ViscaResponderConfig config_;
     HeadServer& head_;
-    net::Fd socket_;
+    net::Fd udp_;
+    net::Fd listener_;
+    std::vector<Stream> streams_;  // the serving thread's only
     std::uint16_t port_ = 0;
     std::atomic<bool> stop_{false};
     std::thread thread_;

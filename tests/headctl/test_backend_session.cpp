@@ -1,5 +1,5 @@
 // One scripted session through the backend interface leaves the same head state over
-// headsim's GCHP, ONVIF and VISCA-over-IP responders; the VISCA responder's own answers; and
+// headsim's GCHP, ONVIF and VISCA (over IP and over TCP) responders; the VISCA responder's own answers; and
 // silent or garbage cameras of every protocol, which must fail a request by its timeout and
 // never make the client's callers wait.
 #include "session_support.hpp"
@@ -102,17 +102,19 @@ std::pair<std::string, double> inquiry_failure(HeadBackend& head)
 
 TEST(BackendSession, TheSameSessionLeavesTheSameStateOverGchpOnvifAndVisca)
 {
-    RunningSimHead for_gchp, for_onvif, for_visca;
+    RunningSimHead for_gchp, for_onvif, for_visca, for_visca_tcp;
     const HeadState gchp = run_session(for_gchp.gchp_uri());
     const HeadState onvif = run_session(for_onvif.onvif_uri());
     const HeadState visca = run_session(for_visca.visca_uri());
-    for (const auto& [name, s] : {std::pair{"gchp", gchp}, {"onvif", onvif}, {"visca", visca}})
-        std::printf("%-5s pan %.4f tilt %.4f zoom %.5f\n", name, s.pose.pan_deg, s.pose.tilt_deg, s.pose.zoom);
+    const HeadState visca_tcp = run_session(for_visca_tcp.visca_uri("visca-tcp"));
+    for (const auto& [name, s] :
+         {std::pair{"gchp", gchp}, {"onvif", onvif}, {"visca-udp", visca}, {"visca-tcp", visca_tcp}})
+        std::printf("%-9s pan %.4f tilt %.4f zoom %.5f\n", name, s.pose.pan_deg, s.pose.tilt_deg, s.pose.zoom);
     expect_pose(gchp.pose, 30, -10, 4);
-    expect_pose(onvif.pose, gchp.pose.pan_deg, gchp.pose.tilt_deg, gchp.pose.zoom);
-    expect_pose(visca.pose, gchp.pose.pan_deg, gchp.pose.tilt_deg, gchp.pose.zoom);
-    EXPECT_EQ(onvif.moving, gchp.moving);
-    EXPECT_EQ(visca.moving, gchp.moving);
+    for (const HeadState& other : {onvif, visca, visca_tcp}) {
+        expect_pose(other.pose, gchp.pose.pan_deg, gchp.pose.tilt_deg, gchp.pose.zoom);
+        EXPECT_EQ(other.moving, gchp.moving);
+    }
     // The VISCA session moved the head itself: its GCHP side sees the same pose.
     expect_pose(settled(*opened(for_visca.gchp_uri())).pose, 30, -10, 4);
 }
@@ -183,6 +185,34 @@ TEST(ViscaResponder, RefusesWhatTheHeadCannotDoAndAnswersUnknownMessagesWithASyn
     EXPECT_TRUE(answer_visca_datagram(model, 0.0, truncated, ViscaUnits{}).empty());
 }
 
+// Over TCP a message without its end within 16 bytes is a length error, and the stream is
+// read again from the next FF on.
+TEST(ViscaResponder, AnOverlongTcpMessageIsALengthErrorAndTheStreamCarriesOn)
+{
+    RunningSimHead sim;
+    const std::uint16_t port = parse_head_uri(sim.visca_uri("visca-tcp")).port;
+    net::Fd fd = connect_from("127.0.0.1", port);
+    Bytes sent(20, 0x01);
+    sent.push_back(0xFF);
+    const Bytes inquiry = visca::pan_tilt_position_inquiry(1);
+    sent.insert(sent.end(), inquiry.begin(), inquiry.end());
+    net::send_all(fd.get(), std::span<const std::uint8_t>(sent), net::Clock::now() + 1s);
+    Bytes got;
+    const Bytes expected = [] {
+        Bytes e = visca::error_reply(1, 0, 0x01);
+        const Bytes position = visca::position_reply(1, 0, 0);
+        e.insert(e.end(), position.begin(), position.end());
+        return e;
+    }();
+    std::array<std::uint8_t, 64> buffer{};
+    while (got.size() < expected.size()) {
+        const auto n = net::receive_some(fd.get(), buffer, net::Clock::now() + 2s);
+        if (!n) break;
+        got.insert(got.end(), buffer.begin(), buffer.begin() + static_cast<std::ptrdiff_t>(*n));
+    }
+    EXPECT_EQ(got, expected);
+}
+
 TEST(ViscaResponder, ServesBeyondLoopbackOnlyWhenAllowed)
 {
     HeadServerConfig gchp;
@@ -214,19 +244,23 @@ TEST(ViscaPeers, ASilentCameraFailsTheConnectionByItsDeadline)
 
 // Cameras that take the connection and then answer nothing, or garbage: each request fails by
 // the 200 ms reply timeout (the bound leaves room for a loaded machine), long before the
-// caller's 30 s deadline.
-TEST(ViscaPeers, SilenceOrGarbageAfterTheResetFailsARequestByTheReplyTimeout)
+// caller's 30 s deadline, or at once when what came cannot be a reply.
+TEST(ViscaPeers, SilenceOrGarbageAfterConnectingFailsARequestByTheReplyTimeout)
 {
     HostileViscaPeer mute(true, say_nothing());
     HostileViscaPeer junk(true, [](std::uint32_t) { return std::vector<Bytes>{Bytes{0x01, 0x11, 0x00, 0x09, 0xFF}}; });
     HostileViscaPeer wrong(true, [](std::uint32_t sequence) {
         return std::vector<Bytes>{visca::wrap_ip(visca::kIpReply, sequence, Bytes{0x12, 0x34, 0xFF})};
     });
-    const std::string query = "?timeout_ms=200";
-    for (const auto& [peer, expected] : {std::pair{&mute, "did not answer in time"},
-                                         {&junk, "did not answer in time"},
-                                         {&wrong, "has a bad header byte"}}) {
-        auto head = opened(peer->uri(query));
+    ScriptedServer mute_tcp("", true);
+    ScriptedServer junk_tcp(std::string(20, 'x'), true);
+    const std::string tcp = "visca-tcp://127.0.0.1:";
+    for (const auto& [uri, expected] : {std::pair{mute.uri(), "did not answer in time"},
+                                        {junk.uri(), "did not answer in time"},
+                                        {wrong.uri(), "has a bad header byte"},
+                                        {tcp + std::to_string(mute_tcp.port()), "did not answer in time"},
+                                        {tcp + std::to_string(junk_tcp.port()), "sent an unterminated message"}}) {
+        auto head = opened(uri + "?timeout_ms=200");
         const auto [error, ms] = inquiry_failure(*head);
         std::printf("%s after %.0f ms\n", error.c_str(), ms);
         EXPECT_NE(error.find(expected), std::string::npos) << error;

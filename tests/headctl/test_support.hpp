@@ -48,8 +48,7 @@ private:
     }
 };
 
-// A simulated head serving GCHP, ONVIF and VISCA over IP (headsim --onvif --visca) on
-// 127.0.0.1, each on any free port, from its own threads for the lifetime of the object.
+// A simulated head serving GCHP, ONVIF and VISCA (headsim --onvif --visca) on 127.0.0.1, each on any free port, from its own threads for the lifetime of the object.
 class RunningSimHead {
 public:
     explicit RunningSimHead(OnvifResponderConfig onvif = {})
@@ -67,13 +66,13 @@ public:
         return "onvif://127.0.0.1:" + std::to_string(onvif_.port()) + query;
     }
     std::string gchp_uri() const { return "tcp://127.0.0.1:" + std::to_string(server_.port()); }
-    // The VISCA backend's URI naming the head's largest magnification and top speeds, so that
+    // The VISCA backend's URI (visca-udp or visca-tcp) naming the head's largest magnification and top speeds, so that
     // zoom positions and drive speed codes mean the same at both ends.
-    std::string visca_uri() const
+    std::string visca_uri(const std::string& scheme = "visca-udp") const
     {
         const HeadLimits l = default_simulated_limits();
         const auto text = [](double v) { return std::to_string(v); };
-        return "visca-udp://127.0.0.1:" + std::to_string(visca_.port()) + "?zoom_max=" + text(l[Axis::Zoom].max_deg) +
+        return scheme + "://127.0.0.1:" + std::to_string(visca_.port()) + "?zoom_max=" + text(l[Axis::Zoom].max_deg) +
                "&zoom_max_speed=" + text(l[Axis::Zoom].max_velocity_dps) +
                "&pan_max_speed_dps=" + text(l[Axis::Pan].max_velocity_dps) +
                "&tilt_max_speed_dps=" + text(l[Axis::Tilt].max_velocity_dps);
