@@ -67,6 +67,23 @@ std::string hex(std::span<const std::uint8_t> bytes)
     return out;
 }
 
+// 3..16 bytes, one FF and that at the end.
+void check_framing(std::span<const std::uint8_t> m, const std::string& what)
+{
+    if (m.size() < 3) throw ViscaError("VISCA " + what + " of " + std::to_string(m.size()) + " bytes is too short");
+    if (m.size() > kMaxMessageSize) throw ViscaError("VISCA " + what + " longer than 16 bytes");
+    if (m.back() != 0xFF) throw ViscaError("VISCA " + what + " [" + hex(m) + "] does not end in FF");
+    if (std::find(m.begin(), m.end() - 1, 0xFF) != m.end() - 1)
+        throw ViscaError("VISCA " + what + " [" + hex(m) + "] has FF before its end");
+}
+
+std::uint8_t reply_header(int address) { return static_cast<std::uint8_t>((header(address) & 0x0F) + 8) << 4; }
+
+void append_unsigned_nibbles(Bytes& out, int units)
+{
+    for (int shift = 12; shift >= 0; shift -= 4) out.push_back(static_cast<std::uint8_t>((units >> shift) & 0x0F));
+}
+
 }  // namespace
 
 Bytes pan_tilt_drive(int address, int pan_speed, int tilt_speed, Direction pan, Direction tilt)
@@ -106,7 +123,7 @@ Bytes zoom_direct(int address, int zoom_units)
     if (zoom_units < 0 || zoom_units > 0xFFFF)
         throw ViscaError("VISCA zoom position " + std::to_string(zoom_units) + " is not in 0..65535");
     Bytes out{header(address), 0x01, 0x04, 0x47};
-    for (int shift = 12; shift >= 0; shift -= 4) out.push_back(static_cast<std::uint8_t>((zoom_units >> shift) & 0x0F));
+    append_unsigned_nibbles(out, zoom_units);
     out.push_back(0xFF);
     return out;
 }
@@ -129,11 +146,7 @@ Bytes zoom_position_inquiry(int address) { return {header(address), 0x09, 0x04, 
 
 Reply parse_reply(std::span<const std::uint8_t> m)
 {
-    if (m.size() < 3) throw ViscaError("VISCA reply of " + std::to_string(m.size()) + " bytes is too short");
-    if (m.size() > kMaxMessageSize) throw ViscaError("VISCA reply longer than 16 bytes");
-    if (m.back() != 0xFF) throw ViscaError("VISCA reply [" + hex(m) + "] does not end in FF");
-    if (std::find(m.begin(), m.end() - 1, 0xFF) != m.end() - 1)
-        throw ViscaError("VISCA reply [" + hex(m) + "] has FF before its end");
+    check_framing(m, "reply");
     const int from = (m[0] >> 4) - 8;
     if ((m[0] & 0x0F) != 0 || from < 1 || from > 7)
         throw ViscaError("VISCA reply [" + hex(m) + "] has a bad header byte");
@@ -170,6 +183,150 @@ Reply parse_reply(std::span<const std::uint8_t> m)
     default:
         throw ViscaError("VISCA reply [" + hex(m) + "] is not an ACK, completion or error");
     }
+}
+
+Bytes ack(int address, int socket)
+{
+    return {reply_header(address), static_cast<std::uint8_t>(0x40 | (socket & 0x0F)), 0xFF};
+}
+
+Bytes completion(int address, int socket)
+{
+    return {reply_header(address), static_cast<std::uint8_t>(0x50 | (socket & 0x0F)), 0xFF};
+}
+
+Bytes error_reply(int address, int socket, int error)
+{
+    return {reply_header(address), static_cast<std::uint8_t>(0x60 | (socket & 0x0F)),
+            static_cast<std::uint8_t>(error & 0x7F), 0xFF};
+}
+
+Bytes position_reply(int address, int pan_units, int tilt_units)
+{
+    Bytes out{reply_header(address), 0x50};
+    append_nibbles(out, pan_units, "pan");
+    append_nibbles(out, tilt_units, "tilt");
+    out.push_back(0xFF);
+    return out;
+}
+
+Bytes zoom_position_reply(int address, int zoom_units)
+{
+    if (zoom_units < 0 || zoom_units > 0xFFFF)
+        throw ViscaError("VISCA zoom position " + std::to_string(zoom_units) + " is not in 0..65535");
+    Bytes out{reply_header(address), 0x50};
+    append_unsigned_nibbles(out, zoom_units);
+    out.push_back(0xFF);
+    return out;
+}
+
+namespace {
+
+int checked_speed(std::uint8_t code, int max, std::span<const std::uint8_t> m)
+{
+    if (code < 1 || code > max) throw ViscaError("VISCA command [" + hex(m) + "] has a speed out of range");
+    return code;
+}
+
+// The pan-tilt drive's direction bytes: pan 01 left, 02 right; tilt 01 up, 02 down; 03 stop.
+Direction drive_direction(std::uint8_t code, Direction on_01, std::span<const std::uint8_t> m)
+{
+    if (code == 0x03) return Direction::Stop;
+    if (code == 0x01) return on_01;
+    if (code == 0x02) return on_01 == Direction::Positive ? Direction::Negative : Direction::Positive;
+    throw ViscaError("VISCA drive [" + hex(m) + "] has an unknown direction");
+}
+
+Message parse_pan_tilt(std::span<const std::uint8_t> m, Message r)
+{
+    if (m[3] == 0x04 && m.size() == 5) {
+        r.kind = MessageKind::Home;
+        return r;
+    }
+    const bool drive = m[3] == 0x01 && m.size() == 9;
+    const bool move = (m[3] == 0x02 || m[3] == 0x03) && m.size() == 15;
+    if (!drive && !move) throw ViscaError("VISCA pan-tilt command [" + hex(m) + "] is not one this camera knows");
+    r.pan_speed = checked_speed(m[4], kMaxPanSpeed, m);
+    r.tilt_speed = checked_speed(m[5], kMaxTiltSpeed, m);
+    if (drive) {
+        r.kind = MessageKind::Drive;
+        r.pan = drive_direction(m[6], Direction::Negative, m);
+        r.tilt = drive_direction(m[7], Direction::Positive, m);
+        return r;
+    }
+    r.kind = m[3] == 0x02 ? MessageKind::Absolute : MessageKind::Relative;
+    r.pan_units = read_nibbles(m.subspan(6, 4));
+    r.tilt_units = read_nibbles(m.subspan(10, 4));
+    return r;
+}
+
+Message parse_lens(std::span<const std::uint8_t> m, Message r)
+{
+    if (m[3] == 0x47 && m.size() == 9) {
+        r.kind = MessageKind::ZoomDirect;
+        r.zoom_units = read_unsigned_nibbles(m.subspan(4, 4));
+        return r;
+    }
+    if (m[3] == 0x07 && m.size() == 6 && (m[4] == 0x00 || ((m[4] >> 4) == 2 || (m[4] >> 4) == 3))) {
+        r.kind = MessageKind::ZoomDrive;
+        r.zoom = m[4] == 0x00 ? Direction::Stop : (m[4] >> 4) == 2 ? Direction::Positive : Direction::Negative;
+        r.zoom_speed = m[4] & 0x0F;
+        if (r.zoom_speed <= kMaxZoomSpeed) return r;
+    }
+    if (m[3] == 0x3F && m.size() == 7 && m[4] <= 2 && m[5] <= 0x7F) {
+        r.kind = MessageKind::Memory;
+        r.memory_action = static_cast<MemoryAction>(m[4]);
+        r.memory_number = m[5];
+        return r;
+    }
+    throw ViscaError("VISCA lens command [" + hex(m) + "] is not one this camera knows");
+}
+
+}  // namespace
+
+Message parse_message(std::span<const std::uint8_t> m)
+{
+    check_framing(m, "message");
+    if ((m[0] >> 4) != 0x8 || (m[0] & 0x0F) < 1 || (m[0] & 0x0F) > 7)
+        throw ViscaError("VISCA message [" + hex(m) + "] is not addressed to a camera 1..7");
+    Message r;
+    r.address = m[0] & 0x0F;
+    if (m.size() >= 4 && m[1] == 0x01 && m[2] == 0x06) return parse_pan_tilt(m, r);
+    if (m.size() >= 5 && m[1] == 0x01 && m[2] == 0x04) return parse_lens(m, r);
+    if (m.size() == 5 && m[1] == 0x09 && m[2] == 0x06 && m[3] == 0x12) {
+        r.kind = MessageKind::PositionInquiry;
+        return r;
+    }
+    if (m.size() == 5 && m[1] == 0x09 && m[2] == 0x04 && m[3] == 0x47) {
+        r.kind = MessageKind::ZoomInquiry;
+        return r;
+    }
+    throw ViscaError("VISCA message [" + hex(m) + "] is not one this camera knows");
+}
+
+Bytes encode(const Message& m)
+{
+    switch (m.kind) {
+    case MessageKind::Drive:
+        return pan_tilt_drive(m.address, m.pan_speed, m.tilt_speed, m.pan, m.tilt);
+    case MessageKind::Absolute:
+        return pan_tilt_absolute(m.address, m.pan_speed, m.tilt_speed, m.pan_units, m.tilt_units);
+    case MessageKind::Relative:
+        return pan_tilt_relative(m.address, m.pan_speed, m.tilt_speed, m.pan_units, m.tilt_units);
+    case MessageKind::Home:
+        return pan_tilt_home(m.address);
+    case MessageKind::PositionInquiry:
+        return pan_tilt_position_inquiry(m.address);
+    case MessageKind::ZoomDirect:
+        return zoom_direct(m.address, m.zoom_units);
+    case MessageKind::ZoomDrive:
+        return zoom_drive(m.address, m.zoom_speed, m.zoom);
+    case MessageKind::ZoomInquiry:
+        return zoom_position_inquiry(m.address);
+    case MessageKind::Memory:
+        return memory(m.address, m.memory_action, m.memory_number);
+    }
+    throw ViscaError("unknown VISCA message kind");
 }
 
 std::string describe_error(int error)

@@ -71,6 +71,38 @@ struct Reply {
 Reply parse_reply(std::span<const std::uint8_t> message);
 std::string describe_error(int error);
 
+// Replies from camera `address` (1..7): "y0 4s FF", "y0 5s FF", "y0 6s EE FF" and the answers
+// to the position inquiries, y = 8 + address.
+Bytes ack(int address, int socket);
+Bytes completion(int address, int socket);
+Bytes error_reply(int address, int socket, int error);
+Bytes position_reply(int address, int pan_units, int tilt_units);
+Bytes zoom_position_reply(int address, int zoom_units);
+
+// The commands and inquiries above as a camera receives them.
+enum class MessageKind { Drive, Absolute, Relative, Home, PositionInquiry, ZoomDirect, ZoomDrive, ZoomInquiry, Memory };
+
+struct Message {
+    MessageKind kind = MessageKind::Drive;
+    int address = 1;
+    int pan_speed = 1;                               // Drive, Absolute, Relative: 1..kMaxPanSpeed
+    int tilt_speed = 1;                              // 1..kMaxTiltSpeed
+    Direction pan = Direction::Stop;                 // Drive
+    Direction tilt = Direction::Stop;                // Drive
+    int pan_units = 0;                               // Absolute, Relative
+    int tilt_units = 0;                              // Absolute, Relative
+    int zoom_units = 0;                              // ZoomDirect
+    int zoom_speed = 0;                              // ZoomDrive: 0..kMaxZoomSpeed
+    Direction zoom = Direction::Stop;                // ZoomDrive
+    MemoryAction memory_action = MemoryAction::Set;  // Memory
+    int memory_number = 0;                           // Memory: 0..127
+};
+
+// Parses one message (ending in 0xFF) of the kinds above, exactly as their encoders lay it
+// out; throws ViscaError for anything else (a camera's syntax error). encode() gives the bytes back.
+Message parse_message(std::span<const std::uint8_t> message);
+Bytes encode(const Message& message);
+
 // VISCA over IP: 2-byte payload type, 2-byte payload length, 4-byte sequence number, all
 // big-endian, then the payload.
 Bytes wrap_ip(std::uint16_t payload_type, std::uint32_t sequence, std::span<const std::uint8_t> payload);

@@ -1,6 +1,7 @@
-// headsim: the simulated head server (GCHP/1 over TCP).
+// headsim: the simulated head server (GCHP/1 over TCP; ONVIF PTZ and VISCA on request).
 #include "headctl/sim/head_server.hpp"
 #include "headctl/sim/onvif_responder.hpp"
+#include "headctl/sim/visca_responder.hpp"
 #include "headctl/token.hpp"
 #include "tools/cli_app.hpp"
 
@@ -35,8 +36,11 @@ Simulated motorised head serving GCHP/1 (docs/head-protocol.md).
   --onvif ADDR:PORT      also serve the ONVIF PTZ service (SOAP over HTTP) on the same head;
                          with a token, requests need a UsernameToken digest of it
   --onvif-user USER      the ONVIF user name (default gesturecam)
-  --allow-remote         listen beyond loopback without a token (anyone reaching the port
-                         moves the head)
+  --visca ADDR:PORT      also serve VISCA over IP (UDP) and raw VISCA over TCP on that port of
+                         the same head: 16 units per degree, zoom position 0x4000 at the
+                         largest magnification; no authentication
+  --allow-remote         listen beyond loopback without a token, and serve VISCA there (anyone
+                         reaching the port moves the head)
   --max-clients N        connections served at once (default 16)
   --latency-ms MS        delay from a command's arrival to its effect (default 0)
   --angle-error DEG      std. deviation of the reached angle around a target (default 0)
@@ -49,7 +53,8 @@ Simulated motorised head serving GCHP/1 (docs/head-protocol.md).
   --verbose              log connections on stderr
   --version              the version
   -h, --help             this text
-On start it prints "listening ADDR:PORT" on stdout, and "onvif listening ADDR:PORT" with --onvif.
+On start it prints "listening ADDR:PORT" on stdout, then "onvif listening ADDR:PORT" with
+--onvif and "visca listening ADDR:PORT" with --visca.
 SIGTERM or SIGINT stops it cleanly.
 )";
 
@@ -97,7 +102,7 @@ void parse_limits(std::string_view text, HeadLimits& limits)
 // The options' texts as CLI11 read them, converted by apply().
 struct GivenText {
     std::optional<std::string> listen, token, token_file, max_clients, latency_ms, angle_error, seed, velocity_timeout;
-    std::optional<std::string> onvif, onvif_user;
+    std::optional<std::string> onvif, onvif_user, visca;
     std::vector<std::string> limits;
 };
 
@@ -109,6 +114,7 @@ void add_options(CLI::App& app, HeadServerConfig& config, GivenText& t)
     app.add_flag("--allow-remote", config.allow_remote_without_token);
     app.add_option("--onvif", t.onvif);
     app.add_option("--onvif-user", t.onvif_user);
+    app.add_option("--visca", t.visca);
     app.add_option("--max-clients", t.max_clients);
     app.add_option("--latency-ms", t.latency_ms);
     app.add_option("--angle-error", t.angle_error);
@@ -128,6 +134,16 @@ std::optional<OnvifResponderConfig> onvif_config(const GivenText& t, const HeadS
     onvif.password = config.token;
     onvif.allow_remote_without_password = config.allow_remote_without_token;
     return onvif;
+}
+
+// The VISCA responder's settings, when --visca asks for one.
+std::optional<ViscaResponderConfig> visca_config(const GivenText& t, const HeadServerConfig& config)
+{
+    if (!t.visca) return std::nullopt;
+    ViscaResponderConfig visca;
+    parse_listen(*t.visca, visca, "--visca");
+    visca.allow_remote = config.allow_remote_without_token;
+    return visca;
 }
 
 // Checks and converts the texts into `config`; throws std::invalid_argument.
@@ -157,25 +173,34 @@ void apply(const GivenText& t, HeadServerConfig& config)
     config.model.validate();
 }
 
+std::string address_text(const std::string& host, std::uint16_t port)
+{
+    const bool v6 = host.find(':') != std::string::npos;
+    return (v6 ? "[" + host + "]" : host) + ":" + std::to_string(port);
+}
+
+struct Responders {
+    std::optional<OnvifResponderConfig> onvif;
+    std::optional<ViscaResponderConfig> visca;
+};
+
 // Serves until SIGTERM or SIGINT.
-void serve(const HeadServerConfig& config, const std::optional<OnvifResponderConfig>& onvif_config)
+void serve(const HeadServerConfig& config, const Responders& configs)
 {
     HeadServer server(config);
     std::optional<OnvifResponder> onvif;
-    if (onvif_config) onvif.emplace(*onvif_config, server);
+    if (configs.onvif) onvif.emplace(*configs.onvif, server);
+    std::optional<ViscaResponder> visca;
+    if (configs.visca) visca.emplace(*configs.visca, server);
     if (config.token.empty() && !is_loopback_address(config.host))
         std::cerr << "headsim: warning: listening on " << config.host
                   << " without a token: anyone who can reach this port can move the head\n";
     g_server = &server;
     gc::cli::on_stop_signals(on_signal);
     signal(SIGPIPE, SIG_IGN);
-    const bool v6 = server.host().find(':') != std::string::npos;
-    std::cout << "listening " << (v6 ? "[" + server.host() + "]" : server.host()) << ":" << server.port() << std::endl;
-    if (onvif) {
-        const bool onvif_v6 = onvif->host().find(':') != std::string::npos;
-        std::cout << "onvif listening " << (onvif_v6 ? "[" + onvif->host() + "]" : onvif->host()) << ":"
-                  << onvif->port() << std::endl;
-    }
+    std::cout << "listening " << address_text(server.host(), server.port()) << std::endl;
+    if (onvif) std::cout << "onvif listening " << address_text(onvif->host(), onvif->port()) << std::endl;
+    if (visca) std::cout << "visca listening " << address_text(visca->host(), visca->port()) << std::endl;
     server.run();
     g_server = nullptr;
     std::cerr << "headsim: stopped\n";
@@ -192,15 +217,16 @@ int main(int argc, char** argv)
     add_options(app, config, given);
     if (const int status = gc::cli::parse(app, argc, argv); status >= 0) return status;
     hide_secret_arguments(argc, argv);
-    std::optional<OnvifResponderConfig> onvif;
+    Responders responders;
     try {
         apply(given, config);
-        onvif = onvif_config(given, config);
+        responders.onvif = onvif_config(given, config);
+        responders.visca = visca_config(given, config);
     } catch (const std::exception& e) {
         return gc::cli::usage_hint("headsim", e.what());
     }
     try {
-        serve(config, onvif);
+        serve(config, responders);
     } catch (const std::invalid_argument& e) {
         std::cerr << "headsim: " << e.what() << "\n";
         return 2;

@@ -69,6 +69,33 @@ bool is_loopback_address(const std::string& host)
     return false;
 }
 
+socklen_t numeric_address(const std::string& host, std::uint16_t port, sockaddr_storage& addr)
+{
+    addr = {};
+    auto* v4 = reinterpret_cast<sockaddr_in*>(&addr);
+    auto* v6 = reinterpret_cast<sockaddr_in6*>(&addr);
+    if (::inet_pton(AF_INET, host.c_str(), &v4->sin_addr) == 1) {
+        v4->sin_family = AF_INET;
+        v4->sin_port = htons(port);
+        return sizeof *v4;
+    }
+    if (::inet_pton(AF_INET6, host.c_str(), &v6->sin6_addr) == 1) {
+        v6->sin6_family = AF_INET6;
+        v6->sin6_port = htons(port);
+        return sizeof *v6;
+    }
+    throw std::invalid_argument("listen address '" + host + "' is not a numeric IPv4 or IPv6 address");
+}
+
+std::uint16_t bound_port(int fd)
+{
+    sockaddr_storage addr{};
+    socklen_t len = sizeof addr;
+    ::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len);
+    return ntohs(addr.ss_family == AF_INET ? reinterpret_cast<sockaddr_in&>(addr).sin_port
+                                           : reinterpret_cast<sockaddr_in6&>(addr).sin6_port);
+}
+
 HeadServer::HeadServer(const HeadServerConfig& config)
     : config_(config), model_(config.model), throttle_(config.auth_delay_initial, config.auth_delay_max),
       start_(Clock::now())
@@ -81,20 +108,7 @@ HeadServer::HeadServer(const HeadServerConfig& config)
     if (!config_.token.empty()) check_token(config_.token);
 
     sockaddr_storage addr{};
-    socklen_t addr_len = 0;
-    auto* v4 = reinterpret_cast<sockaddr_in*>(&addr);
-    auto* v6 = reinterpret_cast<sockaddr_in6*>(&addr);
-    if (::inet_pton(AF_INET, config_.host.c_str(), &v4->sin_addr) == 1) {
-        v4->sin_family = AF_INET;
-        v4->sin_port = htons(config_.port);
-        addr_len = sizeof *v4;
-    } else if (::inet_pton(AF_INET6, config_.host.c_str(), &v6->sin6_addr) == 1) {
-        v6->sin6_family = AF_INET6;
-        v6->sin6_port = htons(config_.port);
-        addr_len = sizeof *v6;
-    } else {
-        throw std::invalid_argument("listen address '" + config_.host + "' is not a numeric IPv4 or IPv6 address");
-    }
+    const socklen_t addr_len = numeric_address(config_.host, config_.port, addr);
     if (config_.token.empty() && !config_.allow_remote_without_token && !is_loopback_address(config_.host))
         throw std::invalid_argument("refusing to listen on " + config_.host +
                                     " without a token: anyone who reaches it could move the head (give a token, "
@@ -108,9 +122,7 @@ HeadServer::HeadServer(const HeadServerConfig& config)
                                  std::strerror(errno));
     // A deep queue: a crowd of connections must not keep a client out before it is accepted.
     if (::listen(listener_.get(), SOMAXCONN) != 0) throw std::runtime_error(errno_text("listen"));
-    socklen_t len = sizeof addr;
-    ::getsockname(listener_.get(), reinterpret_cast<sockaddr*>(&addr), &len);
-    port_ = ntohs(addr.ss_family == AF_INET ? v4->sin_port : v6->sin6_port);
+    port_ = bound_port(listener_.get());
 
     int pipe_fds[2];
     if (::pipe2(pipe_fds, O_CLOEXEC | O_NONBLOCK) != 0) throw std::runtime_error(errno_text("pipe"));

@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include <sys/socket.h>
+
 struct pollfd;
 
 namespace gc::headctl {
@@ -49,6 +51,11 @@ struct HeadServerConfig {
 
 // Whether a numeric address reaches this host only (127.0.0.0/8, ::1, IPv4-mapped 127.x).
 bool is_loopback_address(const std::string& host);
+// The socket address of a numeric IPv4 or IPv6 host and a port, and its length; throws
+// std::invalid_argument for anything else.
+socklen_t numeric_address(const std::string& host, std::uint16_t port, sockaddr_storage& addr);
+// The local port a socket is bound to.
+std::uint16_t bound_port(int fd);
 
 class HeadServer {
 public:

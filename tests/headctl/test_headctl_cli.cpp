@@ -139,7 +139,7 @@ TEST(HeadctlCli, PresetsAreSavedAndRecalledOnTheHead)
 // The same commands over ONVIF, to the head headsim --onvif serves.
 TEST(HeadctlCli, SpeaksOnvifToTheSimulatedHead)
 {
-    RunningOnvifHead head;
+    RunningSimHead head;
     const std::string uri = head.onvif_uri();
     const Outcome move = run_headctl({"--uri", uri, "move", "pan=10", "tilt=5", "zoom=2"});
     EXPECT_EQ(move.exit_code, 0) << move.err;

@@ -365,5 +365,32 @@ TEST(HeadSim, ServesOnvifOnTheSameHeadWithItsTokenAsPassword)
     EXPECT_THROW(wrong->open(net::Clock::now() + 2s), net::NetError);
 }
 
+// --visca serves the same head over VISCA over IP, which has no authentication: beyond
+// loopback only with --allow-remote, even when GCHP has a token.
+TEST(HeadSim, ServesViscaOnTheSameHeadOnLoopbackOnly)
+{
+    HeadsimProcess headsim({"--listen", "127.0.0.1:0", "--onvif", "127.0.0.1:0", "--visca", "127.0.0.1:0"});
+    const std::uint16_t gchp = headsim.listening_port();
+    const auto onvif_line = headsim.out_line();
+    const auto line = headsim.out_line();
+    ASSERT_TRUE(onvif_line && starts_with(*onvif_line, "onvif listening 127.0.0.1:"));
+    ASSERT_TRUE(line && starts_with(*line, "visca listening 127.0.0.1:")) << line.value_or("<nothing>");
+    auto visca = make_backend(parse_head_uri("visca-udp://127.0.0.1:" + line->substr(line->rfind(':') + 1)));
+    visca->open(net::Clock::now() + 2s);
+    HeadCommand move{CommandKind::Absolute, {}};
+    move.values.set(Axis::Pan, -12);
+    visca->send(move, net::Clock::now() + 1s);
+    LineClient c(gchp);
+    c.line();
+    EXPECT_TRUE(
+        closedloop_test::eventually([&] { return c.request("STATUS").find(" pan=-12 ") != std::string::npos; }, 3000ms))
+        << c.request("STATUS");
+
+    const TempFile file("gchp-token\n");
+    HeadsimProcess remote({"--listen", "127.0.0.1:0", "--token-file", file.path, "--visca", "0.0.0.0:0"});
+    EXPECT_EQ(remote.exit_status(), 2) << "headsim serves VISCA on every interface without --allow-remote";
+    EXPECT_NE(remote.err_text().find("VISCA has no authentication"), std::string::npos) << remote.err_text();
+}
+
 }  // namespace
 }  // namespace gc::headctl::testing

@@ -1,8 +1,9 @@
 // The ONVIF PTZ backend against the simulated head's ONVIF responder on loopback: each
-// operation, the UsernameToken digest, faults, and cameras that say nothing or garbage.
+// operation, the UsernameToken digest, faults, and cameras that say nothing or garbage
+// (test_backend_session.cpp runs the same session over every protocol).
+#include "session_support.hpp"
 #include "test_support.hpp"
 
-#include "headctl/head_client.hpp"
 #include "headctl/onvif_backend.hpp"
 #include "headctl/onvif_soap.hpp"
 
@@ -13,7 +14,7 @@ namespace {
 
 constexpr const char* kPassword = "pa55-Word";
 
-using OnvifHead = RunningOnvifHead;
+using OnvifHead = RunningSimHead;
 
 OnvifResponderConfig with_password()
 {
@@ -28,34 +29,6 @@ std::unique_ptr<HeadBackend> open_backend(const std::string& uri, const std::str
     auto backend = make_backend(parse_head_uri(uri), password);
     backend->open(net::Clock::now() + 2s);
     return backend;
-}
-
-HeadCommand absolute(double pan, double tilt, double zoom)
-{
-    HeadCommand c{CommandKind::Absolute, {}};
-    c.values.set(Axis::Pan, pan);
-    c.values.set(Axis::Tilt, tilt);
-    c.values.set(Axis::Zoom, zoom);
-    return c;
-}
-
-// The state once no axis moves (or after 5 s).
-HeadState settled(HeadBackend& head)
-{
-    HeadState s = head.query_state(net::Clock::now() + 1s);
-    for (int i = 0; i < 250; ++i) {
-        std::this_thread::sleep_for(20ms);
-        s = head.query_state(net::Clock::now() + 1s);
-        if (std::none_of(s.moving.begin(), s.moving.end(), [](bool m) { return m; })) break;
-    }
-    return s;
-}
-
-void expect_pose(const HeadPose& pose, double pan, double tilt, double zoom)
-{
-    EXPECT_NEAR(pose.pan_deg, pan, 1e-3);
-    EXPECT_NEAR(pose.tilt_deg, tilt, 1e-3);
-    EXPECT_NEAR(pose.zoom, zoom, 1e-3);
 }
 
 std::string net_error_of(const std::function<void()>& f)
@@ -158,16 +131,6 @@ TEST(Onvif, TheRightPasswordIsServedAndAWrongOneRefusedByName)
     EXPECT_NE(none.find("refused the credentials (none given"), std::string::npos) << none;
 }
 
-// A camera on loopback that answers every request with `reply` (nothing when empty).
-class HttpScriptedServer : public ScriptedServer {
-public:
-    explicit HttpScriptedServer(std::string reply) : ScriptedServer(std::move(reply), true) {}
-    std::string uri(const std::string& query = "") const
-    {
-        return "onvif://127.0.0.1:" + std::to_string(port()) + query;
-    }
-};
-
 TEST(Onvif, ASilentCameraTimesOutByItsDeadline)
 {
     HttpScriptedServer silent("");
@@ -191,24 +154,6 @@ TEST(Onvif, GarbageIsAnErrorNamingWhatCame)
     EXPECT_NE(big.find("a reply longer than 65536 bytes"), std::string::npos) << big;
 }
 
-TEST(Onvif, TheClientsCallersNeverWaitOnASilentCamera)
-{
-    HttpScriptedServer silent("");
-    HeadClientConfig config;
-    config.uri = silent.uri();
-    config.connect_timeout = 2000ms;
-    {
-        HeadClient client(config);
-        std::this_thread::sleep_for(50ms);
-        const double worst_us = longest_call_us(200, [&](int i) {
-            client.submit(absolute(i % 10, 0, 1));
-            client.pose_at(client.now());
-        });
-        EXPECT_LT(worst_us, 100000.0);  // scheduling noise only: far below the 2 s connect timeout
-        EXPECT_EQ(client.state(), ConnectionState::Connecting);
-    }  // destroyed while its request waits: the wait is cancelled, not sat out
-}
-
 TEST(Onvif, SilentAndOversizedRequestsDoNotHoldOthersUp)
 {
     OnvifHead head;
@@ -222,37 +167,6 @@ TEST(Onvif, SilentAndOversizedRequestsDoNotHoldOthersUp)
     auto onvif = open_backend(head.onvif_uri());
     onvif->send(absolute(5, 0, 1), net::Clock::now() + 1s);
     expect_pose(settled(*onvif).pose, 5, 0, 1);
-}
-
-// The same session through each protocol, each on a fresh head, leaves the same state.
-HeadState run_session(const std::string& uri)
-{
-    auto head = open_backend(uri);
-    const auto soon = [] { return net::Clock::now() + 1s; };
-    head->send(HeadCommand{CommandKind::Home, {}}, soon());
-    head->send(absolute(30, -10, 1), soon());
-    settled(*head);
-    HeadCommand zoom{CommandKind::Absolute, {}};
-    zoom.values.set(Axis::Zoom, 4);
-    head->send(zoom, soon());
-    settled(*head);
-    head->send(preset_command(CommandKind::SavePreset, 5), soon());
-    head->send(absolute(-40, 20, 2), soon());
-    settled(*head);
-    head->send(preset_command(CommandKind::RecallPreset, 5), soon());
-    settled(*head);
-    head->send(HeadCommand{CommandKind::Stop, {}}, soon());
-    return settled(*head);
-}
-
-TEST(Onvif, AScriptedSessionLeavesTheSameStateOverGchpAndOnvif)
-{
-    OnvifHead for_gchp, for_onvif;
-    const HeadState gchp = run_session(for_gchp.gchp_uri());
-    const HeadState onvif = run_session(for_onvif.onvif_uri());
-    expect_pose(gchp.pose, 30, -10, 4);
-    expect_pose(onvif.pose, gchp.pose.pan_deg, gchp.pose.tilt_deg, gchp.pose.zoom);
-    EXPECT_EQ(onvif.moving, gchp.moving);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include "../closedloop/running_head.hpp"
 #include "headctl/sim/head_server.hpp"
 #include "headctl/sim/onvif_responder.hpp"
+#include "headctl/sim/visca_responder.hpp"
 #include "headctl/net.hpp"
 
 #include <gtest/gtest.h>
@@ -47,16 +48,15 @@ private:
     }
 };
 
-// A simulated head serving GCHP and ONVIF (headsim --onvif) on 127.0.0.1, each on any free
-// port, from its own threads for the lifetime of the object.
-class RunningOnvifHead {
+// A simulated head serving GCHP, ONVIF and VISCA (headsim --onvif --visca) on 127.0.0.1, each on any free port, from its own threads for the lifetime of the object.
+class RunningSimHead {
 public:
-    explicit RunningOnvifHead(OnvifResponderConfig onvif = {})
-        : server_(gchp_config()), onvif_(free_port(onvif), server_)
+    explicit RunningSimHead(OnvifResponderConfig onvif = {})
+        : server_(gchp_config()), onvif_(free_port(onvif), server_), visca_(free_port(ViscaResponderConfig{}), server_)
     {
         thread_ = std::thread([this] { server_.run(); });
     }
-    ~RunningOnvifHead()
+    ~RunningSimHead()
     {
         server_.request_stop();
         thread_.join();
@@ -66,6 +66,17 @@ public:
         return "onvif://127.0.0.1:" + std::to_string(onvif_.port()) + query;
     }
     std::string gchp_uri() const { return "tcp://127.0.0.1:" + std::to_string(server_.port()); }
+    // The VISCA backend's URI (visca-udp or visca-tcp) naming the head's largest magnification and top speeds, so that
+    // zoom positions and drive speed codes mean the same at both ends.
+    std::string visca_uri(const std::string& scheme = "visca-udp") const
+    {
+        const HeadLimits l = default_simulated_limits();
+        const auto text = [](double v) { return std::to_string(v); };
+        return scheme + "://127.0.0.1:" + std::to_string(visca_.port()) + "?zoom_max=" + text(l[Axis::Zoom].max_deg) +
+               "&zoom_max_speed=" + text(l[Axis::Zoom].max_velocity_dps) +
+               "&pan_max_speed_dps=" + text(l[Axis::Pan].max_velocity_dps) +
+               "&tilt_max_speed_dps=" + text(l[Axis::Tilt].max_velocity_dps);
+    }
     std::uint16_t onvif_port() const { return onvif_.port(); }
     OnvifResponder& responder() { return onvif_; }
 
@@ -76,13 +87,15 @@ private:
         c.port = 0;
         return c;
     }
-    static OnvifResponderConfig free_port(OnvifResponderConfig c)
+    template <class Config>
+    static Config free_port(Config c)
     {
         c.port = 0;
         return c;
     }
     HeadServer server_;
     OnvifResponder onvif_;
+    ViscaResponder visca_;
     std::thread thread_;
 };
 
@@ -244,6 +257,16 @@ private:
     std::atomic<bool> stop_{false};
     std::atomic<int> accepted_{0};
     std::thread thread_;
+};
+
+// An ONVIF camera on loopback that answers every request with `reply` (nothing when empty).
+class HttpScriptedServer : public ScriptedServer {
+public:
+    explicit HttpScriptedServer(std::string reply) : ScriptedServer(std::move(reply), true) {}
+    std::string uri(const std::string& query = "") const
+    {
+        return "onvif://127.0.0.1:" + std::to_string(port()) + query;
+    }
 };
 
 }  // namespace gc::headctl::testing

@@ -104,6 +104,40 @@ TEST(ViscaBytes, ParsesAckCompletionErrorAndPosition)
     EXPECT_EQ(pos.tilt_units, 0x0100);
 }
 
+// The camera's side: replies laid out as parse_reply reads them, commands read back.
+TEST(ViscaBytes, EncodesRepliesAndParsesCommands)
+{
+    EXPECT_EQ(visca::ack(1, 1), (Bytes{0x90, 0x41, 0xFF}));
+    EXPECT_EQ(visca::completion(2, 1), (Bytes{0xA0, 0x51, 0xFF}));
+    EXPECT_EQ(visca::error_reply(1, 0, 0x02), (Bytes{0x90, 0x60, 0x02, 0xFF}));
+    EXPECT_EQ(visca::position_reply(1, -2, 0x0100),
+              (Bytes{0x90, 0x50, 0x0F, 0x0F, 0x0F, 0x0E, 0x00, 0x01, 0x00, 0x00, 0xFF}));
+    EXPECT_EQ(visca::zoom_position_reply(1, 0x4000), (Bytes{0x90, 0x50, 0x04, 0x00, 0x00, 0x00, 0xFF}));
+
+    const auto drive = visca::parse_message(Bytes{0x83, 0x01, 0x06, 0x01, 0x0C, 0x0A, 0x01, 0x02, 0xFF});
+    EXPECT_EQ(drive.kind, visca::MessageKind::Drive);
+    EXPECT_EQ(drive.address, 3);
+    EXPECT_EQ(drive.pan_speed, 0x0C);
+    EXPECT_EQ(drive.tilt_speed, 0x0A);
+    EXPECT_EQ(drive.pan, visca::Direction::Negative);   // 01: left
+    EXPECT_EQ(drive.tilt, visca::Direction::Negative);  // 02: down
+    const auto move = visca::parse_message(visca::pan_tilt_relative(1, 0x18, 0x14, -24, 8));
+    EXPECT_EQ(move.kind, visca::MessageKind::Relative);
+    EXPECT_EQ(move.pan_units, -24);
+    EXPECT_EQ(move.tilt_units, 8);
+    EXPECT_EQ(visca::parse_message(visca::zoom_direct(1, 0x0333)).zoom_units, 0x0333);
+    const auto recall = visca::parse_message(visca::memory(1, visca::MemoryAction::Recall, 0x7F));
+    EXPECT_EQ(recall.memory_action, visca::MemoryAction::Recall);
+    EXPECT_EQ(recall.memory_number, 0x7F);
+    for (const Bytes& bad : {Bytes{0x81, 0x01, 0x06, 0x01, 0x00, 0x0A, 0x01, 0x02, 0xFF},  // speed 0
+                             Bytes{0x81, 0x01, 0x06, 0x01, 0x0C, 0x0A, 0x04, 0x02, 0xFF},  // direction 04
+                             Bytes{0x88, 0x01, 0x06, 0x04, 0xFF},                          // broadcast
+                             Bytes{0x81, 0x01, 0x04, 0x3F, 0x03, 0x01, 0xFF},              // memory action 3
+                             Bytes{0x81, 0x01, 0x04, 0x07, 0x28, 0xFF},                    // zoom speed 8
+                             Bytes{0x81, 0x09, 0x06, 0x12, 0x00, 0xFF}})
+        EXPECT_THROW(visca::parse_message(bad), visca::ViscaError);
+}
+
 TEST(ViscaBytes, RejectsMalformedReplies)
 {
     for (const Bytes& bad : {
