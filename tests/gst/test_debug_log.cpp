@@ -4,7 +4,7 @@
 #include "gst_fixture.hpp"
 #include "fake_heads.hpp"
 
-#include "../closedloop/running_head.hpp"
+#include "running_head.hpp"
 
 #include <cstring>
 #include <mutex>
@@ -80,7 +80,7 @@ TEST_F(DebugLog, TrackerLogsTheHandAndEveryFrame)
 
 TEST_F(DebugLog, HeadLinkLogsConnectionAndCommands)
 {
-    gc::closedloop_test::RunningHead head(gc::closedloop_test::loopback_head(0, 0.02));
+    gc::loopback::RunningHead head(gc::loopback::loopback_head(0, 0.02));
     const std::string eye =
         " is-live=true scene=light motion=translate seed=3 truth-messages=false head=" + head.uri() +
         " num-buffers=60 ! ";

@@ -5,7 +5,7 @@
 // someone else is left there for manual-pause seconds, with head-steering messages.
 #include "gst_fixture.hpp"
 
-#include "../closedloop/running_head.hpp"
+#include "running_head.hpp"
 #include "headctl/head_client.hpp"
 
 #include <algorithm>
@@ -20,8 +20,8 @@
 
 namespace {
 
-using gc::closedloop_test::loopback_head;
-using gc::closedloop_test::RunningHead;
+using gc::loopback::loopback_head;
+using gc::loopback::RunningHead;
 using namespace std::chrono_literals;
 
 constexpr int kFps = 30;

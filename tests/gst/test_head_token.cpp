@@ -5,7 +5,7 @@
 #include "fake_heads.hpp"
 #include "gst_fixture.hpp"
 
-#include "../closedloop/running_head.hpp"
+#include "running_head.hpp"
 
 #include <glib/gstdio.h>
 
@@ -122,7 +122,7 @@ struct TokenFile {
 
 gc::headctl::HeadServerConfig head_with_token()
 {
-    gc::headctl::HeadServerConfig config = gc::closedloop_test::loopback_head();
+    gc::headctl::HeadServerConfig config = gc::loopback::loopback_head();
     config.token = kSecret;
     return config;
 }
@@ -165,7 +165,7 @@ TEST(HeadToken, IsHiddenInTheErrorForAnInvalidUri)
 TEST(HeadToken, AFileAuthenticatesAndACopyOfThePropertiesStillDoes)
 {
     gc::test::init_gstreamer();
-    gc::closedloop_test::RunningHead head(head_with_token());
+    gc::loopback::RunningHead head(head_with_token());
     const TokenFile file(kSecret);
 
     ElementPtr first = tracker_pipeline();
@@ -209,7 +209,7 @@ void set_head_with_token_and_read_back(GstElement* element, const std::string& u
 TEST(HeadToken, ATokenInTheUriIsHiddenWhenReadBackAndKeptWhenSetAgain)
 {
     gc::test::init_gstreamer();
-    gc::closedloop_test::RunningHead head(head_with_token());
+    gc::loopback::RunningHead head(head_with_token());
     ElementPtr pipeline = tracker_pipeline();
     ASSERT_TRUE(pipeline);
     set_head_with_token_and_read_back(tracker_of(pipeline.get()).get(), head.uri());
@@ -222,7 +222,7 @@ TEST(HeadToken, ATokenInTheUriIsHiddenWhenReadBackAndKeptWhenSetAgain)
 TEST(HeadToken, TheSceneSourceHidesItAndReadsItFromAFile)
 {
     gc::test::init_gstreamer();
-    gc::closedloop_test::RunningHead head(head_with_token());
+    gc::loopback::RunningHead head(head_with_token());
     ElementPtr pipeline = scene_source_pipeline();
     ASSERT_TRUE(pipeline);
     set_head_with_token_and_read_back(scene_source_of(pipeline.get()).get(), head.uri());

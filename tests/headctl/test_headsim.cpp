@@ -358,7 +358,7 @@ TEST(HeadSim, ServesOnvifOnTheSameHeadWithItsTokenAsPassword)
     c.line();
     EXPECT_EQ(c.request("AUTH onvif-pass"), "OK");
     EXPECT_TRUE(
-        closedloop_test::eventually([&] { return c.request("STATUS").find(" pan=12 ") != std::string::npos; }, 3000ms))
+        loopback::eventually([&] { return c.request("STATUS").find(" pan=12 ") != std::string::npos; }, 3000ms))
         << c.request("STATUS");
 
     auto wrong = make_backend(parse_head_uri(uri), "onvif-guess");
@@ -383,7 +383,7 @@ TEST(HeadSim, ServesViscaOnTheSameHeadOnLoopbackOnly)
     LineClient c(gchp);
     c.line();
     EXPECT_TRUE(
-        closedloop_test::eventually([&] { return c.request("STATUS").find(" pan=-12 ") != std::string::npos; }, 3000ms))
+        loopback::eventually([&] { return c.request("STATUS").find(" pan=-12 ") != std::string::npos; }, 3000ms))
         << c.request("STATUS");
 
     const TempFile file("gchp-token\n");

@@ -3,7 +3,7 @@
 // the start of a built program with its output on pipes.
 #pragma once
 
-#include "../closedloop/running_head.hpp"
+#include "running_head.hpp"
 #include "headctl/sim/head_server.hpp"
 #include "headctl/sim/onvif_responder.hpp"
 #include "headctl/sim/visca_responder.hpp"
@@ -35,8 +35,8 @@ namespace gc::headctl::testing {
 using namespace std::chrono_literals;
 
 // A HeadServer on 127.0.0.1 serving on its own thread for the lifetime of the object (the
-// closed-loop tests' RunningHead); the default port, 5050, becomes any free one.
-class RunningServer : public closedloop_test::RunningHead {
+// loopback head of the closed-loop tests); the default port, 5050, becomes any free one.
+class RunningServer : public loopback::RunningHead {
 public:
     explicit RunningServer(HeadServerConfig config = {}) : RunningHead(any_free_port(config)) {}
 
