@@ -15,7 +15,7 @@
 // Prints the looks (commands that turn the head to a target), the returns, the frames the
 // hand was tracked, the longest stretch over which the tracker's ray stayed within the
 // dwell's 6 deg, and for each look how far the true target was from the left eye's axis.
-#include "headctl/sim/head_server.hpp"
+#include "head_thread.hpp"
 #include "headctl/steering/head_link.hpp"
 #include "sim/scene.hpp"
 #include "stereo/head_geometry.hpp"
@@ -110,30 +110,6 @@ FrameResult perfect_tracker(const sim::Scene& scene, const sim::HandPose& hand, 
     return r;
 }
 
-// headsim's server on a free loopback port, with 20 ms of command latency, on its own thread.
-class HeadThread {
-public:
-    HeadThread()
-    {
-        headctl::HeadServerConfig c;
-        c.host = "127.0.0.1";
-        c.port = 0;
-        c.model.latency_s = 0.02;
-        server_ = std::make_unique<headctl::HeadServer>(c);
-        thread_ = std::thread([this] { server_->run(); });
-    }
-    ~HeadThread()
-    {
-        server_->request_stop();
-        thread_.join();
-    }
-    std::string uri() const { return "tcp://127.0.0.1:" + std::to_string(server_->port()); }
-
-private:
-    std::unique_ptr<headctl::HeadServer> server_;
-    std::thread thread_;
-};
-
 // What one run counts, fed with each frame and each steering event.
 struct Run {
     Run(const sim::Scene& s, bool t, double look) : scene(s), talking(t), look_s(look) {}
@@ -195,7 +171,7 @@ Figures run(bool talking, double seconds, std::uint64_t seed, const std::string&
     sc.motion = sim::Motion::Translate;
     sc.seed = seed;
     const sim::Scene scene(sc);
-    HeadThread head;
+    gc::study::HeadThread head;
     headctl::HeadLinkConfig lc;
     lc.uri = head.uri();
     lc.steer = headctl::SteerMode::Point;
