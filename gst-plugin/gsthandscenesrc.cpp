@@ -70,6 +70,7 @@ static gboolean gst_hand_scene_src_set_caps(GstBaseSrc* src, GstCaps* caps)
     config.noise_sigma = settings.noise;
     config.lighting_change = settings.lighting_change;
     config.variety = settings.variety;
+    config.aim_mm = settings.aim;
     try {
         self->state->scene.emplace(config);
     } catch (const std::exception& err) {

@@ -23,6 +23,7 @@ enum {
     PROP_HEAD_TOKEN_FILE,
     PROP_HEAD_PAN,
     PROP_HEAD_TILT,
+    PROP_AIM,
 };
 
 #define GST_TYPE_HAND_SCENE_EYE (gst_hand_scene_eye_get_type())
@@ -89,6 +90,25 @@ GType gst_hand_scene_motion_get_type()
     };
     if (g_once_init_enter(&type)) g_once_init_leave(&type, g_enum_register_static("GstHandSceneMotion", values));
     return type;
+}
+
+// Three coordinates name a point; anything else (an empty array) leaves the seed's direction.
+std::optional<cv::Vec3d> aim_from_array(const GValue* value)
+{
+    if (gst_value_array_get_size(value) != 3) return std::nullopt;
+    cv::Vec3d aim;
+    for (guint i = 0; i < 3; ++i) aim[int(i)] = g_value_get_double(gst_value_array_get_value(value, i));
+    return aim;
+}
+
+void aim_to_array(const std::optional<cv::Vec3d>& aim, GValue* value)
+{
+    for (int i = 0; aim && i < 3; ++i) {
+        GValue v = G_VALUE_INIT;
+        g_value_init(&v, G_TYPE_DOUBLE);
+        g_value_set_double(&v, (*aim)[i]);
+        gst_value_array_append_and_take_value(value, &v);
+    }
 }
 
 }  // namespace
@@ -163,6 +183,15 @@ void install_scene_properties(GObjectClass* klass)
                                     g_param_spec_double("head-tilt", "Head tilt",
                                                         "Without head: the fixed rig's tilt, degrees (positive: up)",
                                                         -90.0, 90.0, 0.0, rig_flags));
+    g_object_class_install_property(
+        klass, PROP_AIM,
+        gst_param_spec_array("aim", "Aim",
+                             "Where the hand points at rest: a point <x, y, z> in the head frame, millimetres (x "
+                             "right, y down, z ahead; the room's wall is 3000 mm ahead). Empty: the seed's "
+                             "direction, obliquely up to one side",
+                             g_param_spec_double("coordinate", "Coordinate", "mm", -1.0e5, 1.0e5, 0.0,
+                                                 GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS)),
+                             flags));
 }
 
 void mark_scene_enums_as_plugin_api()
@@ -214,6 +243,9 @@ bool set_scene_setting(SceneSettings& s, guint prop_id, const GValue* value)
     case PROP_HEAD_TILT:
         s.rig.tilt_deg = g_value_get_double(value);
         break;
+    case PROP_AIM:
+        s.aim = aim_from_array(value);
+        break;
     default:
         return false;
     }
@@ -258,6 +290,9 @@ bool get_scene_setting(const SceneSettings& s, guint prop_id, GValue* value)
         break;
     case PROP_HEAD_TILT:
         g_value_set_double(value, s.rig.tilt_deg);
+        break;
+    case PROP_AIM:
+        aim_to_array(s.aim, value);
         break;
     default:
         return false;

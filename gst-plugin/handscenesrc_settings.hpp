@@ -7,6 +7,7 @@
 
 #include <glib-object.h>
 
+#include <optional>
 #include <string>
 
 namespace gc::gst {
@@ -27,6 +28,7 @@ struct SceneSettings {
     std::string head;             // URI of the head the cameras sit on; empty: a fixed rig
     std::string head_token_file;  // empty: the URI's token, if any
     HeadPose rig;                 // the fixed rig's pose (head-pan, head-tilt)
+    std::optional<cv::Vec3d> aim;  // where the hand points at rest (head frame, mm); unset: the seed's
 };
 
 // The is-live property, which basesrc holds rather than SceneSettings.

@@ -1,9 +1,13 @@
 #include "handtracker_tracking.hpp"
 
 #include "handtracker_head.hpp"
+#include "pointing_report.hpp"
 
+#include <algorithm>
+#include <cstdint>
 #include <exception>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 
 #define GST_CAT_DEFAULT gst_hand_tracker_debug
@@ -132,6 +136,21 @@ GstFlowReturn track_views(GstHandTracker* self, const Settings& settings, const 
     return GST_FLOW_OK;
 }
 
+namespace {
+
+// An `attended-target` element message: what the attended view frames from this frame on, so
+// that an application (or a measurement) knows when a dwell ended.
+void post_target(GstHandTracker* self, const char* event, const FrameResult& r, const std::optional<cv::Vec3d>& target)
+{
+    GstStructure* s = gst_structure_new("attended-target", "event", G_TYPE_STRING, event, "frame", G_TYPE_UINT64,
+                                        guint64(std::max<std::int64_t>(r.frame, 0)), "timestamp", G_TYPE_UINT64,
+                                        r.pts_ns >= 0 ? guint64(r.pts_ns) : GST_CLOCK_TIME_NONE, nullptr);
+    if (target) set_vec3(s, "target-head-mm", *target);
+    gst_element_post_message(GST_ELEMENT(self), gst_message_new_element(GST_OBJECT(self), s));
+}
+
+}  // namespace
+
 void pick_target(GstHandTracker* self, const TrackerSettings& settings, const FrameResult& r)
 {
     TrackerState& e = *self->state;
@@ -142,11 +161,14 @@ void pick_target(GstHandTracker* self, const TrackerSettings& settings, const Fr
     const double t_s = r.pts_ns >= 0 ? double(r.pts_ns) * 1e-9 : double(r.frame) / 30.0;
     const std::optional<cv::Vec3d> target = e.stream.dwell.update(t_s, r.pointing, params);
     const bool moved = target && e.stream.target && cv::norm(*target - *e.stream.target) > 1.0;
-    if (target && (!e.stream.target || moved))
+    if (target && (!e.stream.target || moved)) {
         GST_INFO_OBJECT(self, "frame %" G_GINT64_FORMAT ": a held pointing picked a target at (%.0f, %.0f, %.0f) mm",
                         r.frame, (*target)[0], (*target)[1], (*target)[2]);
-    else if (!target && e.stream.target)
+        post_target(self, "picked", r, target);
+    } else if (!target && e.stream.target) {
         GST_INFO_OBJECT(self, "frame %" G_GINT64_FORMAT ": the target is released", r.frame);
+        post_target(self, "released", r, std::nullopt);
+    }
     e.stream.target = target;
 }
 

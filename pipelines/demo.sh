@@ -14,6 +14,11 @@
 # TARGET_DISTANCE mm along the ray (default 600: the rendered room's wall is 3 m away), looks
 # there for LOOK_TIME seconds (default 3) and comes back to the hand; the steering events
 # (look, return, follow) are printed with the figures.
+# STEER=frame runs the point-and-frame loop: the head keeps the hand in view (steer=fixate)
+# while the rendered hand, held still (MOTION default static), points at AIM (handscenesrc's
+# aim, default <900.0,-250.0,2600.0>: right, slightly up, away into the room); once held for
+# DWELL seconds (default 1) the attended view (out/demo.mp4) frames the point TARGET_DISTANCE
+# mm along the ray (default 2000), TARGET_REGION mm wide (default 500); the picks are printed.
 set -euo pipefail
 . "$(dirname "$0")/lib/plugin.sh"
 gesturecam_build_targets gstgesturecam headsim
@@ -24,14 +29,20 @@ out=${OUT:-out}
 frames=${FRAMES:-300}
 scene=${SCENE:-light}
 scene=${scene//_/-}
-motion=${MOTION:-translate}
+steer=${STEER:-fixate}
+if [ "$steer" = frame ]; then motion=${MOTION:-static}; else motion=${MOTION:-translate}; fi
 motion=${motion//_/-}
 seed=${SEED:-3}
 particles=${PARTICLES:-1000}
-steer=${STEER:-fixate}
 point_options=""
+scene_options=""
+tracker_steer=$steer
 if [ "$steer" = point ]; then
   point_options="dwell=${DWELL:-1} target-distance=${TARGET_DISTANCE:-600} look-time=${LOOK_TIME:-3}"
+elif [ "$steer" = frame ]; then
+  tracker_steer=fixate
+  point_options="dwell=${DWELL:-1} target-distance=${TARGET_DISTANCE:-2000} target-region=${TARGET_REGION:-500}"
+  scene_options="aim=\"${AIM:-<900.0,-250.0,2600.0>}\""
 fi
 mkdir -p "$out"
 rm -f "$out/demo.mp4" "$out/demo.jsonl" "$out/demo.bus.txt"
@@ -49,7 +60,7 @@ head="tcp://$address"
 caps="video/x-raw,width=640,height=480,framerate=30/1"
 eye() {
   echo "handscenesrc name=$1 eye=$1 is-live=true head=$head scene=$scene motion=$motion seed=$seed" \
-       "num-buffers=$frames truth-messages=$2 ! $caps"
+       "$scene_options num-buffers=$frames truth-messages=$2 ! $caps"
 }
 
 echo "Head: headsim at $head. Rendering $frames live stereo frames ($((frames / 30)) s) of the '$scene' scene,"
@@ -60,7 +71,7 @@ start=$(date +%s.%N)
 gst-launch-1.0 -m -e \
   $(eye left true) ! t.sink_left \
   $(eye right false) ! t.sink_right \
-  handtracker name=t particles="$particles" head="$head" steer="$steer" $point_options draw=true output=attended \
+  handtracker name=t particles="$particles" head="$head" steer="$tracker_steer" $point_options draw=true output=attended \
     message-updates=on-change json-location="$out/demo.jsonl" \
   ! videoconvert ! x264enc tune=zerolatency speed-preset=veryfast ! mp4mux ! filesink location="$out/demo.mp4" \
   >"$out/demo.bus.txt"
@@ -105,6 +116,12 @@ if steer == "point":
                                                              "the head was steered)"))
     for event, detail in events:
         print(f"  {event}: {detail.group(1).replace(chr(92), '') if detail else ''}")
+if steer == "frame":
+    picks = [(field(line, "event", "string"), field(line, "frame", "guint64"))
+             for line in open(f"{out}/demo.bus.txt") if "attended-target" in line]
+    print(f"attended targets: {len(picks)}" + ("" if picks else " (no pointing held for the dwell time)"))
+    for event, frame in picks:
+        print(f"  {event} at frame {frame}")
 print(f"wall time: {end - start:.1f} s for {n / 30:.1f} s of video (live)")
 print(f"video: {out}/demo.mp4   JSON lines: {out}/demo.jsonl   bus messages: {out}/demo.bus.txt")
 PY

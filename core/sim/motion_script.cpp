@@ -1,5 +1,7 @@
 #include "sim/motion_script.hpp"
 
+#include "stereo/head_geometry.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -23,6 +25,24 @@ double soft_limit(double x, double limit) { return limit * std::tanh(x / limit);
 constexpr double kHold = 1.0, kTravel = 2.8, kAway = 2.0;
 constexpr double kRamp = 1.5;  // the motion fades in over this time after the wave
 
+// Turns the hand about its palm so that the finger points at `target`, its palm turned to the
+// cameras as far as that allows (the plane holds the finger and the line across the view).
+void aim_at(HandPose& p, const cv::Vec3d& target)
+{
+    const cv::Vec3d d = target - p.palm_mm;
+    const cv::Vec3d sight = p.palm_mm * (1.0 / std::max(cv::norm(p.palm_mm), 1e-6));
+    if (!(cv::norm(d) > 1e-6)) return;
+    const cv::Vec3d u = d * (1.0 / cv::norm(d));
+    cv::Vec3d n = -(sight - sight.dot(u) * u);  // the normal nearest to facing the cameras
+    if (!(cv::norm(n) > 1e-6)) n = u.cross(cv::Vec3d(1.0, 0.0, 0.0));  // pointing straight away
+    n *= 1.0 / cv::norm(n);
+    // Ry(yaw) Rx(pitch) maps (0, 0, -1) to n and (cos roll, -sin roll, 0) to u.
+    p.pitch_deg = std::asin(std::clamp(n[1], -1.0, 1.0)) * 180.0 / kPi;
+    p.yaw_deg = std::atan2(-n[0], -n[2]) * 180.0 / kPi;
+    const cv::Vec3d in_plane = (rotation_about_y(p.yaw_deg) * rotation_about_x(p.pitch_deg)).t() * u;
+    p.roll_deg = std::atan2(-in_plane[1], in_plane[0]) * 180.0 / kPi;
+}
+
 }  // namespace
 
 double MotionScript::Channel::value(double tau) const
@@ -43,6 +63,7 @@ MotionScript::MotionScript(const SceneConfig& c, double half_fov_x, double half_
     rest_.roll_deg = uniform(rng, 0, 1) < 0.5 ? uniform(rng, 20, 70) : uniform(rng, 110, 160);
     rest_.yaw_deg = uniform(rng, -12, 12);
     rest_.pitch_deg = uniform(rng, -8, 8);
+    if (c.aim_mm) aim_at(rest_, *c.aim_mm);
 
     // Total amplitude per channel: x, y, z in units of the distance, angles in degrees.
     std::array<double, kChannels> amp{};

@@ -69,6 +69,10 @@ void validate(const SceneConfig& c)
             "SceneConfig: hand_distance_mm " + fmt(c.hand_distance_mm) + " outside [300, 2500]");
     require(std::isfinite(c.noise_sigma) && c.noise_sigma >= 0.0 && c.noise_sigma <= 50.0,
             "SceneConfig: noise_sigma " + fmt(c.noise_sigma) + " outside [0, 50]");
+    if (c.aim_mm)
+        for (int i = 0; i < 3; ++i)
+            require(std::isfinite((*c.aim_mm)[i]) && std::abs((*c.aim_mm)[i]) <= 1.0e5,
+                    "SceneConfig: aim_mm must be finite and within 100 m");
 }
 
 void validate(const HeadPose& h)

@@ -61,6 +61,9 @@ struct SceneConfig {
     double hand_distance_mm = 1000.0;  // of the palm from the head at rest
     double noise_sigma = 2.0;          // sensor noise, grey levels (wide: scaled by 0.5-4 per seed)
     bool lighting_change = false;      // a slow global change of brightness and colour temperature
+    // At rest the finger points from the palm at this head-frame point (mm), e.g. at something
+    // across the room; unset: the seed's direction, obliquely up to one side.
+    std::optional<cv::Vec3d> aim_mm;
 };
 
 // The hand in the head frame (see stereo/head_geometry.hpp), millimetres.

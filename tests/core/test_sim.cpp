@@ -235,6 +235,27 @@ TEST(SimScene, PointingAngleFollowsRoll)
     }
 }
 
+TEST(SimScene, AnAimedHandPointsAtItsAimAndStaysInView)
+{
+    // Across the room, to either side and up or down: the finger points at the aim from the
+    // first still frame on, and both eyes see the hand.
+    for (const cv::Vec3d& aim : {cv::Vec3d(800, -300, 3500), cv::Vec3d(-900, 200, 2500), cv::Vec3d(0, -500, 2000)}) {
+        SceneConfig c = config(Preset::Light, Motion::Static, 5);
+        c.aim_mm = aim;
+        const Scene scene(c);
+        const int still = int(2.0 * c.fps);  // after the wave
+        const HandTruth t = scene.hand_truth(scene.hand_pose(still));
+        const cv::Vec3d to_aim = (aim - t.palm_mm) * (1.0 / cv::norm(aim - t.palm_mm));
+        EXPECT_GT(t.direction.dot(to_aim), std::cos(0.5 * std::numbers::pi / 180.0)) << aim;
+        cv::Mat img;
+        EyeTruth truth;
+        for (Eye eye : {Eye::Left, Eye::Right}) {
+            scene.render(still, eye, {}, img, &truth);
+            EXPECT_TRUE(truth.visible) << aim;
+        }
+    }
+}
+
 // Two scenes of config `c` render the same frames and truth; one of `other_seed` differs.
 void expect_seeded(SceneConfig c, std::uint64_t other_seed)
 {

@@ -1,6 +1,6 @@
 // output=attended frames what a held pointing picked: after the dwell, the crop centres on
 // the point target-distance along the rendered hand's true ray, as wide as target-region,
-// while the hand stays tracked; lowering the hand (the scene ends the pointing) is not needed
+// while the hand stays tracked, and an attended-target message announces the pick; lowering the hand (the scene ends the pointing) is not needed
 // here, the dwell's own rules are unit-tested (tests/stereo/test_pointing_dwell.cpp).
 #include "gst_fixture.hpp"
 
@@ -83,6 +83,15 @@ TEST(AttendedTarget, AHeldPointingIsFramedWithinASecondOfTheDwell)
     // The dwell ends 1 s after the pointing is first seen; framed within 1 s of that.
     EXPECT_LE(framed_from, first_pointing + int(2.0 * kFps)) << "first pointing at " << first_pointing;
     EXPECT_GE(framed_from, first_pointing + int(1.0 * kFps) - 1) << "framed before the dwell ended";
+    // The pick is announced: one attended-target message, on the frame the dwell ended.
+    const auto picks = r.named("attended-target", "t");
+    ASSERT_EQ(picks.size(), 1u);
+    EXPECT_STREQ(gst_structure_get_string(picks[0], "event"), "picked");
+    guint64 pick_frame = 0;
+    ASSERT_TRUE(gst_structure_get_uint64(picks[0], "frame", &pick_frame));
+    EXPECT_GE(int(pick_frame), first_pointing + int(1.0 * kFps) - 1);
+    EXPECT_LE(int(pick_frame), framed_from);
+    EXPECT_NE(gst_structure_get_value(picks[0], "target-head-mm"), nullptr);
 }
 
 }  // namespace
