@@ -70,6 +70,8 @@ static gboolean gst_hand_scene_src_set_caps(GstBaseSrc* src, GstCaps* caps)
     config.noise_sigma = settings.noise;
     config.lighting_change = settings.lighting_change;
     config.variety = settings.variety;
+    config.gesture = settings.gesture;
+    config.gesture_cycle_s = settings.gesture_cycle_s;
     try {
         self->state->scene.emplace(config);
     } catch (const std::exception& err) {

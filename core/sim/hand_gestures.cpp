@@ -65,7 +65,8 @@ FingerLayout fist_layout(const HandShape& h)
     l.straight.clear();
     // The index finger curled beside the middle finger, a little larger (its knuckle leads).
     l.curled.insert(l.curled.begin(), CurledFinger{{h.curled_centre[0].x + 1.0 * lx, h.index_base.y},
-                                                   h.curled_length[0] * 1.03, h.index_base_radius * 1.1,
+                                                   h.curled_length[0] * 1.03,
+                                                   h.index_base_radius * 1.1,
                                                    h.curled_angle_deg[0] - 6.0});
     // The thumb across the curled index and middle fingers.
     const double reach = std::hypot(h.thumb_tip.x - h.thumb_base.x, h.thumb_tip.y - h.thumb_base.y) /
@@ -80,10 +81,14 @@ FingerLayout fist_layout(const HandShape& h)
 FingerLayout finger_layout(const HandShape& shape, Gesture gesture)
 {
     switch (gesture) {
-    case Gesture::Pointing: return pointing_layout(shape);
-    case Gesture::Open: return open_layout(shape);
-    case Gesture::Fist: return fist_layout(shape);
-    default: throw std::invalid_argument("finger_layout: the renderer shows pointing, open or fist");
+    case Gesture::Pointing:
+        return pointing_layout(shape);
+    case Gesture::Open:
+        return open_layout(shape);
+    case Gesture::Fist:
+        return fist_layout(shape);
+    default:
+        throw std::invalid_argument("finger_layout: the renderer shows pointing, open or fist");
     }
 }
 

@@ -87,7 +87,8 @@ TEST(SimGestures, TheSameHandInEveryGesture)
 {
     const Scene scene(config(Preset::Light, 3, Gesture::Pointing, Variety::Wide));
     const EyeTruth pointing = render_face_on(scene, Gesture::Pointing);
-    const cv::Point2d axis = (pointing.fingertip_px - pointing.palm_px) / cv::norm(pointing.fingertip_px - pointing.palm_px);
+    const cv::Point2d axis =
+        (pointing.fingertip_px - pointing.palm_px) / cv::norm(pointing.fingertip_px - pointing.palm_px);
     auto behind_palm = [&](const cv::Mat1b& mask) {
         cv::Mat1b out = mask.clone();
         for (int y = 0; y < out.rows; ++y)
@@ -141,9 +142,9 @@ TEST(SimGestures, HeldGestureAndCycle)
     c.gesture = Gesture::Fist;
     c.gesture_cycle_s = 2.0;  // fist 0-2 s, pointing 2-4 s, fist 4-6 s...
     const Scene cycled(c);
-    const std::pair<int, Gesture> expected[] = {
-        {0, Gesture::Fist}, {59, Gesture::Fist}, {60, Gesture::Pointing}, {119, Gesture::Pointing},
-        {120, Gesture::Fist}, {200, Gesture::Pointing}};
+    const std::pair<int, Gesture> expected[] = {{0, Gesture::Fist},      {59, Gesture::Fist},
+                                                {60, Gesture::Pointing}, {119, Gesture::Pointing},
+                                                {120, Gesture::Fist},    {200, Gesture::Pointing}};
     for (const auto& [frame, gesture] : expected) {
         EXPECT_EQ(cycled.hand_pose(frame).gesture, gesture) << "frame " << frame;
         cycled.render(frame, Eye::Left, {}, img, &t);
