@@ -71,6 +71,8 @@ static gboolean gst_hand_scene_src_set_caps(GstBaseSrc* src, GstCaps* caps)
     config.lighting_change = settings.lighting_change;
     config.variety = settings.variety;
     config.aim_mm = settings.aim;
+    config.gesture = settings.gesture;
+    config.gesture_cycle_s = settings.gesture_cycle_s;
     try {
         self->state->scene.emplace(config);
     } catch (const std::exception& err) {

@@ -7,6 +7,7 @@
 #include <exception>
 #include <optional>
 #include <stdexcept>
+#include <string>
 
 #define GST_CAT_DEFAULT gst_hand_scene_src_debug
 
@@ -75,7 +76,8 @@ void post_truth(GstHandSceneSrc* self, guint64 frame, GstClockTime pts, const Sc
         G_TYPE_DOUBLE, t.palm_px.x, "palm-y", G_TYPE_DOUBLE, t.palm_px.y, "fingertip-x", G_TYPE_DOUBLE,
         t.fingertip_px.x, "fingertip-y", G_TYPE_DOUBLE, t.fingertip_px.y, "pointing-deg", G_TYPE_DOUBLE, t.pointing_deg,
         "bbox-x", G_TYPE_INT, t.bbox.x, "bbox-y", G_TYPE_INT, t.bbox.y, "bbox-width", G_TYPE_INT, t.bbox.width,
-        "bbox-height", G_TYPE_INT, t.bbox.height, nullptr);
+        "bbox-height", G_TYPE_INT, t.bbox.height, "gesture", G_TYPE_STRING,
+        std::string(to_string(hand.gesture)).c_str(), nullptr);
     gc::gst::set_vec3(s, "fingertip-head-mm", hand.fingertip_mm);
     gc::gst::set_vec3(s, "palm-head-mm", hand.palm_mm);
     gc::gst::set_vec3(s, "direction-head", hand.direction);

@@ -17,6 +17,8 @@ enum {
     PROP_NOISE,
     PROP_LIGHTING_CHANGE,
     PROP_VARIETY,
+    PROP_GESTURE,
+    PROP_GESTURE_CYCLE,
     PROP_IS_LIVE,
     PROP_TRUTH_MESSAGES,
     PROP_HEAD,
@@ -111,6 +113,21 @@ void aim_to_array(const std::optional<cv::Vec3d>& aim, GValue* value)
     }
 }
 
+#define GST_TYPE_HAND_SCENE_GESTURE (gst_hand_scene_gesture_get_type())
+GType gst_hand_scene_gesture_get_type()
+{
+    static GType type = 0;
+    static const GEnumValue values[] = {
+        {int(gc::Gesture::Pointing), "The index finger extended, the thumb along it, the other fingers curled",
+         "pointing"},
+        {int(gc::Gesture::Open), "All five fingers extended and slightly spread, the thumb out", "open"},
+        {int(gc::Gesture::Fist), "All four fingers curled, the thumb across them", "fist"},
+        {0, nullptr, nullptr},
+    };
+    if (g_once_init_enter(&type)) g_once_init_leave(&type, g_enum_register_static("GstHandSceneGesture", values));
+    return type;
+}
+
 }  // namespace
 
 bool is_live_property(guint prop_id) { return prop_id == PROP_IS_LIVE; }
@@ -147,6 +164,17 @@ void install_scene_properties(GObjectClass* klass)
                           "What else the seed varies: nothing (the preset as it always was) or the hand, "
                           "people, light and camera",
                           GST_TYPE_HAND_SCENE_VARIETY, int(gc::sim::Variety::None), flags));
+    g_object_class_install_property(
+        klass, PROP_GESTURE,
+        g_param_spec_enum("gesture", "Gesture",
+                          "What the hand does; only a pointing hand has a pointing ray in the ground truth",
+                          GST_TYPE_HAND_SCENE_GESTURE, int(gc::Gesture::Pointing), flags));
+    g_object_class_install_property(
+        klass, PROP_GESTURE_CYCLE,
+        g_param_spec_double("gesture-cycle", "Gesture cycle",
+                            "Seconds: 0 holds the gesture throughout; T > 0 shows the gesture for T s, then points "
+                            "for T s, and so on",
+                            0.0, 3600.0, 0.0, flags));
     g_object_class_install_property(klass, PROP_IS_LIVE,
                                     g_param_spec_boolean("is-live", "Is live",
                                                          "Behave as a live camera: frames come at the frame rate",
@@ -200,6 +228,7 @@ void mark_scene_enums_as_plugin_api()
     gst_type_mark_as_plugin_api(GST_TYPE_HAND_SCENE_PRESET, GstPluginAPIFlags(0));
     gst_type_mark_as_plugin_api(GST_TYPE_HAND_SCENE_MOTION, GstPluginAPIFlags(0));
     gst_type_mark_as_plugin_api(GST_TYPE_HAND_SCENE_VARIETY, GstPluginAPIFlags(0));
+    gst_type_mark_as_plugin_api(GST_TYPE_HAND_SCENE_GESTURE, GstPluginAPIFlags(0));
 }
 
 bool set_scene_setting(SceneSettings& s, guint prop_id, const GValue* value)
@@ -225,6 +254,12 @@ bool set_scene_setting(SceneSettings& s, guint prop_id, const GValue* value)
         break;
     case PROP_VARIETY:
         s.variety = gc::sim::Variety(g_value_get_enum(value));
+        break;
+    case PROP_GESTURE:
+        s.gesture = gc::Gesture(g_value_get_enum(value));
+        break;
+    case PROP_GESTURE_CYCLE:
+        s.gesture_cycle_s = g_value_get_double(value);
         break;
     case PROP_TRUTH_MESSAGES:
         s.truth_messages = g_value_get_boolean(value);
@@ -275,6 +310,12 @@ bool get_scene_setting(const SceneSettings& s, guint prop_id, GValue* value)
         break;
     case PROP_VARIETY:
         g_value_set_enum(value, int(s.variety));
+        break;
+    case PROP_GESTURE:
+        g_value_set_enum(value, int(s.gesture));
+        break;
+    case PROP_GESTURE_CYCLE:
+        g_value_set_double(value, s.gesture_cycle_s);
         break;
     case PROP_TRUTH_MESSAGES:
         g_value_set_boolean(value, s.truth_messages);

@@ -24,6 +24,8 @@ struct SceneSettings {
     double noise = kDefaultSceneNoise;
     bool lighting_change = false;
     sim::Variety variety = sim::Variety::None;
+    Gesture gesture = Gesture::Pointing;
+    double gesture_cycle_s = 0.0;
     bool truth_messages = true;
     std::string head;             // URI of the head the cameras sit on; empty: a fixed rig
     std::string head_token_file;  // empty: the URI's token, if any

@@ -1,5 +1,7 @@
 #include "sim/hand_model.hpp"
 
+#include "sim/hand_gestures.hpp"
+
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
@@ -90,10 +92,12 @@ Poly arc(cv::Point2d c, double a, double b, double angle_deg, double from_deg, d
 }
 
 // The hand's outline in the anatomical layout (the palm's long axis along u), turned so that
-// the fingertip lies on +u, mirrored for the other hand; `j` is the seeded size factor.
+// the pointing fingertip lies on +u, mirrored for the other hand; `j` is the seeded size
+// factor. Every gesture is turned like the pointing hand, so palm and wrist stay in place.
 struct Outline {
     HandModel model;  // parts, finger length, palm axis, wrist
-    std::size_t first_curled = 0;
+    FingerLayout layout;
+    std::size_t thumb_part = 0, first_curled = 0;
     double turn_cos = 1.0, turn_sin = 0.0, v_sign = 1.0;
 
     Poly place(Poly p) const
@@ -106,7 +110,26 @@ struct Outline {
     }
 };
 
-Outline hand_outline(const HandShape& h, double j, bool mirrored)
+// A straight finger's polygon (or a line along it) turned about the finger's root.
+Poly spread(Poly p, const StraightFinger& f, double j)
+{
+    if (f.spread_deg == 0.0) return p;
+    const double a = f.spread_deg * kPi / 180.0;
+    const cv::Point2d root = f.base * j;
+    for (auto& q : p) q = root + rotate(q - root, std::cos(a), std::sin(a));
+    return p;
+}
+
+// The farthest the hand reaches along +u: where a hand that does not point has its "tip".
+double reach_along_u(const std::vector<Poly>& parts)
+{
+    double reach = 0.0;
+    for (const auto& part : parts)
+        for (const auto& q : part) reach = std::max(reach, q.x);
+    return reach;
+}
+
+Outline hand_outline(const HandShape& h, Gesture gesture, double j, bool mirrored)
 {
     const cv::Point2d tip_centre = h.index_tip * j;
     const double tip_r = h.index_tip_radius * j;
@@ -116,8 +139,6 @@ Outline hand_outline(const HandShape& h, double j, bool mirrored)
                      {-h.wrist_length * j, h.wrist_half_width * j},
                      {-h.wrist_length * j, -h.wrist_half_width * j},
                      {-edge * j, -joint * j}};
-    const Poly index = capsule(h.index_base * j, h.index_base_radius * j, tip_centre, tip_r, 24);
-    const Poly thumb = capsule(h.thumb_base * j, h.thumb_base_radius * j, h.thumb_tip * j, h.thumb_tip_radius * j, 24);
 
     // The fingertip: the point of the finger's end cap farthest from the palm centroid, so
     // that it is also the hand's extreme point along the pointing direction.
@@ -125,20 +146,27 @@ Outline hand_outline(const HandShape& h, double j, bool mirrored)
     for (int i = 0; i < 8; ++i) tip = tip_centre + tip * (tip_r / std::hypot(tip.x, tip.y));
     const double turn = -std::atan2(tip.y, tip.x);
     Outline o;
+    o.layout = finger_layout(h, gesture);
     o.turn_cos = std::cos(turn);
     o.turn_sin = std::sin(turn);
     o.v_sign = mirrored ? -1.0 : 1.0;
 
     HandModel& m = o.model;
+    m.gesture = gesture;
     m.finger_length_mm = std::hypot(tip.x, tip.y);
     m.palm_axis = rotate({-1.0, 0.0}, o.turn_cos, o.turn_sin);
     m.palm_axis.y *= o.v_sign;
     m.wrist_mm = h.wrist_length * j;
-    m.parts = {o.place(palm), o.place(wrist), o.place(index), o.place(thumb)};
+    m.parts = {o.place(palm), o.place(wrist)};
+    for (const StraightFinger& f : o.layout.straight)
+        m.parts.push_back(o.place(spread(capsule(f.base * j, f.base_radius * j, f.tip * j, f.tip_radius * j, 24), f, j)));
+    const StraightFinger& t = o.layout.thumb;
+    o.thumb_part = m.parts.size();
+    m.parts.push_back(o.place(capsule(t.base * j, t.base_radius * j, t.tip * j, t.tip_radius * j, 24)));
     o.first_curled = m.parts.size();
-    for (int i = 0; i < 3; ++i)
-        m.parts.push_back(o.place(
-            ellipse(h.curled_centre[i] * j, h.curled_length[i] * j, h.curled_width[i] * j, h.curled_angle_deg[i], 32)));
+    for (const CurledFinger& c : o.layout.curled)
+        m.parts.push_back(o.place(ellipse(c.centre * j, c.length * j, c.width * j, c.angle_deg, 32)));
+    if (gesture != Gesture::Pointing) m.finger_length_mm = reach_along_u(m.parts);
     return o;
 }
 
@@ -165,11 +193,13 @@ cv::Mat1f skin_shading(const Outline& o, const HandShape& h, double j, double gr
         shade = shade.mul(g);
     };
     part_gain(m.parts[1], 0.96f);  // wrist
-    part_gain(m.parts[3], 0.97f);  // thumb
+    part_gain(m.parts[o.thumb_part], 0.97f);  // thumb
     for (std::size_t i = o.first_curled; i < m.parts.size(); ++i) part_gain(m.parts[i], 0.93f);
 
-    // Creases: where the curled fingers fold, the palm lines, the index finger's joints.
-    for (std::size_t i = o.first_curled; i < m.parts.size(); ++i) {
+    // Creases: where the curled fingers fold (and a fist's thumb lies across them), the palm
+    // lines, the straight fingers' joints.
+    const std::size_t first_outlined = m.gesture == Gesture::Fist ? o.thumb_part : o.first_curled;
+    for (std::size_t i = first_outlined; i < m.parts.size(); ++i) {
         Poly outline = m.parts[i];
         outline.push_back(outline.front());
         crease(shade, m, outline, 1.1, 0.22f);
@@ -178,11 +208,12 @@ cv::Mat1f skin_shading(const Outline& o, const HandShape& h, double j, double gr
     crease(shade, m, o.place(arc({-6 * sx, -2 * sy}, 32 * sx, 24 * sy, -15, 200, 300)), 0.9, 0.12f);
     crease(shade, m, o.place(arc({10 * sx, 28 * sy}, 40 * sx, 20 * sy, 10, 200, 280)), 0.9, 0.12f);
     crease(shade, m, o.place(arc({-20 * sx, 22 * sy}, 28 * sx, 40 * sy, 0, 260, 350)), 0.9, 0.14f);
-    for (double k : {0.42, 0.72}) {
-        const double u = h.index_base.x * j + k * (h.index_tip.x - h.index_base.x) * j;
-        crease(shade, m, o.place(Poly{{u, (h.index_base.y - 8.5) * j}, {u + 1.0, (h.index_base.y + 8.5) * j}}), 0.8,
-               0.18f);
-    }
+    for (const StraightFinger& f : o.layout.straight)
+        for (double k : {0.42, 0.72}) {
+            const double u = f.base.x * j + k * (f.tip.x - f.base.x) * j;
+            const Poly joint{{u, (f.base.y - 8.5) * j}, {u + 1.0, (f.base.y + 8.5) * j}};
+            crease(shade, m, o.place(spread(joint, f, j)), 0.8, 0.18f);
+        }
 
     const float rim_texels = float(5.0 / kTexelMm);
     for (int y = 0; y < size.height; ++y)
@@ -198,10 +229,10 @@ cv::Matx33d HandModel::texel_to_model() const
 }
 
 HandModel build_hand_model(const cv::Vec3f& skin_bgr, bool mirrored, Rng& rng, const HandShape& shape,
-                           const HandSkin* skin)
+                           const HandSkin* skin, Gesture gesture)
 {
     const double jitter = uniform(rng, 0.95, 1.05);  // hand size
-    Outline o = hand_outline(shape, jitter, mirrored);
+    Outline o = hand_outline(shape, gesture, jitter, mirrored);
     HandModel& m = o.model;
 
     // Texture over the parts' bounding box plus a margin.

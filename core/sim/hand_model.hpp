@@ -1,10 +1,11 @@
-// The planar hand in a rigid pointing gesture: palm, short wrist, extended index finger,
-// thumb along it, the other three fingers curled against the palm. Geometry in the hand's
-// own plane (millimetres): u runs from the palm centroid (the origin) to the index
-// fingertip, v to the thumb's side. The outline is a union of convex parts; the skin
+// The planar hand in one rigid gesture; pointing: palm, short wrist, extended index finger,
+// thumb along it, the other three fingers curled against the palm (open and fist: see
+// hand_gestures.hpp). Geometry in the hand's own plane (millimetres): u runs from the palm
+// centroid (the origin) to the pointing index fingertip, v to the thumb's side. The outline is a union of convex parts; the skin
 // texture is an image over the same plane.
 #pragma once
 
+#include "common/types.hpp"
 #include "sim/appearance.hpp"
 
 #include <opencv2/core.hpp>
@@ -48,8 +49,11 @@ struct HandSkin {
 };
 
 struct HandModel {
+    Gesture gesture = Gesture::Pointing;
     std::vector<std::vector<cv::Point2d>> parts;  // convex polygons, model millimetres
-    double finger_length_mm = 0.0;                // palm centroid to fingertip; the tip is (length, 0)
+    // Palm centroid to the fingertip, which is (length, 0); for a hand that does not point,
+    // to the hand's farthest reach along u.
+    double finger_length_mm = 0.0;
     cv::Point2d palm_axis{-1.0, 0.0};             // unit, from the palm centroid towards the wrist
     double wrist_mm = 0.0;                        // where the skin of the wrist ends along palm_axis
 
@@ -62,8 +66,9 @@ struct HandModel {
 };
 
 // `mirrored` gives the other hand (thumb on the -v side, seen from the palm). Without `skin`,
-// one tone `skin_bgr` with the presets' shading; with it, that skin (skin_bgr unused).
+// one tone `skin_bgr` with the presets' shading; with it, that skin (skin_bgr unused). The
+// same `rng` state gives the same hand (size, skin) in every gesture.
 HandModel build_hand_model(const cv::Vec3f& skin_bgr, bool mirrored, Rng& rng, const HandShape& shape = {},
-                           const HandSkin* skin = nullptr);
+                           const HandSkin* skin = nullptr, Gesture gesture = Gesture::Pointing);
 
 }  // namespace gc::sim

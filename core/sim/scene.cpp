@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -56,6 +57,10 @@ void validate(const SceneConfig& c)
     require(c.preset >= Preset::Clean && c.preset <= Preset::Varied, "SceneConfig: unknown preset");
     require(c.variety == Variety::None || c.variety == Variety::Wide, "SceneConfig: unknown variety");
     require(c.motion >= Motion::Static && c.motion <= Motion::LeaveReturn, "SceneConfig: unknown motion");
+    require(c.gesture == Gesture::Pointing || c.gesture == Gesture::Open || c.gesture == Gesture::Fist,
+            "SceneConfig: the hand's gesture must be pointing, open or fist");
+    require(std::isfinite(c.gesture_cycle_s) && c.gesture_cycle_s >= 0.0 && c.gesture_cycle_s <= 3600.0,
+            "SceneConfig: gesture_cycle_s " + fmt(c.gesture_cycle_s) + " outside [0, 3600]");
     require(c.width >= 32 && c.width <= 4096 && c.height >= 32 && c.height <= 4096,
             "SceneConfig: image size " + std::to_string(c.width) + "x" + std::to_string(c.height) +
                 " outside 32..4096");
@@ -92,6 +97,8 @@ void validate(const HandPose& p)
             "HandPose: angles must be finite");
     require(std::isfinite(p.forearm_mm) && p.forearm_mm >= 100.0 && p.forearm_mm <= 600.0,
             "HandPose: forearm_mm " + fmt(p.forearm_mm) + " outside [100, 600]");
+    require(p.gesture == Gesture::Pointing || p.gesture == Gesture::Open || p.gesture == Gesture::Fist,
+            "HandPose: the hand's gesture must be pointing, open or fist");
 }
 
 // The hand's plane in the head frame: u to the fingertip, v to the thumb side, n its normal.
@@ -144,7 +151,13 @@ struct Scene::Impl {
     HeadGeometry geometry;
     double distance_mm = 0.0;  // of the hand at rest
     cv::Vec3f skin;
-    HandModel hand;
+    HandModel hand;  // pointing
+    // The same hand open and as a fist, built when first shown from the random state the
+    // pointing hand was built from (same size and skin).
+    Rng same_hand;
+    bool mirrored = false;
+    mutable HandModel open_hand, fist_hand;
+    mutable std::once_flag open_built, fist_built;
     Wall wall;
     std::unique_ptr<MotionScript> script;
     std::vector<Billboard> people;  // farthest first
@@ -161,7 +174,10 @@ struct Scene::Impl {
     void place_face_pass(double half_x, double half_y);
     void place_people(double half_x, double half_y);
     void draw_arm(cv::Mat& bgr, const EyeCamera& cam, const HandPose& pose, const HandFrame& f) const;
-    void draw_hand(cv::Mat& bgr, const EyeCamera& cam, const HandFrame& f, cv::Point2d smear, EyeTruth* truth) const;
+    const HandModel& model(Gesture g) const;
+    Gesture gesture_at(double t) const;
+    void draw_hand(cv::Mat& bgr, const EyeCamera& cam, const HandModel& model, const HandFrame& f, cv::Point2d smear,
+                   EyeTruth* truth) const;
     cv::Point2d hand_smear(const EyeCamera& cam, int frame) const;
     HandTruth hand_truth(const HandPose& pose) const;
     void apply_lighting(cv::Mat& bgr, int frame, Eye eye) const;
@@ -217,7 +233,8 @@ void Scene::Impl::pick_hand(Rng& hand_rng)
     distance_mm = config.hand_distance_mm;
     if (config.variety != Variety::Wide && config.preset != Preset::Varied) {
         skin = pick_skin_tone(hand_rng);
-        const bool mirrored = uniform(hand_rng, 0, 1) < 0.5;
+        mirrored = uniform(hand_rng, 0, 1) < 0.5;
+        same_hand = hand_rng;
         hand = build_hand_model(skin, mirrored, hand_rng);
         sleeve = non_skin_colour(hand_rng, 0.15, 0.6, 0.6);
         upper_sleeve = sleeve * 0.9f;
@@ -226,7 +243,8 @@ void Scene::Impl::pick_hand(Rng& hand_rng)
     Rng looks_rng(mix_seed(config.seed, kLooksStream));
     looks = draw_looks(config.noise_sigma, looks_rng);
     skin = looks->skin.palm;
-    const bool mirrored = uniform(looks_rng, 0, 1) < 0.5;
+    mirrored = uniform(looks_rng, 0, 1) < 0.5;
+    same_hand = hand_rng;
     hand = build_hand_model(skin, mirrored, hand_rng, looks->shape, &looks->skin);
     sleeve = looks->forearm;
     upper_sleeve = looks->upper_arm;
@@ -234,6 +252,24 @@ void Scene::Impl::pick_hand(Rng& hand_rng)
     ambient = looks->ambient;
     diffuse = 1.0 - looks->ambient;
     distance_mm = std::clamp(config.hand_distance_mm * looks->distance_factor, 300.0, 2500.0);
+}
+
+const HandModel& Scene::Impl::model(Gesture g) const
+{
+    if (g == Gesture::Pointing) return hand;
+    HandModel& other = g == Gesture::Open ? open_hand : fist_hand;
+    std::call_once(g == Gesture::Open ? open_built : fist_built, [&] {
+        Rng rng = same_hand;
+        other = looks ? build_hand_model(skin, mirrored, rng, looks->shape, &looks->skin, g)
+                      : build_hand_model(skin, mirrored, rng, {}, nullptr, g);
+    });
+    return other;
+}
+
+Gesture Scene::Impl::gesture_at(double t) const
+{
+    if (config.gesture_cycle_s <= 0.0) return config.gesture;
+    return std::fmod(t, 2.0 * config.gesture_cycle_s) < config.gesture_cycle_s ? config.gesture : Gesture::Pointing;
 }
 
 // face-pass: a person sits behind the hand's path, and the hand starts (waves, is acquired)
@@ -307,8 +343,8 @@ void Scene::Impl::draw_arm(cv::Mat& bgr, const EyeCamera& cam, const HandPose& p
     draw_tube(bgr, cam, {f.origin + 0.8 * hand.wrist_mm * back, elbow, 36.0, 47.0}, sleeve, folds);
 }
 
-void Scene::Impl::draw_hand(cv::Mat& bgr, const EyeCamera& cam, const HandFrame& f, cv::Point2d smear,
-                            EyeTruth* truth) const
+void Scene::Impl::draw_hand(cv::Mat& bgr, const EyeCamera& cam, const HandModel& model, const HandFrame& f,
+                            cv::Point2d smear, EyeTruth* truth) const
 {
     thread_local std::vector<std::vector<cv::Point>> parts;
     thread_local cv::Mat1b roi_mask;
@@ -316,11 +352,11 @@ void Scene::Impl::draw_hand(cv::Mat& bgr, const EyeCamera& cam, const HandFrame&
     thread_local cv::Mat1b alpha;
     const cv::Rect frame(0, 0, bgr.cols, bgr.rows);
 
-    parts.resize(hand.parts.size());
+    parts.resize(model.parts.size());
     bool in_front = true;
     cv::Rect box;
-    for (std::size_t i = 0; i < hand.parts.size() && in_front; ++i) {
-        in_front = project_polygon(cam, f.origin, f.u, f.v, hand.parts[i], parts[i], {}, kMinHandDepthMm);
+    for (std::size_t i = 0; i < model.parts.size() && in_front; ++i) {
+        in_front = project_polygon(cam, f.origin, f.u, f.v, model.parts[i], parts[i], {}, kMinHandDepthMm);
         for (const cv::Point& p : parts[i]) {
             const cv::Rect px(p.x >> kDrawShift, p.y >> kDrawShift, 2, 2);
             box = box.empty() ? px : (box | px);
@@ -347,8 +383,8 @@ void Scene::Impl::draw_hand(cv::Mat& bgr, const EyeCamera& cam, const HandFrame&
 
     // The skin texture through the homography of the hand's plane, lit by its orientation.
     const cv::Matx33d to_roi(1, 0, -roi.x, 0, 1, -roi.y, 0, 0, 1);
-    const cv::Matx33d H = to_roi * cam.plane_homography(f.origin, f.u, f.v) * hand.texel_to_model();
-    cv::warpPerspective(hand.texture, warped, H, roi.size(), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+    const cv::Matx33d H = to_roi * cam.plane_homography(f.origin, f.u, f.v) * model.texel_to_model();
+    cv::warpPerspective(model.texture, warped, H, roi.size(), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
     const double rest = ambient + diffuse * std::abs(light[2]);
     const double brightness = looks ? looks->hand_light : 1.0;
     const float lit = float((ambient + diffuse * std::abs(f.n.dot(light))) / rest * brightness);
@@ -462,7 +498,10 @@ HandPose Scene::hand_pose(int frame) const
 {
     const Impl& s = checked(impl_);
     require(frame >= 0, "Scene::hand_pose: negative frame index " + std::to_string(frame));
-    return s.script->at(frame / s.config.fps);
+    const double t = frame / s.config.fps;
+    HandPose pose = s.script->at(t);
+    pose.gesture = s.gesture_at(t);
+    return pose;
 }
 
 HandTruth Scene::hand_truth(const HandPose& pose) const { return checked(impl_).hand_truth(pose); }
@@ -472,7 +511,8 @@ HandTruth Scene::Impl::hand_truth(const HandPose& pose) const
     validate(pose);
     const HandFrame f = hand_frame(pose);
     const cv::Vec3d back = hand.palm_axis.x * f.u + hand.palm_axis.y * f.v;
-    return {f.origin + hand.finger_length_mm * f.u, f.origin, f.origin + pose.forearm_mm * back, f.u};
+    return {f.origin + model(pose.gesture).finger_length_mm * f.u, f.origin, f.origin + pose.forearm_mm * back, f.u,
+            pose.gesture};
 }
 
 void Scene::render(int frame, Eye eye, const HeadPose& head, cv::Mat& bgr, EyeTruth* truth) const
@@ -523,11 +563,12 @@ void Scene::Impl::render(const HandPose& pose, cv::Point2d smear, int frame, Eye
 
     const HandFrame f = hand_frame(pose);
     draw_arm(bgr, cam, pose, f);
-    draw_hand(bgr, cam, f, smear, truth);
+    draw_hand(bgr, cam, model(pose.gesture), f, smear, truth);
     apply_camera(bgr, frame, eye);
 
     if (truth) {
         const HandTruth t3 = hand_truth(pose);
+        truth->gesture = t3.gesture;
         const cv::Vec3d palm_c = cam.to_camera(t3.palm_mm), tip_c = cam.to_camera(t3.fingertip_mm);
         truth->palm_px = palm_c[2] > 0 ? cam.project_camera(palm_c) : nan_point();
         truth->fingertip_px = tip_c[2] > 0 ? cam.project_camera(tip_c) : nan_point();

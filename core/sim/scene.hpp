@@ -1,5 +1,5 @@
-// The synthetic stereo scene: a room, a person's forearm and hand in a rigid pointing
-// gesture, seen by the two cameras of the motorised head. The embedded default input of the
+// The synthetic stereo scene: a room, a person's forearm and hand in a rigid gesture
+// (pointing, open or fist), seen by the two cameras of the motorised head. The embedded default input of the
 // plugin and the test bed of the tracker; every frame comes with its ground truth.
 #pragma once
 
@@ -64,6 +64,10 @@ struct SceneConfig {
     // At rest the finger points from the palm at this head-frame point (mm), e.g. at something
     // across the room; unset: the seed's direction, obliquely up to one side.
     std::optional<cv::Vec3d> aim_mm;
+    // The hand's gesture: Pointing, Open or Fist. With gesture_cycle_s = T > 0 the hand
+    // holds `gesture` for T seconds, then points for T seconds, and so on; 0 holds it.
+    Gesture gesture = Gesture::Pointing;
+    double gesture_cycle_s = 0.0;
 };
 
 // The hand in the head frame (see stereo/head_geometry.hpp), millimetres.
@@ -73,14 +77,20 @@ struct HandPose {
     double yaw_deg = 0.0;                 // hand plane about the vertical; 0 = palm faces the cameras
     double pitch_deg = 0.0;               // hand plane about the horizontal
     double forearm_mm = 260.0;            // palm centre to elbow, opposite to the finger
+    Gesture gesture = Gesture::Pointing;  // Pointing, Open or Fist
 };
 
-// Ground truth of the hand in 3D for one frame (head frame, millimetres).
+// Ground truth of the hand in 3D for one frame (head frame, millimetres). Only a pointing
+// hand has a pointing ray; for open and fist, the "fingertip" is the hand's farthest reach
+// along its long axis (a fingertip of the open hand, the knuckles of the fist), and
+// `direction` that axis.
 struct HandTruth {
     cv::Vec3d fingertip_mm;
     cv::Vec3d palm_mm;  // centroid of the palm
     cv::Vec3d elbow_mm;
     cv::Vec3d direction;  // unit, palm -> fingertip
+    Gesture gesture = Gesture::Pointing;
+    bool points() const { return gesture == Gesture::Pointing; }
 };
 
 // Ground truth of one eye for one frame (image pixels).
@@ -92,6 +102,7 @@ struct EyeTruth {
     double pointing_deg = 0.0;  // palm -> fingertip, 0 = +x, counter-clockwise, y up
     cv::Rect bbox;              // of the mask
     cv::Mat1b face;             // 255 where people's skin is (behind the hand); empty without people
+    Gesture gesture = Gesture::Pointing;  // fingertip_px and pointing_deg as in HandTruth
 };
 
 class Scene {

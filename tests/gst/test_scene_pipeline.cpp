@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <string>
@@ -191,6 +192,52 @@ TEST(ScenePipeline, SideBySideFramesTrackLikeTwoViews)
     ASSERT_EQ(expected.size(), size_t(kFrames));
     ASSERT_EQ(actual.size(), expected.size());
     for (size_t i = 0; i < expected.size(); ++i) ASSERT_EQ(actual[i], expected[i]) << "frame " << i;
+}
+
+// gesture-cycle=1 with gesture=open: the truth shows the open hand for a second, then the
+// pointing hand, then the open hand again; the tracker's meta calls the open hand's frames
+// pointing only where the model has not yet looked at the changed hand.
+TEST(ScenePipeline, GestureCycleReachesTheTruthAndTheTracker)
+{
+    gc::test::init_gstreamer();
+    gc::test::ElementPtr pipeline = gc::test::parse_pipeline(
+        scene_sources("gesture=open gesture-cycle=1") +
+        "handtracker name=t message-updates=none ! video/x-raw,width=320,height=240 ! fakesink sync=false");
+    ASSERT_TRUE(pipeline);
+    Captured captured;
+    gc::test::probe_buffers(pipeline.get(), "t", "src", capture_meta, &captured);
+    const gc::test::RunResult r = gc::test::run_pipeline(pipeline.get(), 60 * GST_SECOND);
+    ASSERT_TRUE(r.eos) << r.error;
+    std::map<guint64, std::string> gesture_of;
+    for (const GstStructure* t : r.named("hand-truth", "l")) {
+        guint64 frame = 0;
+        gst_structure_get_uint64(t, "frame", &frame);
+        const gchar* g = gst_structure_get_string(t, "gesture");
+        gesture_of[frame] = g ? g : "";
+    }
+    ASSERT_EQ(gesture_of.size(), size_t(kFrames));
+    for (const auto& [frame, gesture] : gesture_of)
+        EXPECT_EQ(gesture, frame / 30 == 1 ? "pointing" : "open") << "frame " << frame;
+    ASSERT_EQ(captured.metas.size(), size_t(kFrames));
+    int open_tracked = 0, open_pointing = 0, pointing_tracked = 0, pointing_pointing = 0;
+    for (int i = 0; i < kFrames; ++i) {
+        const GstHandPointingMeta& m = captured.metas[i];
+        if (m.left_gesture == GST_HAND_POINTING_GESTURE_UNKNOWN) continue;
+        const bool says_pointing = m.left_gesture == GST_HAND_POINTING_GESTURE_POINTING;
+        if (gesture_of[i] == "open") {
+            ++open_tracked;
+            open_pointing += says_pointing;
+        } else {
+            ++pointing_tracked;
+            pointing_pointing += says_pointing;
+        }
+    }
+    std::printf("open frames: %d with a gesture, %d of them pointing; pointing frames: %d with a gesture, %d "
+                "pointing\n",
+                open_tracked, open_pointing, pointing_tracked, pointing_pointing);
+    EXPECT_GE(open_tracked, 40);
+    EXPECT_LE(open_pointing, 0.15 * open_tracked);
+    EXPECT_GE(pointing_pointing, 0.5 * pointing_tracked);
 }
 
 // Pixels of the overlay's marginal colour (BGR 255, 160, 0) in the bottom and right bands of

@@ -1,12 +1,12 @@
 // Not a test: steer=point over the simulated head for minutes of a rendered speaker, in real
 // time (the head moves on the wall clock), the tracker's output driving the head link as in
-// the element. The renderer's hand always has the pointing shape, so a talking hand is played
-// by its pointing direction: from the first frame (the wave included) it swings about (roll
-// 25 deg at 0.8 Hz and 12 deg at 1.7 Hz, yaw 15 deg at 0.55 Hz) while the hand drifts about
-// the view (motion translate).
-// A held pointing keeps one direction while the hand drifts the same way.
+// the element. A talking hand is played by a pointing hand whose direction keeps moving: from
+// the first frame (the wave included) it swings about (roll 25 deg at 0.8 Hz and 12 deg at
+// 1.7 Hz, yaw 15 deg at 0.55 Hz) while the hand drifts about the view (motion translate).
+// A waving hand is an open hand moving the same way; a held pointing keeps one direction
+// while the hand drifts the same way.
 //
-//   point_steering_study talk|held [SECONDS [SEED [tracker|learned|truth]]]   (default 300 s, seed 3)
+//   point_steering_study talk|wave|held [SECONDS [SEED [tracker|learned|truth]]]   (default 300 s, seed 3)
 //
 // `tracker` tracks with the motion detector (as the closed-loop tests), `learned` with the
 // learned detector (the element's default); `truth` hands the link the rendered hand itself (its palm where each view shows it, its
@@ -83,7 +83,7 @@ void view(const sim::Scene& scene, const sim::HandPose& hand, int i, Eye eye, co
 }
 
 // What a perfect tracker would report: the palm where each view shows it, and the true 3D
-// pointing while both views show the hand.
+// pointing while both views show a pointing hand.
 FrameResult perfect_tracker(const sim::Scene& scene, const sim::HandPose& hand, const sim::EyeTruth (&truth)[2],
                             const HeadPose& pose)
 {
@@ -95,10 +95,12 @@ FrameResult perfect_tracker(const sim::Scene& scene, const sim::HandPose& hand, 
         eyes[k]->state = TrackState::Tracking;
         eyes[k]->mean.x = truth[k].palm_px.x;
         eyes[k]->mean.y = truth[k].palm_px.y;
+        eyes[k]->gesture = truth[k].gesture;
     }
     if (!r.left.valid() || !r.right.valid()) return r;
     r.state = TrackState::Tracking;
     const sim::HandTruth h = scene.hand_truth(hand);
+    if (!h.points()) return r;
     const RigidTransform to_left = camera_to_head(scene.calibration().head, pose, Eye::Left).inverse();
     r.pointing.valid = true;
     r.pointing.fingertip_head_mm = h.fingertip_mm;
@@ -164,12 +166,13 @@ struct Run {
     }
 };
 
-Figures run(bool talking, double seconds, std::uint64_t seed, const std::string& source)
+Figures run(bool talking, Gesture gesture, double seconds, std::uint64_t seed, const std::string& source)
 {
     sim::SceneConfig sc;
     sc.preset = sim::Preset::Light;
     sc.motion = sim::Motion::Translate;
     sc.seed = seed;
+    sc.gesture = gesture;
     const sim::Scene scene(sc);
     loopback::RunningHead head(loopback::loopback_head());
     headctl::HeadLinkConfig lc;
@@ -243,8 +246,8 @@ void print(const Figures& f, const char* mode, double seconds)
 int main(int argc, char** argv)
 {
     const std::string mode = argc > 1 ? argv[1] : "";
-    if (mode != "talk" && mode != "held") {
-        std::fprintf(stderr, "usage: point_steering_study talk|held [SECONDS [SEED [tracker|learned|truth]]]\n");
+    if (mode != "talk" && mode != "wave" && mode != "held") {
+        std::fprintf(stderr, "usage: point_steering_study talk|wave|held [SECONDS [SEED [tracker|learned|truth]]]\n");
         return 2;
     }
     const double seconds = argc > 2 ? std::atof(argv[2]) : 300.0;
@@ -256,6 +259,7 @@ int main(int argc, char** argv)
     }
     std::printf("%s hand, %s\n", mode.c_str(),
                 source == "truth" ? "the rendered truth" : ("the tracker's output, detector " + source).c_str());
-    print(run(mode == "talk", seconds, seed, source), mode.c_str(), seconds);
+    print(run(mode != "held", mode == "wave" ? Gesture::Open : Gesture::Pointing, seconds, seed, source), mode.c_str(),
+          seconds);
     return 0;
 }
