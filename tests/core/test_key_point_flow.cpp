@@ -58,8 +58,9 @@ TEST(KeyPointFlow, PointsOnAFeaturelessFrameStayPut)
     std::size_t followed = 0;
     for (std::size_t i = 0; i < points.size(); ++i) followed += moved[i];
     EXPECT_LE(followed, 2u);
-    for (std::size_t i = 0; i < points.size(); ++i)
+    for (std::size_t i = 0; i < points.size(); ++i) {
         if (!moved[i]) EXPECT_EQ(points[i], grid()[i]) << "point " << i;
+    }
 }
 
 }  // namespace
