@@ -59,7 +59,9 @@ TEST(KeyPointFlow, PointsOnAFeaturelessFrameStayPut)
     for (std::size_t i = 0; i < points.size(); ++i) followed += moved[i];
     EXPECT_LE(followed, 2u);
     for (std::size_t i = 0; i < points.size(); ++i) {
-        if (!moved[i]) EXPECT_EQ(points[i], grid()[i]) << "point " << i;
+        if (!moved[i]) {
+            EXPECT_EQ(points[i], grid()[i]) << "point " << i;
+        }
     }
 }
 
