@@ -92,4 +92,10 @@ FingerLayout finger_layout(const HandShape& shape, Gesture gesture)
     }
 }
 
+Gesture gesture_at(Gesture gesture, double cycle_s, double t)
+{
+    if (cycle_s <= 0.0) return gesture;
+    return std::fmod(t, 2.0 * cycle_s) < cycle_s ? gesture : Gesture::Pointing;
+}
+
 }  // namespace gc::sim

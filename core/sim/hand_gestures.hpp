@@ -43,4 +43,8 @@ struct FingerLayout {
 // hand keeps its proportions whatever it does.
 FingerLayout finger_layout(const HandShape& shape, Gesture gesture);
 
+// The gesture shown at time t (s): `gesture` throughout when cycle_s is 0, else `gesture` for
+// cycle_s seconds, then pointing for cycle_s seconds, and so on.
+Gesture gesture_at(Gesture gesture, double cycle_s, double t);
+
 }  // namespace gc::sim

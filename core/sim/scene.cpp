@@ -3,6 +3,7 @@
 #include "sim/appearance.hpp"
 #include "sim/camera_effects.hpp"
 #include "sim/figures.hpp"
+#include "sim/hand_gestures.hpp"
 #include "sim/hand_model.hpp"
 #include "sim/motion_script.hpp"
 #include "sim/rig.hpp"
@@ -175,7 +176,6 @@ struct Scene::Impl {
     void place_people(double half_x, double half_y);
     void draw_arm(cv::Mat& bgr, const EyeCamera& cam, const HandPose& pose, const HandFrame& f) const;
     const HandModel& model(Gesture g) const;
-    Gesture gesture_at(double t) const;
     void draw_hand(cv::Mat& bgr, const EyeCamera& cam, const HandModel& model, const HandFrame& f, cv::Point2d smear,
                    EyeTruth* truth) const;
     cv::Point2d hand_smear(const EyeCamera& cam, int frame) const;
@@ -264,12 +264,6 @@ const HandModel& Scene::Impl::model(Gesture g) const
                       : build_hand_model(skin, mirrored, rng, {}, nullptr, g);
     });
     return other;
-}
-
-Gesture Scene::Impl::gesture_at(double t) const
-{
-    if (config.gesture_cycle_s <= 0.0) return config.gesture;
-    return std::fmod(t, 2.0 * config.gesture_cycle_s) < config.gesture_cycle_s ? config.gesture : Gesture::Pointing;
 }
 
 // face-pass: a person sits behind the hand's path, and the hand starts (waves, is acquired)
@@ -500,7 +494,7 @@ HandPose Scene::hand_pose(int frame) const
     require(frame >= 0, "Scene::hand_pose: negative frame index " + std::to_string(frame));
     const double t = frame / s.config.fps;
     HandPose pose = s.script->at(t);
-    pose.gesture = s.gesture_at(t);
+    pose.gesture = gesture_at(s.config.gesture, s.config.gesture_cycle_s, t);
     return pose;
 }
 
