@@ -25,6 +25,8 @@ HeadPose pose_at_capture(GstHandSceneSrc* self, const SceneSettings& settings, G
         const GstClockTime running = gst_segment_to_running_time(&GST_BASE_SRC(self)->segment, GST_FORMAT_TIME, pts);
         if (std::optional<gc::HeadPose> at = st.head->pose_at(gc::gst::capture_time(GST_ELEMENT(self), running)))
             pose = *at;
+        GST_LOG_OBJECT(self, "frame at running time %" GST_TIME_FORMAT " from the head's pose pan %.2f tilt %.2f deg",
+                       GST_TIME_ARGS(running), pose.pan_deg, pose.tilt_deg);
     }
     return pose;
 }

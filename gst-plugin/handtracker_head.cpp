@@ -112,6 +112,9 @@ GstFlowReturn head_at_capture(GstHandTracker* self, const Settings& settings, cv
     GST_LOG_OBJECT(self, "views at running time %" GST_TIME_FORMAT " for output %" GST_TIME_FORMAT,
                    GST_TIME_ARGS(running), GST_TIME_ARGS(GST_BUFFER_PTS(outbuf)));
     at = e.head->begin_frame(gc::gst::capture_time(GST_ELEMENT(self), running));
+    if (at.pose)
+        GST_LOG_OBJECT(self, "head at capture: pan %.2f tilt %.2f deg; left view moved %.1f, %.1f px", at.pose->pan_deg,
+                       at.pose->tilt_deg, at.left_motion.dx, at.left_motion.dy);
     return GST_FLOW_OK;
 }
 

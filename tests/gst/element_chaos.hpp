@@ -10,6 +10,7 @@
 #include <gst/gst.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -47,16 +48,22 @@ inline std::vector<RigJump> random_jumps(int frames, unsigned seed)
     return jumps;
 }
 
-inline GstClockTime frame_time(int frame) { return gst_util_uint64_scale(guint64(frame), GST_SECOND, kFps); }
-
-// Sources `l` and `r`, tracker `t`, sink `sink`.
-inline std::string pipeline_description(int frames, unsigned seed, const std::string& json_path)
+inline GstClockTime frame_time(int frame, int fps = kFps)
 {
-    const std::string eye = " scene=light motion=mixed seed=" + std::to_string(seed) +
-                            " num-buffers=" + std::to_string(frames) +
-                            " ! video/x-raw,framerate=" + std::to_string(kFps) + "/1 ! ";
+    return gst_util_uint64_scale(guint64(frame), GST_SECOND, guint64(fps));
+}
+
+// Sources `l` and `r`, tracker `t`, sink `sink`. With a head URI the sources are live and
+// render from that head's pose, and the tracker reads it (steer off: it never moves it).
+inline std::string pipeline_description(int frames, unsigned seed, const std::string& json_path,
+                                        const std::string& head_uri = {}, int fps = kFps)
+{
+    const std::string head = head_uri.empty() ? "" : " head=" + head_uri;
+    const std::string eye = " scene=light motion=mixed seed=" + std::to_string(seed) + " num-buffers=" +
+                            std::to_string(frames) + (head_uri.empty() ? "" : " is-live=true") + head +
+                            " ! video/x-raw,framerate=" + std::to_string(fps) + "/1 ! ";
     return "handscenesrc name=l eye=left" + eye + "t.sink_left handscenesrc name=r eye=right" + eye +
-           "t.sink_right handtracker name=t steer=off message-updates=none json-location=" + json_path +
+           "t.sink_right handtracker name=t steer=off message-updates=none json-location=" + json_path + head +
            " ! fakesink name=sink";
 }
 
@@ -87,6 +94,7 @@ inline bool drive_rig(GstElement* pipeline, const std::vector<RigJump>& jumps)
 }
 
 struct EyeTruth {
+    GstClockTime pts = GST_CLOCK_TIME_NONE;
     bool visible = false;
     int bbox[4] = {0, 0, 0, 0};
 };
@@ -129,6 +137,7 @@ inline GstBusSyncReply keep_truth(GstBus*, GstMessage* msg, gpointer data)
     gboolean visible = FALSE;
     EyeTruth t;
     gst_structure_get_uint64(s, "frame", &frame);
+    gst_structure_get_uint64(s, "timestamp", &t.pts);
     gst_structure_get_boolean(s, "visible", &visible);
     t.visible = visible;
     gst_structure_get(s, "bbox-x", G_TYPE_INT, &t.bbox[0], "bbox-y", G_TYPE_INT, &t.bbox[1], "bbox-width", G_TYPE_INT,
@@ -202,18 +211,41 @@ inline Run play(GstElement* pipeline, const std::vector<int>& rss_at, GstClockTi
 
 // One JSON line's verdict: tracking, and where in the left view.
 struct Tracked {
+    bool line = false;  // a line was written for this frame
     bool tracking = false;
     int bbox[4] = {0, 0, 0, 0};
 };
 
-// The tracker's lines by frame ("frame", "state" and the left eye's "bbox").
-inline std::vector<Tracked> read_tracked(const std::string& path)
+// The frame of `eye` taken at `pts` (within half a frame), or -1. A live source's frames
+// start at the running time it was first asked for one, and a tracker may skip a frame.
+inline int frame_at(const std::vector<EyeTruth>& eye, guint64 pts)
+{
+    if (eye.size() < 2 || !GST_CLOCK_TIME_IS_VALID(eye[0].pts) || !GST_CLOCK_TIME_IS_VALID(eye[1].pts)) return -1;
+    const double frames = (double(pts) - double(eye[0].pts)) / double(eye[1].pts - eye[0].pts);
+    const long frame = std::lround(frames);
+    return frame >= 0 && size_t(frame) < eye.size() && std::abs(frames - double(frame)) < 0.5 ? int(frame) : -1;
+}
+
+// Whether the hand is in both views at the left eye's frame `f` (the right eye's frame
+// taken at the same time).
+inline bool visible_in_both(const Run& run, size_t f)
+{
+    if (!run.left[f].visible) return false;
+    const int r = frame_at(run.right, run.left[f].pts);
+    return r >= 0 && run.right[size_t(r)].visible;
+}
+
+// The tracker's lines ("pts_ns", "state" and the left eye's "bbox") by the left eye's frame.
+inline std::vector<Tracked> read_tracked(const std::string& path, const Run& run)
 {
     std::vector<Tracked> out;
     std::ifstream in(path);
     for (std::string line; std::getline(in, line);) {
-        int frame = -1;
-        if (std::sscanf(line.c_str(), "{\"frame\":%d", &frame) != 1 || frame < 0) continue;
+        int counted = -1;
+        unsigned long long pts = 0;
+        if (std::sscanf(line.c_str(), "{\"frame\":%d,\"pts_ns\":%llu", &counted, &pts) != 2) continue;
+        const int frame = frame_at(run.left, pts);
+        if (frame < 0) continue;
         Tracked t;
         t.tracking = line.find("\"state\":\"tracking\"") != std::string::npos;
         const size_t left = line.find("\"left\":{");
@@ -221,6 +253,7 @@ inline std::vector<Tracked> read_tracked(const std::string& path)
         if (bbox == std::string::npos || std::sscanf(line.c_str() + bbox, "\"bbox\":[%d,%d,%d,%d]", &t.bbox[0],
                                                      &t.bbox[1], &t.bbox[2], &t.bbox[3]) != 4)
             t.tracking = false;
+        t.line = true;
         if (out.size() <= size_t(frame)) out.resize(size_t(frame) + 1);
         out[size_t(frame)] = t;
     }
@@ -245,14 +278,13 @@ struct Outcome {
 inline std::vector<Outcome> judge(const std::vector<RigJump>& jumps, const Run& run,
                                   const std::vector<Tracked>& tracked)
 {
-    const size_t frames = std::min({run.left.size(), run.right.size(), tracked.size()});
+    const size_t frames = std::min(run.left.size(), tracked.size());
     std::vector<Outcome> out;
     for (const RigJump& j : jumps) {
         Outcome o;
         o.frame = j.frame;
         for (size_t f = size_t(j.frame); f < frames && f - size_t(j.frame) < size_t(kJudgedVisibleFrames); ++f) {
-            const bool visible = run.left[f].visible && run.right[f].visible;
-            if (!visible) break;
+            if (!visible_in_both(run, f)) break;
             ++o.visible_after;
             if (o.found_after < 0 && tracked[f].tracking && overlap(tracked[f].bbox, run.left[f].bbox))
                 o.found_after = int(f) - j.frame;

@@ -26,7 +26,7 @@ TEST(ElementChaos, TheTrackerFindsTheHandAgainAfterEachJump)
     ASSERT_TRUE(pipeline);
     ASSERT_TRUE(gc::chaos::drive_rig(pipeline.get(), kJumps));
     const gc::chaos::Run run = gc::chaos::play(pipeline.get(), {}, 120 * GST_SECOND);
-    const std::vector<gc::chaos::Tracked> tracked = gc::chaos::read_tracked(json);
+    const std::vector<gc::chaos::Tracked> tracked = gc::chaos::read_tracked(json, run);
     g_remove(json.c_str());
     ASSERT_TRUE(run.eos) << run.error;
     EXPECT_EQ(run.error, "");
