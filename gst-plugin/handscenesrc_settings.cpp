@@ -128,6 +128,62 @@ GType gst_hand_scene_gesture_get_type()
     return type;
 }
 
+// What the hand does: its gesture and where it points.
+void install_hand_properties(GObjectClass* klass, GParamFlags flags)
+{
+    g_object_class_install_property(
+        klass, PROP_GESTURE,
+        g_param_spec_enum("gesture", "Gesture",
+                          "What the hand does; only a pointing hand has a pointing ray in the ground truth",
+                          GST_TYPE_HAND_SCENE_GESTURE, int(gc::Gesture::Pointing), flags));
+    g_object_class_install_property(
+        klass, PROP_GESTURE_CYCLE,
+        g_param_spec_double("gesture-cycle", "Gesture cycle",
+                            "Seconds: 0 holds the gesture throughout; T > 0 shows the gesture for T s, then points "
+                            "for T s, and so on",
+                            0.0, 3600.0, 0.0, flags));
+    g_object_class_install_property(
+        klass, PROP_AIM,
+        gst_param_spec_array("aim", "Aim",
+                             "Where the hand points at rest: a point <x, y, z> in the head frame, millimetres (x "
+                             "right, y down, z ahead; the room's wall is 3000 mm ahead). Empty: the seed's "
+                             "direction, obliquely up to one side",
+                             g_param_spec_double("coordinate", "Coordinate", "mm", -1.0e5, 1.0e5, 0.0,
+                                                 GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS)),
+                             flags));
+}
+
+// The head the cameras sit on: a simulated head to follow, or a fixed rig's pose.
+void install_head_properties(GObjectClass* klass, GParamFlags flags)
+{
+    g_object_class_install_property(
+        klass, PROP_HEAD,
+        g_param_spec_string("head", "Head URI",
+                            "The head the simulated cameras sit on (tcp://host:port, e.g. headsim): every frame is "
+                            "rendered from its pose at the frame's capture time, so handtracker steering that head "
+                            "closes the loop; use with is-live=true. Unset: a fixed rig (head-pan, head-tilt). "
+                            "A token reads back as token=***: prefer head-token-file",
+                            nullptr, flags));
+    g_object_class_install_property(
+        klass, PROP_HEAD_TOKEN_FILE,
+        g_param_spec_string("head-token-file", "Head token file",
+                            "A file whose first line is the head's token (GCHP), read at start; it replaces a "
+                            "token in the head URI. Unset: the URI's token, if any",
+                            nullptr, flags));
+    // Controllable, so that a GstController can move the rig frame by frame (the element
+    // syncs them to each frame's timestamp).
+    const auto rig_flags =
+        GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_PLAYING | GST_PARAM_CONTROLLABLE);
+    g_object_class_install_property(klass, PROP_HEAD_PAN,
+                                    g_param_spec_double("head-pan", "Head pan",
+                                                        "Without head: the fixed rig's pan, degrees (positive: right)",
+                                                        -90.0, 90.0, 0.0, rig_flags));
+    g_object_class_install_property(klass, PROP_HEAD_TILT,
+                                    g_param_spec_double("head-tilt", "Head tilt",
+                                                        "Without head: the fixed rig's tilt, degrees (positive: up)",
+                                                        -90.0, 90.0, 0.0, rig_flags));
+}
+
 }  // namespace
 
 bool is_live_property(guint prop_id) { return prop_id == PROP_IS_LIVE; }
@@ -164,17 +220,6 @@ void install_scene_properties(GObjectClass* klass)
                           "What else the seed varies: nothing (the preset as it always was) or the hand, "
                           "people, light and camera",
                           GST_TYPE_HAND_SCENE_VARIETY, int(gc::sim::Variety::None), flags));
-    g_object_class_install_property(
-        klass, PROP_GESTURE,
-        g_param_spec_enum("gesture", "Gesture",
-                          "What the hand does; only a pointing hand has a pointing ray in the ground truth",
-                          GST_TYPE_HAND_SCENE_GESTURE, int(gc::Gesture::Pointing), flags));
-    g_object_class_install_property(
-        klass, PROP_GESTURE_CYCLE,
-        g_param_spec_double("gesture-cycle", "Gesture cycle",
-                            "Seconds: 0 holds the gesture throughout; T > 0 shows the gesture for T s, then points "
-                            "for T s, and so on",
-                            0.0, 3600.0, 0.0, flags));
     g_object_class_install_property(klass, PROP_IS_LIVE,
                                     g_param_spec_boolean("is-live", "Is live",
                                                          "Behave as a live camera: frames come at the frame rate",
@@ -184,42 +229,8 @@ void install_scene_properties(GObjectClass* klass)
         g_param_spec_boolean("truth-messages", "Truth messages",
                              "Post a hand-truth element message with the ground truth of every frame", TRUE,
                              GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_PLAYING)));
-
-    g_object_class_install_property(
-        klass, PROP_HEAD,
-        g_param_spec_string("head", "Head URI",
-                            "The head the simulated cameras sit on (tcp://host:port, e.g. headsim): every frame is "
-                            "rendered from its pose at the frame's capture time, so handtracker steering that head "
-                            "closes the loop; use with is-live=true. Unset: a fixed rig (head-pan, head-tilt). "
-                            "A token reads back as token=***: prefer head-token-file",
-                            nullptr, flags));
-    g_object_class_install_property(
-        klass, PROP_HEAD_TOKEN_FILE,
-        g_param_spec_string("head-token-file", "Head token file",
-                            "A file whose first line is the head's token (GCHP), read at start; it replaces a "
-                            "token in the head URI. Unset: the URI's token, if any",
-                            nullptr, flags));
-    // Controllable, so that a GstController can move the rig frame by frame (the element
-    // syncs them to each frame's timestamp).
-    const auto rig_flags =
-        GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_PLAYING | GST_PARAM_CONTROLLABLE);
-    g_object_class_install_property(klass, PROP_HEAD_PAN,
-                                    g_param_spec_double("head-pan", "Head pan",
-                                                        "Without head: the fixed rig's pan, degrees (positive: right)",
-                                                        -90.0, 90.0, 0.0, rig_flags));
-    g_object_class_install_property(klass, PROP_HEAD_TILT,
-                                    g_param_spec_double("head-tilt", "Head tilt",
-                                                        "Without head: the fixed rig's tilt, degrees (positive: up)",
-                                                        -90.0, 90.0, 0.0, rig_flags));
-    g_object_class_install_property(
-        klass, PROP_AIM,
-        gst_param_spec_array("aim", "Aim",
-                             "Where the hand points at rest: a point <x, y, z> in the head frame, millimetres (x "
-                             "right, y down, z ahead; the room's wall is 3000 mm ahead). Empty: the seed's "
-                             "direction, obliquely up to one side",
-                             g_param_spec_double("coordinate", "Coordinate", "mm", -1.0e5, 1.0e5, 0.0,
-                                                 GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS)),
-                             flags));
+    install_hand_properties(klass, flags);
+    install_head_properties(klass, flags);
 }
 
 void mark_scene_enums_as_plugin_api()
