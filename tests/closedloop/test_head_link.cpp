@@ -206,7 +206,8 @@ TEST(HeadLink, FixateVergesOnTheHandsDepth)
     // capture puts it, with its 3D position known.
     const cv::Vec3d palm_head(0.0, 0.0, 600.0);
     const cv::Matx33d& K = calibration().M1;
-    run_frames(link, 2500ms, [&](const HeadAtCapture& at) {
+    // Long enough for the eyes to verge and the neck to settle after them, also under ASan.
+    run_frames(link, 4000ms, [&](const HeadAtCapture& at) {
         const HeadPose pose = at.pose.value_or(HeadPose{});
         const cv::Vec3d c = camera_to_head(calibration().head, pose, Eye::Left).inverse().apply(palm_head);
         FrameResult r = left_hand_at(K(0, 0) * c[0] / c[2] + K(0, 2), K(1, 1) * c[1] / c[2] + K(1, 2));
