@@ -167,13 +167,16 @@ TEST(HeadLoop, AHeadRestartedMidStreamIsBackWithinTwoSeconds)
 TEST(HeadLoop, AManualMoveIsLeftAloneForManualPauseAndReported)
 {
     // The hand waves and holds still; the element keeps it in view with the head at rest.
-    // Once the head has rested for half a second (from 3 s in), someone moves it with another
-    // client (as `headctl move pan=15` does). A move made while the element itself turns the
-    // head is overridden by its next command (docs/steering.md), so the test waits for rest.
+    // Once the head has rested for half a second (looked for from 3 s in until 9 s), someone
+    // moves it with another client (as `headctl move pan=15` does). A move made while the
+    // element itself turns the head is overridden by its next command (docs/steering.md), so
+    // the test waits for rest. The motion detector's
+    // contour holds a still hand steadier than the learned key points, whose frame-to-frame
+    // jitter can take the offset past the release band and twitch the head.
     gc::test::init_gstreamer();
     RunningHead head(loopback_head(0, 0.02));
     const std::string common = " is-live=true scene=light motion=static seed=3 head=" + head.uri() +
-                               " num-buffers=" + std::to_string(10 * kFps) + " ";
+                               " num-buffers=" + std::to_string(12 * kFps) + " ";
     gc::headctl::HeadClientConfig driver_config;
     driver_config.uri = head.uri();
     gc::headctl::HeadClient driver(driver_config);
@@ -181,7 +184,7 @@ TEST(HeadLoop, AManualMoveIsLeftAloneForManualPauseAndReported)
     std::thread mover([&] {
         const auto start = std::chrono::steady_clock::now();
         std::this_thread::sleep_for(3000ms);
-        for (int resting = 0; resting < 25 && std::chrono::steady_clock::now() - start < 7000ms;) {
+        for (int resting = 0; resting < 25 && std::chrono::steady_clock::now() - start < 9000ms;) {
             std::this_thread::sleep_for(20ms);
             const auto s = driver.latest();
             const bool still = s && std::none_of(s->state.moving.begin(), s->state.moving.end(), [](bool m) { return m; });
@@ -196,7 +199,7 @@ TEST(HeadLoop, AManualMoveIsLeftAloneForManualPauseAndReported)
     const gc::test::RunResult r = gc::test::run_pipeline(
         "handscenesrc name=l eye=left" + common + "! t.sink_left handscenesrc name=r eye=right truth-messages=false" +
         common + "! t.sink_right handtracker name=t particles=500 seed=7 head=" + head.uri() +
-        " steer=fixate manual-pause=1.5 message-updates=none ! fakesink");
+        " steer=fixate detector=motion manual-pause=1.5 message-updates=none ! fakesink");
     mover.join();
     ASSERT_TRUE(r.eos) << r.error;
     ASSERT_TRUE(moved) << "the element never held the head still for half a second";
