@@ -387,4 +387,14 @@ Bytes ip_reset_sequence(std::uint32_t sequence)
     return wrap_ip(kIpControl, sequence, std::span<const std::uint8_t>(&reset, 1));
 }
 
+double zoom_from_units(double units, double widest, double longest, int tele_units)
+{
+    return widest + units / tele_units * (longest - widest);
+}
+
+double zoom_to_units(double zoom, double widest, double longest, int tele_units)
+{
+    return (zoom - widest) / (longest - widest) * tele_units;
+}
+
 }  // namespace gc::headctl::visca

@@ -79,6 +79,11 @@ Bytes error_reply(int address, int socket, int error);
 Bytes position_reply(int address, int pan_units, int tilt_units);
 Bytes zoom_position_reply(int address, int zoom_units);
 
+// The lens position as VISCA carries it, linear from the widest view (0 units) to the longest
+// (tele_units): one mapping for the client backend and the simulated camera. Not clamped.
+double zoom_from_units(double units, double widest, double longest, int tele_units);
+double zoom_to_units(double zoom, double widest, double longest, int tele_units);
+
 // The commands and inquiries above as a camera receives them.
 enum class MessageKind { Drive, Absolute, Relative, Home, PositionInquiry, ZoomDirect, ZoomDrive, ZoomInquiry, Memory };
 

@@ -178,13 +178,13 @@ int ViscaBackend::zoom_units(double magnification) const
         throw HeadRejected(name() + ": zoom " + std::to_string(magnification) + " is outside [1, " +
                            std::to_string(settings_.zoom_max) + "]");
     return static_cast<int>(
-        std::lround((magnification - 1.0) / (settings_.zoom_max - 1.0) * settings_.zoom_tele_units));
+        std::lround(visca::zoom_to_units(magnification, 1.0, settings_.zoom_max, settings_.zoom_tele_units)));
 }
 
 double ViscaBackend::zoom_magnification(int units) const
 {
-    const double f = std::clamp(static_cast<double>(units) / settings_.zoom_tele_units, 0.0, 1.0);
-    return 1.0 + f * (settings_.zoom_max - 1.0);
+    return visca::zoom_from_units(std::clamp(units, 0, settings_.zoom_tele_units), 1.0, settings_.zoom_max,
+                                  settings_.zoom_tele_units);
 }
 
 void ViscaBackend::send(const HeadCommand& c, Deadline deadline)

@@ -27,14 +27,14 @@ int clamp_units(double v, int lo, int hi) { return static_cast<int>(std::clamp(s
 double zoom_of(int units, const HeadLimits& l, const ViscaUnits& u)
 {
     const AxisLimits& z = l[Axis::Zoom];
-    return z.min_deg + static_cast<double>(units) / u.zoom_tele_units * (z.max_deg - z.min_deg);
+    return visca::zoom_from_units(units, z.min_deg, z.max_deg, u.zoom_tele_units);
 }
 
 int units_of_zoom(double zoom, const HeadLimits& l, const ViscaUnits& u)
 {
     const AxisLimits& z = l[Axis::Zoom];
     if (z.max_deg <= z.min_deg) return 0;
-    return clamp_units((zoom - z.min_deg) / (z.max_deg - z.min_deg) * u.zoom_tele_units, 0, 0xFFFF);
+    return clamp_units(visca::zoom_to_units(zoom, z.min_deg, z.max_deg, u.zoom_tele_units), 0, 0xFFFF);
 }
 
 AxisValues pan_tilt(double pan_deg, double tilt_deg)
