@@ -1,8 +1,9 @@
 // HandTracker's insides, shared by the files that implement it: hand_tracker.cpp (the
 // per-frame loop), condensation_step.cpp (one filter iteration), template_custody.cpp (which
 // template is tracked: captures, re-captures, trials), reacquisition.cpp (finding a lost hand
-// again), learned_custody.cpp (the learned models' search and checks) and tracker_maps.cpp
-// (the skin, grey and scene maps the others read).
+// again), learned_custody.cpp (the learned models' search and checks), moving_hand_watch.cpp
+// (a moving hand preferred to a still or unsettled one) and tracker_maps.cpp (the
+// skin, grey and scene maps the others read).
 #pragma once
 
 #include "tracker/hand_tracker.hpp"
@@ -89,6 +90,9 @@ struct TrackerSession {
     int check_interval = 1;      // frames between its checks: longer while the contour agrees
     int search_turn = 0;         // frames searched by the palm detector without a hand
     KeyPointFlow flow;           // carries the key points between the model's checks
+    cv::Point2f still_anchor;    // the tracked palm, carried since by the view's motion alone
+    int still_frames = 0;        // tracked frames the contour has stayed with the room
+    int unsettled_frames = 0;    // consecutive tracked frames the landmark model disagreed
 };
 
 struct HandTracker::Impl : TrackerSession {
@@ -153,11 +157,16 @@ struct HandTracker::Impl : TrackerSession {
     // learned_custody.cpp: the learned models find the hand, check the contour, give key points.
     void search_with_models(const cv::Mat& bgr);
     std::optional<FoundHand> propose_by_motion(const cv::Mat& bgr);
+    std::optional<FoundHand> confirm_detection(const cv::Mat& bgr, const Detection& found);
     void check_with_models(const cv::Mat& bgr, bool view_changed);
     bool adopt_found(const cv::Mat& bgr, const FoundHand& hand);
     void place_key_points(const HandState& s);
     void carry_key_points(const cv::Mat& bgr);
     void keep_key_points(const cv::Mat& bgr, bool carried);
+
+    // moving_hand_watch.cpp: a moving hand takes over from one that holds still in the room.
+    void watch_for_moving_hand(const cv::Mat& bgr, const ImageMotion& motion);
+    static bool moves_inside(const Detection& found, const cv::Rect& box);
 
     // tracker_maps.cpp: the maps the steps above read.
     const StaticBackground* known_scene() const;

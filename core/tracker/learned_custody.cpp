@@ -123,9 +123,15 @@ std::optional<FoundHand> HandTracker::Impl::propose_by_motion(const cv::Mat& bgr
     const SkinModel prior = skin ? *skin : SkinModel::generic();
     const auto found = detector.process(bgr, prior, true, static_scene(bgr, true, {}));
     if (!found) return std::nullopt;
+    return confirm_detection(bgr, *found);
+}
+
+// The landmark model's word on a moving skin blob, given the blob's palm and fingertip.
+std::optional<FoundHand> HandTracker::Impl::confirm_detection(const cv::Mat& bgr, const Detection& found)
+{
     HandLandmarks shape_points;
     try {
-        shape_points = find_hand_landmarks(found->mask, found->motion);
+        shape_points = find_hand_landmarks(found.mask, found.motion);
     } catch (const std::invalid_argument&) {
         return std::nullopt;
     }

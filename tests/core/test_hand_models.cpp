@@ -1,6 +1,7 @@
 // The learned hand models on the real stereo pair: the palm detector finds the hand, the
 // landmark model puts the fingertip where MediaPipe does, frames without a hand give none,
 // and broken model files are refused with their path.
+#include "detect/hand_finder.hpp"
 #include "detect/hand_landmarks.hpp"
 #include "detect/model_files.hpp"
 #include "detect/palm_detector.hpp"
@@ -134,6 +135,22 @@ TEST_F(RealPair, LandmarksFollowTheHandFrameToFrame)
             crop = gc::crop_from_landmarks(hand);
         }
         EXPECT_GE(near, 0.95 * frames) << near << " of " << frames << " frames within 30 px";
+    }
+}
+
+// The finder looks at each hand it finds again through the crop its key points give, and
+// turns away a hand whose key points do not settle: the real hand settles on every spot
+// frame of both views, fingertip within 15 px of MediaPipe's.
+TEST_F(RealPair, TheFinderFindsTheRealHandOnEverySpotFrame)
+{
+    gc::HandFinder finder;
+    for (int view = 0; view < 2; ++view) {
+        for (int i = kSpotFrameStep; i <= kLastSpotFrame; i += kSpotFrameStep) {
+            SCOPED_TRACE("view " + std::to_string(view) + " frame " + std::to_string(i));
+            const std::optional<gc::FoundHand> hand = finder.find(frame(view, i));
+            ASSERT_TRUE(hand.has_value());
+            EXPECT_LE(cv::norm(hand->points[8] - (*reference(view, i))[8]), 15.0);
+        }
     }
 }
 

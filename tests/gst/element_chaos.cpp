@@ -95,8 +95,8 @@ int main(int argc, char** argv)
     // A live pipeline keeps its frame rate only where the tracker keeps up with it.
     const int fps = argc > 4 ? std::max(1, std::atoi(argv[4])) : kFps;
     const std::string json = std::string(g_get_tmp_dir()) + "/element-chaos-" + std::to_string(getpid()) + ".jsonl";
-    std::unique_ptr<gc::closedloop_test::RunningHead> head;
-    if (with_head) head = std::make_unique<gc::closedloop_test::RunningHead>(fast_head());
+    std::unique_ptr<gc::loopback::RunningHead> head;
+    if (with_head) head = std::make_unique<gc::loopback::RunningHead>(fast_head());
     GError* err = nullptr;
     GstElement* pipeline =
         gst_parse_launch(pipeline_description(frames, seed, json, head ? head->uri() : "", fps).c_str(), &err);

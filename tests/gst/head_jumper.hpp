@@ -5,7 +5,7 @@
 // 180 degrees is over within three frames (a tenth of it within one).
 #pragma once
 
-#include "../closedloop/running_head.hpp"
+#include "running_head.hpp"
 #include "element_chaos.hpp"
 #include "headctl/head_client.hpp"
 
@@ -19,7 +19,7 @@ namespace gc::chaos {
 // (1e5 deg/s^2 is the most GCHP carries).
 inline headctl::HeadServerConfig fast_head()
 {
-    headctl::HeadServerConfig c = closedloop_test::loopback_head(0, 0.0);
+    headctl::HeadServerConfig c = loopback::loopback_head(0, 0.0);
     for (headctl::Axis a : {headctl::Axis::Pan, headctl::Axis::Tilt})
         c.model.limits[a] = headctl::AxisLimits{-90.0, 90.0, 5000.0, 100000.0};
     return c;

@@ -1,0 +1,68 @@
+// A hand-coloured object that the learned models take for a hand (the palm detector may even
+// rate it above the hand) is part of the room: it moves only as the view does, and the
+// landmark model's key points on it disagree from one check to the next. A hand rarely
+// holds that still for long, and its key points settle. While the tracked hand holds still
+// in the room or stays unsettled, the thesis's motion detector watches the rest of the
+// frame, and a moving hand the landmark model confirms there takes over.
+#include "tracker/hand_tracker_impl.hpp"
+
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+
+namespace gc {
+
+namespace {
+
+// Frames the tracked contour must stay with the room before another hand may take over.
+constexpr int kStillFrames = 15;
+// How far the contour may wander and still be still, in sides of its box (the larger).
+constexpr double kStillReach = 0.1;
+// Consecutive frames the landmark model disagrees with the carried key points (so checks
+// it every frame) before another hand may take over.
+constexpr int kUnsettledFrames = 10;
+// While still or unsettled, the models look at what moves on every this-many-th frame.
+constexpr int kProposeEvery = 3;
+
+}  // namespace
+
+void HandTracker::Impl::watch_for_moving_hand(const cv::Mat& bgr, const ImageMotion& motion)
+{
+    const double size = std::max(estimate.bbox.width, estimate.bbox.height);
+    if (estimate.state != TrackState::Tracking || !has_key_points || size <= 0.0) {
+        still_frames = unsettled_frames = 0;
+        return;
+    }
+    // A turn of the view moves the room by the head's motion, which only says where a point
+    // at one depth goes: on such a frame the contour is anchored again and the count kept.
+    const bool view_moved = motion.dx != 0.0 || motion.dy != 0.0 || motion.drotation != 0.0 || motion.scale_factor != 1.0;
+    const cv::Point2f at(float(previous.x), float(previous.y));
+    const cv::Point2f carried = view_moved ? at : still_anchor;
+    if (still_frames == 0 || cv::norm(at - carried) > kStillReach * size) {
+        still_anchor = at;
+        still_frames = 1;
+    } else {
+        still_anchor = carried;
+        ++still_frames;
+    }
+    unsettled_frames = check_interval == 1 ? unsettled_frames + 1 : 0;
+    const int doubt = std::max(still_frames - kStillFrames, unsettled_frames - kUnsettledFrames);
+    const bool look = doubt >= 0 && doubt % kProposeEvery == 0;
+    // The motion detector differences consecutive frames: it sees every tracked frame, and
+    // segments only when the models will look.
+    const auto found = detector.process(bgr, SkinModel::generic(), look, look ? static_scene(bgr, true, {}) : no_map);
+    if (!found || moves_inside(*found, estimate.bbox)) return;
+    const std::optional<FoundHand> moving = confirm_detection(bgr, *found);
+    if (!moving || estimate.bbox.contains(cv::Point(palm_centre(moving->points)))) return;
+    adopt_found(bgr, *moving);
+    still_frames = unsettled_frames = 0;
+}
+
+// The moving blob is the tracked hand itself: its centre lies in the contour's box.
+bool HandTracker::Impl::moves_inside(const Detection& found, const cv::Rect& box)
+{
+    const cv::Moments m = cv::moments(found.mask, true);
+    return m.m00 > 0.0 && box.contains(cv::Point(cvRound(m.m10 / m.m00), cvRound(m.m01 / m.m00)));
+}
+
+}  // namespace gc
