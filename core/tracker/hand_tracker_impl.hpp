@@ -93,6 +93,7 @@ struct TrackerSession {
     cv::Point2f still_anchor;    // the tracked palm, carried since by the view's motion alone
     int still_frames = 0;        // tracked frames the contour has stayed with the room
     int unsettled_frames = 0;    // consecutive tracked frames the landmark model disagreed
+    int view_still_frames = 0;   // consecutive tracked frames the view did not move
 };
 
 struct HandTracker::Impl : TrackerSession {

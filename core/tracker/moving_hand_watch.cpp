@@ -23,6 +23,9 @@ constexpr double kStillReach = 0.1;
 constexpr int kUnsettledFrames = 10;
 // While still or unsettled, the models look at what moves on every this-many-th frame.
 constexpr int kProposeEvery = 3;
+// Frames the view must hold still before the motion detector's blobs are trusted: its
+// motion history (DetectionParams::history_frames).
+constexpr int kQuietViewFrames = DetectionParams{}.history_frames;
 
 }  // namespace
 
@@ -34,20 +37,23 @@ void HandTracker::Impl::watch_for_moving_hand(const cv::Mat& bgr, const ImageMot
         return;
     }
     // A turn of the view moves the room by the head's motion, which only says where a point
-    // at one depth goes: on such a frame the contour is anchored again and the count kept.
+    // at one depth goes: on such a frame the contour is anchored again and the count held.
+    // The motion detector needs a still camera, so the watch looks only once the view has
+    // held still for as long as the detector remembers motion.
     const bool view_moved = motion.dx != 0.0 || motion.dy != 0.0 || motion.drotation != 0.0 || motion.scale_factor != 1.0;
     const cv::Point2f at(float(previous.x), float(previous.y));
-    const cv::Point2f carried = view_moved ? at : still_anchor;
-    if (still_frames == 0 || cv::norm(at - carried) > kStillReach * size) {
+    view_still_frames = view_moved ? 0 : view_still_frames + 1;
+    if (view_moved) {
+        still_anchor = at;
+    } else if (still_frames == 0 || cv::norm(at - still_anchor) > kStillReach * size) {
         still_anchor = at;
         still_frames = 1;
     } else {
-        still_anchor = carried;
         ++still_frames;
     }
     unsettled_frames = check_interval == 1 ? unsettled_frames + 1 : 0;
     const int doubt = std::max(still_frames - kStillFrames, unsettled_frames - kUnsettledFrames);
-    const bool look = doubt >= 0 && doubt % kProposeEvery == 0;
+    const bool look = doubt >= 0 && doubt % kProposeEvery == 0 && view_still_frames > kQuietViewFrames;
     // The motion detector differences consecutive frames: it sees every tracked frame, and
     // segments only when the models will look.
     const auto found = detector.process(bgr, SkinModel::generic(), look, look ? static_scene(bgr, true, {}) : no_map);
