@@ -23,19 +23,18 @@ constexpr std::size_t kPalmsTried = 2;
 constexpr double kSettledMove = 0.25;
 constexpr int kSettlingLooks = 3;
 
-double mean_move(const HandKeyPoints& from, const HandKeyPoints& to)
-{
-    double moved = 0.0;
-    for (std::size_t i = 0; i < to.points.size(); ++i) moved += cv::norm(from.points[i] - to.points[i]);
-    const double palm = std::max(1.0, double(cv::norm(to.points[9] - to.points[0])));
-    return moved / (double(to.points.size()) * palm);
-}
-
 FoundHand found(const HandKeyPoints& h) { return FoundHand{h.points, h.presence, classify_gesture(h)}; }
 
 }  // namespace
 
 cv::Point2f palm_centre(const std::array<cv::Point2f, 21>& p) { return (p[0] + p[5] + p[9] + p[13] + p[17]) * 0.2f; }
+
+double key_point_move(const std::array<cv::Point2f, 21>& from, const std::array<cv::Point2f, 21>& to)
+{
+    double moved = 0.0;
+    for (std::size_t i = 0; i < to.size(); ++i) moved += cv::norm(from[i] - to[i]);
+    return moved / (double(to.size()) * std::max(1.0, cv::norm(to[9] - to[0])));
+}
 
 struct HandFinder::Impl {
     HandFinderParams params;
@@ -76,7 +75,7 @@ struct HandFinder::Impl {
         std::optional<HandKeyPoints> last = first;
         for (int look = 0; last && look < kSettlingLooks; ++look) {
             const std::optional<HandKeyPoints> next = run(bgr, crop_from_landmarks(*last));
-            if (next && mean_move(*last, *next) <= kSettledMove) return found(*first);
+            if (next && key_point_move(last->points, next->points) <= kSettledMove) return found(*first);
             last = next;
         }
         return std::nullopt;

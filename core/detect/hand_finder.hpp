@@ -30,6 +30,10 @@ struct FoundHand {
 // The palm centre as the product reports it: the mean of the wrist and the four knuckles.
 cv::Point2f palm_centre(const std::array<cv::Point2f, 21>& points);
 
+// The mean distance from one set of key points to another, in palm sizes of `to` (wrist to
+// middle knuckle, at least 1 px): how far a hand's key points moved between two looks.
+double key_point_move(const std::array<cv::Point2f, 21>& from, const std::array<cv::Point2f, 21>& to);
+
 class HandFinder {
 public:
     // Loads both models; throws std::runtime_error naming the file that is missing or bad.

@@ -94,7 +94,7 @@ const EyeEstimate& HandTracker::Impl::process(const cv::Mat& bgr, const ImageMot
         if (!was_tracking) acquire(bgr);
     } else if (estimate.state == TrackState::Tracking) {
         check_with_models(bgr, unannounced);
-        watch_for_moving_hand(bgr, moved);
+        watch_for_moving_hand(bgr, told || seen.shifted);
     } else {
         search_with_models(bgr);  // a hand lost on this frame is looked for at once
     }

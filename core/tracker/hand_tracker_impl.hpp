@@ -90,7 +90,7 @@ struct TrackerSession {
     int check_interval = 1;      // frames between its checks: longer while the contour agrees
     int search_turn = 0;         // frames searched by the palm detector without a hand
     KeyPointFlow flow;           // carries the key points between the model's checks
-    cv::Point2f still_anchor;    // the tracked palm, carried since by the view's motion alone
+    cv::Point2f still_anchor;    // where the contour was when it or the view last moved
     int still_frames = 0;        // tracked frames the contour has stayed with the room
     int unsettled_frames = 0;    // consecutive tracked frames the landmark model disagreed
     int view_still_frames = 0;   // consecutive tracked frames the view did not move
@@ -166,7 +166,7 @@ struct HandTracker::Impl : TrackerSession {
     void keep_key_points(const cv::Mat& bgr, bool carried);
 
     // moving_hand_watch.cpp: a moving hand takes over from one that holds still in the room.
-    void watch_for_moving_hand(const cv::Mat& bgr, const ImageMotion& motion);
+    void watch_for_moving_hand(const cv::Mat& bgr, bool view_moved);
     static bool moves_inside(const Detection& found, const cv::Rect& box);
 
     // tracker_maps.cpp: the maps the steps above read.

@@ -159,9 +159,7 @@ void HandTracker::Impl::check_with_models(const cv::Mat& bgr, bool view_changed)
         lose();
         return;
     }
-    double error = 0.0;
-    for (std::size_t i = 0; i < carried.size(); ++i) error += cv::norm(carried[i] - hand->points[i]);
-    error /= carried.size() * std::max(1.0, palm_size(hand->points));
+    const double error = key_point_move(carried, hand->points);
     if (error > kDriftedError) {
         if (!adopt_found(bgr, *hand)) lose();
         return;

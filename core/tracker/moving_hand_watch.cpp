@@ -29,7 +29,7 @@ constexpr int kQuietViewFrames = DetectionParams{}.history_frames;
 
 }  // namespace
 
-void HandTracker::Impl::watch_for_moving_hand(const cv::Mat& bgr, const ImageMotion& motion)
+void HandTracker::Impl::watch_for_moving_hand(const cv::Mat& bgr, bool view_moved)
 {
     const double size = std::max(estimate.bbox.width, estimate.bbox.height);
     if (estimate.state != TrackState::Tracking || !has_key_points || size <= 0.0) {
@@ -40,7 +40,6 @@ void HandTracker::Impl::watch_for_moving_hand(const cv::Mat& bgr, const ImageMot
     // at one depth goes: on such a frame the contour is anchored again and the count held.
     // The motion detector needs a still camera, so the watch looks only once the view has
     // held still for as long as the detector remembers motion.
-    const bool view_moved = motion.dx != 0.0 || motion.dy != 0.0 || motion.drotation != 0.0 || motion.scale_factor != 1.0;
     const cv::Point2f at(float(previous.x), float(previous.y));
     view_still_frames = view_moved ? 0 : view_still_frames + 1;
     if (view_moved) {
