@@ -54,6 +54,15 @@ bool is_host_char(char c)
 
 bool is_param_char(char c) { return c > 0x20 && c < 0x7f && c != '&' && c != '=' && c != '#' && c != '?'; }
 
+// An absolute path of plain, non-empty segments ("/dev/ttyUSB0", "/onvif/PTZ"): no "//", no
+// trailing '/', no "..", so the path printed back by to_string parses to the same path.
+bool is_plain_path(std::string_view path)
+{
+    const bool plain = std::all_of(path.begin(), path.end(), [](char c) { return is_host_char(c) || c == '/'; });
+    return plain && path.size() >= 2 && path.size() <= 256 && path.front() == '/' && path.back() != '/' &&
+           path.find("//") == std::string_view::npos && path.find("..") == std::string_view::npos;
+}
+
 }  // namespace
 
 std::string_view scheme_name(HeadScheme scheme)
@@ -135,9 +144,8 @@ void split_service_path(HeadUri& uri, std::string_view& rest)
     const auto slash = rest.find('/', rest.empty() || rest.front() != '[' ? 0 : rest.find(']'));
     if (slash == std::string_view::npos) return;
     const std::string_view path = rest.substr(slash);
-    const bool plain = std::all_of(path.begin(), path.end(), [](char c) { return is_host_char(c) || c == '/'; });
-    if (!plain || path.find("..") != std::string_view::npos || path.size() > 256)
-        fail("service path " + shown(path) + " may contain only letters, digits, '-', '_', '.' and '/'");
+    if (!is_plain_path(path))
+        fail("service path " + shown(path) + " is not like /onvif/PTZ (letters, digits, '-', '_', '.' between single '/')");
     uri.path = std::string(path);
     rest = rest.substr(0, slash);
 }
@@ -170,8 +178,7 @@ HeadUri parse_head_uri(std::string_view text)
     std::string_view port;
     if (is_serial(uri.scheme)) {
         // visca-serial:///dev/ttyUSB0: an absolute device path of plain characters.
-        const bool plain = std::all_of(rest.begin(), rest.end(), [](char c) { return is_host_char(c) || c == '/'; });
-        if (rest.size() < 2 || rest.front() != '/' || !plain || rest.find("..") != std::string_view::npos)
+        if (!is_plain_path(rest))
             fail("device " + shown(rest) + " is not an absolute path like /dev/ttyUSB0");
         uri.path = std::string(rest);
     } else if (!rest.empty() && rest.front() == '[') {

@@ -23,7 +23,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         return 0;
     }
     const HeadUri again = parse_head_uri(to_string(uri));
-    if (again.scheme != uri.scheme || again.host != uri.host || again.port != uri.port || again.params != uri.params)
+    if (again.scheme != uri.scheme || again.host != uri.host || again.port != uri.port || again.path != uri.path ||
+        again.params != uri.params)
         std::abort();
     if (uri.scheme != HeadScheme::Gchp) {
         try {

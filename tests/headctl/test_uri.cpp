@@ -88,6 +88,11 @@ TEST(HeadUri, RejectsMalformedUris)
              "visca-udp://h?colour=red",
              "visca-udp://h?address=1 2",
              "tcp://h\x01st:1",
+             "visca-serial://///",
+             "visca-serial:///dev//ttyUSB0",
+             "pelco-d://///dev/ttyUSB0",
+             "onvif://camera//",
+             "onvif://camera/onvif//PTZ",
          }) {
         EXPECT_THROW(parse_head_uri(bad), std::invalid_argument) << bad;
     }
