@@ -2,6 +2,8 @@
 
 #include "common/enum_names.hpp"
 
+#include <cmath>
+
 namespace gc {
 
 namespace {
@@ -20,7 +22,17 @@ constexpr EnumNames<Gesture, 5> kGestures{{
     {Gesture::Other, "other"},
 }};
 
+// Far below anything a frame shows (a millionth of a pixel), far above rounding residue.
+constexpr double kLeastShiftPx = 1e-6;
+constexpr double kLeastTurn = 1e-9;  // radians, and relative scale change
+
 }  // namespace
+
+bool ImageMotion::moves() const
+{
+    return std::abs(dx) > kLeastShiftPx || std::abs(dy) > kLeastShiftPx || std::abs(drotation) > kLeastTurn ||
+           std::abs(scale_factor - 1.0) > kLeastTurn;
+}
 
 std::string_view to_string(TrackState s) { return name_in(kTrackStates, s, "lost"); }
 

@@ -33,6 +33,10 @@ struct ImageMotion {
     double dy = 0.0;
     double drotation = 0.0;
     double scale_factor = 1.0;
+
+    // False for no motion and for a motion of rounding residue only (1e-14 px from poses
+    // composed and inverted), which moves no pixel.
+    bool moves() const;
 };
 
 enum class TrackState { Acquiring, Tracking, Lost };
@@ -78,6 +82,8 @@ struct HeadPose {
     // Optical magnification of both eyes' zoom lenses: 1 is the calibrated (widest) field of
     // view, 2 halves it. The focal length in pixels scales by this factor.
     double zoom = 1.0;
+
+    friend bool operator==(const HeadPose&, const HeadPose&) = default;
 };
 
 }  // namespace gc

@@ -81,6 +81,7 @@ ImageMotion camera_motion(const StereoCalibration& calibration, Eye eye, const H
         throw std::invalid_argument("camera_motion: image point must be finite");
     if (!std::isfinite(depth_mm) || depth_mm <= 0.0)
         throw std::invalid_argument("camera_motion: depth must be finite and > 0, got " + std::to_string(depth_mm));
+    if (before == after) return {};  // exactly none, not the residue of composing the poses
 
     const bool left = eye == Eye::Left;
     // A zoom between the poses changes the focal length the point is re-projected with.

@@ -74,7 +74,7 @@ const EyeEstimate& HandTracker::Impl::process(const cv::Mat& bgr, const ImageMot
     // The view moved without a word from the head (moved by someone else, a bumped tripod):
     // the hypotheses follow the scene's shift, and the landmark model checks the contour on
     // this very frame. Without the learned models nothing could check, and nothing looks.
-    const bool told = motion.dx != 0.0 || motion.dy != 0.0 || motion.drotation != 0.0 || motion.scale_factor != 1.0;
+    const bool told = motion.moves();
     const ViewChange seen = finder ? view.update(bgr) : ViewChange{};
     const bool unannounced = !told && (seen.shifted || seen.cut);
     ImageMotion moved = motion;
