@@ -23,6 +23,14 @@ constexpr std::size_t kPalmsTried = 2;
 constexpr double kSettledMove = 0.25;
 constexpr int kSettlingLooks = 3;
 
+// Key points carried through a wild camera motion can collapse into a point or leave the
+// finite numbers: such a crop shows no hand.
+bool usable(const HandCrop& crop)
+{
+    return std::isfinite(crop.centre.x) && std::isfinite(crop.centre.y) && std::isfinite(crop.rotation_rad) &&
+           std::isfinite(crop.side) && crop.side >= 1.0f;
+}
+
 FoundHand found(const HandKeyPoints& h) { return FoundHand{h.points, h.presence, classify_gesture(h)}; }
 
 }  // namespace
@@ -51,6 +59,7 @@ struct HandFinder::Impl {
 
     std::optional<HandKeyPoints> run(const cv::Mat& bgr, const HandCrop& crop)
     {
+        if (!usable(crop)) return std::nullopt;
         ++landmark_calls;
         HandKeyPoints hand = landmarks.run(bgr, crop);
         if (hand.presence < params.min_presence) return std::nullopt;

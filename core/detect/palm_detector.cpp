@@ -82,6 +82,8 @@ void PalmDetector::decode(float min_score)
         const float score = sigmoid(logits[i]);
         if (score < min_score) continue;
         const float* r = regressors + i * kRegressorWidth;
+        // A box regressed inside out (negative width or height) is no palm; its crop would be.
+        if (!(r[2] > 0.0f && r[3] > 0.0f && std::isfinite(r[0] + r[1] + r[2] + r[3]))) continue;
         const cv::Point2f corner = to_frame(i, r[0] - r[2] / 2, r[1] - r[3] / 2);
         candidate_boxes_.emplace_back(corner.x, corner.y, r[2] / scale_, r[3] / scale_);
         candidate_scores_.push_back(score);

@@ -9,6 +9,8 @@
 #include "real_pair.hpp"
 
 #include <gtest/gtest.h>
+
+#include <limits>
 #include <opencv2/imgproc.hpp>
 
 #include <cstdlib>
@@ -152,6 +154,21 @@ TEST_F(RealPair, TheFinderFindsTheRealHandOnEverySpotFrame)
             EXPECT_LE(cv::norm(hand->points[8] - (*reference(view, i))[8]), 15.0);
         }
     }
+}
+
+// Key points carried through a wild camera motion may collapse into one point or leave the
+// finite numbers; following them finds no hand instead of ending the tracker with an error.
+TEST_F(RealPair, FollowingCollapsedOrNonFiniteKeyPointsFindsNoHand)
+{
+    gc::HandFinder finder;
+    const cv::Mat& bgr = frame(0, 200);
+    std::array<cv::Point2f, 21> points;
+    points.fill(cv::Point2f(320.0f, 240.0f));
+    EXPECT_FALSE(finder.follow(bgr, points).has_value());
+    points = *reference(0, 200);
+    points[0].x = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_FALSE(finder.follow(bgr, points).has_value());
+    EXPECT_TRUE(finder.follow(bgr, *reference(0, 200)).has_value());
 }
 
 TEST_F(RealPair, NoPalmBeforeTheHandComesIntoView)
