@@ -23,8 +23,8 @@ constexpr std::size_t kPalmsTried = 2;
 constexpr double kSettledMove = 0.25;
 constexpr int kSettlingLooks = 3;
 
-// Key points carried through a wild camera motion can collapse into a point or leave the
-// finite numbers: such a crop shows no hand.
+// A crop from key points collapsed into one point or gone non-finite, or from a palm box
+// regressed inside out, shows no hand: the landmark model is not asked.
 bool usable(const HandCrop& crop)
 {
     return std::isfinite(crop.centre.x) && std::isfinite(crop.centre.y) && std::isfinite(crop.rotation_rad) &&
