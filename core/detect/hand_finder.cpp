@@ -23,14 +23,6 @@ constexpr std::size_t kPalmsTried = 2;
 constexpr double kSettledMove = 0.25;
 constexpr int kSettlingLooks = 3;
 
-// A crop from key points collapsed into one point or gone non-finite, or from a palm box
-// regressed inside out, shows no hand: the landmark model is not asked.
-bool usable(const HandCrop& crop)
-{
-    return std::isfinite(crop.centre.x) && std::isfinite(crop.centre.y) && std::isfinite(crop.rotation_rad) &&
-           std::isfinite(crop.side) && crop.side >= 1.0f;
-}
-
 FoundHand found(const HandKeyPoints& h) { return FoundHand{h.points, h.presence, classify_gesture(h)}; }
 
 }  // namespace
@@ -59,7 +51,7 @@ struct HandFinder::Impl {
 
     std::optional<HandKeyPoints> run(const cv::Mat& bgr, const HandCrop& crop)
     {
-        if (!usable(crop)) return std::nullopt;
+        if (!crop.usable()) return std::nullopt;  // shows no hand: the model is not asked
         ++landmark_calls;
         HandKeyPoints hand = landmarks.run(bgr, crop);
         if (hand.presence < params.min_presence) return std::nullopt;

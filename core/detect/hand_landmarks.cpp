@@ -51,6 +51,12 @@ HandCrop crop_around_box(cv::Point2f centre, cv::Size2f size, float rotation, Cr
 
 }  // namespace
 
+bool HandCrop::usable() const
+{
+    return std::isfinite(centre.x) && std::isfinite(centre.y) && std::isfinite(rotation_rad) && std::isfinite(side) &&
+           side >= 1.0f;
+}
+
 HandCrop crop_from_palm(const PalmDetection& palm)
 {
     const cv::Point2f centre(palm.box.x + palm.box.width / 2, palm.box.y + palm.box.height / 2);
@@ -96,9 +102,7 @@ HandKeyPoints LandmarkModel::run(const cv::Mat& bgr, const HandCrop& crop)
 {
     if (bgr.empty() || bgr.type() != CV_8UC3)
         throw std::invalid_argument("LandmarkModel: expected a non-empty CV_8UC3 (BGR) frame");
-    const bool finite = std::isfinite(crop.centre.x) && std::isfinite(crop.centre.y) && std::isfinite(crop.side) &&
-                        std::isfinite(crop.rotation_rad);
-    if (!finite || !(crop.side > 0.0f)) throw std::invalid_argument("LandmarkModel: empty or non-finite crop");
+    if (!crop.usable()) throw std::invalid_argument("LandmarkModel: empty or non-finite crop");
     const cv::Matx23f to_frame = crop_to_frame(crop, kInputSide);
     // warpAffine maps pixel indices; a pixel's centre lies at index + 0.5 in the continuous
     // coordinates of crop_to_frame, in the crop as in the frame.

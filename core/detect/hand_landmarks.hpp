@@ -56,6 +56,10 @@ struct HandCrop {
     cv::Point2f centre;
     float side = 0.0f;
     float rotation_rad = 0.0f;
+
+    // Finite, and at least a pixel a side: a crop from key points collapsed into one point
+    // or gone non-finite, or from a palm box regressed inside out, is not.
+    bool usable() const;
 };
 
 // The crop for the landmark model around a detected palm: about 2.6 palm sizes, shifted
