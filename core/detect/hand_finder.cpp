@@ -11,9 +11,9 @@ namespace gc {
 
 namespace {
 
-// Palms tried, best first, before a frame is said to hold no hand: a second one catches a
-// best box that sat on a hand-coloured distraction.
-constexpr std::size_t kPalmsTried = 2;
+// Palms tried, best first, before a frame is said to hold no hand: the ones after the first
+// catch a hand whose box scored below boxes on hand-coloured distractions (docs/adr/0028).
+constexpr std::size_t kPalmsTried = 3;
 
 // How far, in palm sizes (wrist to middle knuckle), the key points of a found hand may move
 // on average when the landmark model looks again through the crop they give, and how many

@@ -16,7 +16,7 @@ namespace gc {
 
 struct HandFinderParams {
     std::string model_dir;        // empty: found without configuration (model_files.hpp)
-    float min_palm_score = 0.5f;  // palm detector's score to accept a palm
+    float min_palm_score = 0.4f;  // palm detector's score to try a palm (docs/adr/0028)
     float min_presence = 0.5f;    // landmark model's hand presence to accept a hand
 };
 
