@@ -98,6 +98,27 @@ TEST(LearnedTracker, AcquiresARenderedHandInClutter)
     EXPECT_EQ(tracker.estimate().landmarks.size(), 21u);
 }
 
+// Where HandFinder::find puts the palm on every 10th frame of [first, last) of one eye:
+// on the rendered hand (inside its box) or elsewhere; frames without a find count neither.
+struct FinderLooks {
+    int frames = 0, on_hand = 0, elsewhere = 0;
+};
+
+FinderLooks look_with_finder(const gc::sim::Scene& scene, gc::Eye eye, const gc::HeadPose& head, int first, int last)
+{
+    gc::HandFinder finder;
+    cv::Mat frame;
+    gc::sim::EyeTruth truth;
+    FinderLooks looks;
+    for (int f = first; f < last; f += 10, ++looks.frames) {
+        scene.render(f, eye, head, frame, &truth);
+        const std::optional<gc::FoundHand> hand = finder.find(frame);
+        if (!hand) continue;
+        (truth.bbox.contains(cv::Point(gc::palm_centre(hand->points))) ? looks.on_hand : looks.elsewhere) += 1;
+    }
+    return looks;
+}
+
 // In the light room the palm detector rates a bookshelf above the rendered hand and the
 // landmark model, looking once, calls it a hand (on 13 of these 30 frames; on the hand 13).
 // Its key points scatter anew when the model looks again through the crop they give, so
@@ -105,18 +126,9 @@ TEST(LearnedTracker, AcquiresARenderedHandInClutter)
 TEST(HandFinder, PassesOverMostOfAShelfTheModelsTakeForAHand)
 {
     const gc::sim::Scene scene(scene_config(gc::sim::Preset::Light, 1));
-    gc::HandFinder finder;
-    cv::Mat frame;
-    gc::sim::EyeTruth truth;
-    int on_hand = 0, elsewhere = 0;
-    for (int f = 0; f < 300; f += 10) {
-        scene.render(f, gc::Eye::Left, gc::HeadPose{}, frame, &truth);
-        const std::optional<gc::FoundHand> hand = finder.find(frame);
-        if (!hand) continue;
-        (truth.bbox.contains(cv::Point(gc::palm_centre(hand->points))) ? on_hand : elsewhere) += 1;
-    }
-    EXPECT_LE(elsewhere, 7);
-    EXPECT_GE(on_hand, 15);
+    const FinderLooks looks = look_with_finder(scene, gc::Eye::Left, gc::HeadPose{}, 0, 300);
+    EXPECT_LE(looks.elsewhere, 7);
+    EXPECT_GE(looks.on_hand, 15);
 }
 
 // A hand held still, its finger aimed 2 m away past the cameras' side, is foreshortened in
@@ -130,16 +142,8 @@ TEST(HandFinder, FindsAStillHandPointingAwayFromTheCameras)
     const gc::sim::Scene scene(cfg);
     gc::HeadPose head;
     head.pan_deg = 4.5;
-    gc::HandFinder finder;
-    cv::Mat frame;
-    gc::sim::EyeTruth truth;
-    int looks = 0, on_hand = 0;
-    for (int f = 40; f < 120; f += 10, ++looks) {
-        scene.render(f, gc::Eye::Right, head, frame, &truth);
-        const std::optional<gc::FoundHand> hand = finder.find(frame);
-        on_hand += hand && truth.bbox.contains(cv::Point(gc::palm_centre(hand->points)));
-    }
-    EXPECT_GE(on_hand, looks * 3 / 4) << "of " << looks;
+    const FinderLooks looks = look_with_finder(scene, gc::Eye::Right, head, 40, 120);
+    EXPECT_GE(looks.on_hand, looks.frames * 3 / 4) << "of " << looks.frames;
 }
 
 // On the renderer's stereo head the landmark model misplaces some key points of the rigid

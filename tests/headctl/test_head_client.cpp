@@ -261,6 +261,7 @@ TEST(HeadClient, AHeadThatHangsUpBeforeItsFirstStateIsNeverReportedConnected)
     ASSERT_TRUE(eventually([&] { return client.stats().connections >= 3 && disconnects() >= 3; }));
     const std::vector<ConnectionState> seen = log.seen();
     EXPECT_EQ(std::count(seen.begin(), seen.end(), ConnectionState::Connected), 0);
+    EXPECT_GE(std::count(seen.begin(), seen.end(), ConnectionState::Disconnected), 3);
 }
 
 // A GCHP line may hold 512 bytes before its '\n' (and a '\r' that does not count); a head
