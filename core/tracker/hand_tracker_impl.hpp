@@ -86,6 +86,7 @@ struct TrackerSession {
     bool has_key_points = false;
     std::array<cv::Point2f, 21> key_points{};
     Gesture gesture = Gesture::Unknown;
+    bool template_cut = false;   // the template was made of a hand the frame's border cut
     int frames_since_check = 0;  // tracked frames since the landmark model last looked
     int check_interval = 1;      // frames between its checks: longer while the contour agrees
     int search_turn = 0;         // frames searched by the palm detector without a hand

@@ -54,6 +54,22 @@ std::vector<cv::Point> palm_polygon(const std::array<cv::Point2f, 21>& p)
     return hull;
 }
 
+bool touches_border(const cv::Mat1b& mask)
+{
+    const cv::Rect box = cv::boundingRect(mask);
+    return box.x <= 1 || box.y <= 1 || box.br().x >= mask.cols - 1 || box.br().y >= mask.rows - 1;
+}
+
+// Whether the frame's border cuts the index finger: a template without the finger's end
+// cannot tell where it points.
+bool index_finger_cut(const std::array<cv::Point2f, 21>& p, cv::Size size)
+{
+    cv::Mat1b finger(size, uchar(0));
+    const int width = std::max(3, cvRound(0.32 * palm_size(p)));
+    for (int i = 5; i < 8; ++i) cv::line(finger, p[i], p[i + 1], 255, width, cv::LINE_8);
+    return touches_border(finger);
+}
+
 // Where the hand may be: the palm filled and every bone drawn as thick as a finger.
 cv::Mat1b hand_region(const std::array<cv::Point2f, 21>& p, cv::Size size)
 {
@@ -83,12 +99,6 @@ cv::Mat1b skin_of_hand(const cv::Mat1b& region, const cv::Mat1b& membership, cv:
     mask = labels == label;
     if (cv::countNonZero(mask) < 0.5 * cv::countNonZero(region)) return {};
     return mask;
-}
-
-bool touches_border(const cv::Mat1b& mask)
-{
-    const cv::Rect box = cv::boundingRect(mask);
-    return box.x <= 1 || box.y <= 1 || box.br().x >= mask.cols - 1 || box.br().y >= mask.rows - 1;
 }
 
 // The template point that `s` places at `p` (the inverse of place()).
@@ -160,7 +170,9 @@ void HandTracker::Impl::check_with_models(const cv::Mat& bgr, bool view_changed)
         return;
     }
     const double error = key_point_move(carried, hand->points);
-    if (error > kDriftedError) {
+    // A template made of a hand the border cut is made again once the hand is whole in view.
+    const bool whole_now = template_cut && !touches_border(hand_region(hand->points, bgr.size()));
+    if (error > kDriftedError || whole_now) {
         if (!adopt_found(bgr, *hand)) lose();
         return;
     }
@@ -171,12 +183,13 @@ void HandTracker::Impl::check_with_models(const cv::Mat& bgr, bool view_changed)
 }
 
 // A template from a hand the models found: the skin model learnt from its palm, the mask
-// the skin inside the region its key points span. False (nothing changed) when the hand is
-// cut by the frame's border or no template can be made of it.
+// the skin inside the region its key points span. False (nothing changed) when the border
+// cuts the index finger or no template can be made of it; a hand entering from the border
+// (its wrist or palm cut) is taken as far as it is in view.
 bool HandTracker::Impl::adopt_found(const cv::Mat& bgr, const FoundHand& hand)
 {
+    if (index_finger_cut(hand.points, bgr.size())) return false;
     const cv::Mat1b region = hand_region(hand.points, bgr.size());
-    if (touches_border(region)) return false;
     cv::Mat1b palm(bgr.size(), uchar(0));
     cv::fillConvexPoly(palm, palm_polygon(hand.points), 255);
     SkinModel model = SkinModel::generic();
@@ -199,6 +212,7 @@ bool HandTracker::Impl::adopt_found(const cv::Mat& bgr, const FoundHand& hand)
     const HandState at{shaped->origin_px.x, shaped->origin_px.y, 0.0, 1.0};
     for (std::size_t i = 0; i < key_points.size(); ++i) key_points[i] = unplace(at, hand.points[i]);
     has_key_points = true;
+    template_cut = touches_border(region);
     gesture = hand.gesture;
     frames_since_check = 0;
     check_interval = 1;
@@ -218,8 +232,10 @@ void HandTracker::Impl::place_key_points(const HandState& s)
     estimate.palm = palm_centre(placed);
     estimate.fingertip = placed[8];
     // The contour's own fingertip (its extreme point along the finger) is where the
-    // silhouette ends, which the key points only estimate: it is taken when it lies the way
-    // the key points' index finger points, no nearer the palm than their tip.
+    // silhouette ends, which the key points only estimate: it is taken when the hand points
+    // and it lies the way the key points' index finger points, no nearer the palm than their
+    // tip. A rigid contour keeps the finger it was made with after the index has curled.
+    if (gesture != Gesture::Pointing) return;
     const cv::Point2f by_contour = cv::Point2f(place(s, shape->fingertip)) - estimate.palm;
     const cv::Point2f by_points = placed[8] - estimate.palm;
     const double along = by_contour.dot(by_points), points_length = cv::norm(by_points);

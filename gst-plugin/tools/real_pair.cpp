@@ -6,6 +6,8 @@
 #include "tools/json_reader.hpp"
 #include "tracker/pointing_tracker.hpp"
 
+#include <opencv2/imgproc.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -183,6 +185,45 @@ RealPairFigures measure_real_pair(const RealPairOptions& o)
     f.ms_per_frame = quantile(ms, 0.5);
     f.cpu_ms_per_frame = quantile(cpu_ms, 0.5);
     return f;
+}
+
+RealCropFigures measure_real_crop(const RealCropOptions& o)
+{
+    const std::string name = "handpose3d_cam" + std::to_string(o.camera);
+    const std::vector<ReferenceHand> hands = read_reference_hands(o.dir + "/" + name + ".mediapipe.json");
+    const auto stereo_ref = stereo_reference(o.dir + "/handpose3d_ref3d.json");
+    const std::string video = o.dir + "/" + name + ".mp4";
+    GstFrameReader reader(video);
+    HandTracker tracker(o.params);
+    const cv::Point2d scale(double(o.size.width) / o.window.width, double(o.size.height) / o.window.height);
+    const auto into_window = [&](const cv::Point2d& p) {
+        return cv::Point2d((p.x - o.window.x) * scale.x, (p.y - o.window.y) * scale.y);
+    };
+    const cv::Rect2d seen(0, 0, o.size.width, o.size.height);
+    ViewTally tally;
+    int cut = 0;
+    cv::Mat frame, view;
+    for (int i = 0; i < o.last_frame && read_frame(reader, frame, video); ++i) {
+        if (i < o.first_frame) continue;
+        if ((cv::Rect(0, 0, frame.cols, frame.rows) & o.window) != o.window)
+            throw std::invalid_argument("real crop: the window lies outside the " + std::to_string(frame.cols) + "x" +
+                                        std::to_string(frame.rows) + " frames");
+        cv::resize(frame(o.window), view, o.size, 0.0, 0.0, cv::INTER_AREA);
+        const EyeEstimate& e = tracker.process(view);
+        std::optional<cv::Point2d> tip;
+        if (std::size_t(i) < hands.size() && hands[i]) {
+            int inside = 0;
+            for (const cv::Point2d& p : *hands[i]) inside += seen.contains(into_window(p));
+            const cv::Point2d t = into_window((*hands[i])[8]);
+            if (seen.contains(t) && 2 * inside >= int(hands[i]->size())) {
+                tip = t;
+                cut += inside < int(hands[i]->size());
+            }
+        }
+        const auto ref = stereo_ref.find(i);
+        tally.add(e, tip, ref != stereo_ref.end() && ref->second.pointing);
+    }
+    return {tally.figures(), cut};
 }
 
 }  // namespace gc::tools

@@ -49,6 +49,39 @@ struct RealPairFigures {
     double cpu_ms_per_frame = 0.0;  // median CPU time of one, every thread of the process
 };
 
+// One view of the pair seen through a narrower camera: a window of its frames scaled to
+// `size`, so that the hand enters from the window's edge (wrist or palm cut off) as it does
+// before a webcam close to the speaker. The view is tracked alone and scored against the
+// reference key points carried into the window.
+struct RealCropOptions {
+    std::string dir;  // as RealPairOptions::dir
+    int camera = 0;   // 0: handpose3d_cam0 (left), 1: cam1 (right)
+    cv::Rect window;  // in the recording's 720x720 frames
+    cv::Size size{640, 480};
+    int first_frame = 0;
+    int last_frame = 1 << 30;
+    TrackerParams params;
+};
+
+// A frame counts when the reference fingertip and at least half of its key points lie in
+// the window; `cut_frames` of those have key points outside it.
+struct RealCropFigures {
+    ViewFigures view;
+    int cut_frames = 0;
+};
+
+// The windows gesturecam-bench reports: the hand entering from the top of the left view
+// (its wrist cut on most frames), from the left of the right view (a closer camera: the
+// window is scaled up 1.7x), and the left view with the fingertip near the right edge.
+struct NamedWindow {
+    const char* name;
+    int camera;
+    cv::Rect window;
+};
+inline const NamedWindow kEdgeWindows[] = {{"cam0 from the top", 0, {80, 180, 640, 480}},
+                                           {"cam1 from the left, closer", 1, {330, 220, 380, 285}},
+                                           {"cam0 towards the right", 0, {0, 100, 640, 480}}};
+
 // MediaPipe's 21 key points of one frame of a view, in pixels; nothing where it found no hand.
 using ReferenceHand = std::optional<std::array<cv::Point2d, 21>>;
 
@@ -59,5 +92,10 @@ std::vector<ReferenceHand> read_reference_hands(const std::string& path);
 // Decodes both recordings (frame i = the i-th decoded frame), tracks them in stereo and
 // scores the result. Throws std::runtime_error on missing or unreadable files.
 RealPairFigures measure_real_pair(const RealPairOptions& options);
+
+// Decodes one recording, tracks the window of each frame and scores it. Throws
+// std::runtime_error on missing or unreadable files, std::invalid_argument on a window
+// outside the frame.
+RealCropFigures measure_real_crop(const RealCropOptions& options);
 
 }  // namespace gc::tools

@@ -67,6 +67,39 @@ void print_3d(const BenchOptions& o, const RealPairRow& row, std::ostream& out)
         << fixed(row.cpu_ms_per_frame, 2) << " |\n";
 }
 
+void print_windows(const BenchOptions& o, const std::vector<RealPairRow>& rows, std::ostream& out)
+{
+    if (!o.json)
+        out << "\nOne view tracked alone through a narrower window (scaled to 640x480) whose edge the hand "
+               "enters from; \"cut\" frames have reference key points outside the window:\n\n"
+            << "| detector | window | reference frames | cut | tracked | within 30 px | median px | "
+               "models share of tracked |\n"
+            << "|---|---|---|---|---|---|---|---|\n";
+    for (const RealPairRow& row : rows)
+        for (std::size_t i = 0; i < row.windows.size() && i < std::size(kEdgeWindows); ++i) {
+            const RealCropFigures& w = row.windows[i];
+            if (o.json) {
+                out << JsonObject()
+                           .add("kind", "real_window")
+                           .add("detector", detector_name(row.detector))
+                           .add("window", kEdgeWindows[i].name)
+                           .add("reference_frames", w.view.reference_frames)
+                           .add("cut_frames", w.cut_frames)
+                           .add("coverage", w.view.coverage, 3)
+                           .add("within_30px", w.view.within_30px, 3)
+                           .add("median_px", w.view.median_px, 1)
+                           .add("models_share", w.view.models_share, 3)
+                           .str()
+                    << '\n';
+                continue;
+            }
+            out << "| " << detector_name(row.detector) << " | " << kEdgeWindows[i].name << " | "
+                << w.view.reference_frames << " | " << w.cut_frames << " | " << fixed(w.view.coverage, 3) << " | "
+                << fixed(w.view.within_30px, 3) << " | " << fixed(w.view.median_px, 1) << " | "
+                << fixed(w.view.models_share, 3) << " |\n";
+        }
+}
+
 }  // namespace
 
 void print_real_pair(const BenchOptions& o, const std::vector<RealPairRow>& rows, std::ostream& out)
@@ -93,6 +126,7 @@ void print_real_pair(const BenchOptions& o, const std::vector<RealPairRow>& rows
                "CPU ms/stereo frame |\n"
             << "|---|---|---|---|---|---|---|---|---|---|\n";
     for (const RealPairRow& row : rows) print_3d(o, row, out);
+    print_windows(o, rows, out);
 }
 
 }  // namespace gc::tools

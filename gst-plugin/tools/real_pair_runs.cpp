@@ -33,6 +33,16 @@ std::vector<RealPairRow> measure_real_pair_rows(const BenchOptions& o)
             ms.push_back(f.ms_per_frame);
             cpu_ms.push_back(f.cpu_ms_per_frame);
         }
+        for (const NamedWindow& w : kEdgeWindows) {
+            std::cerr << "gesturecam-bench: real pair, " << detector_name(detector) << ", " << w.name << '\n';
+            RealCropOptions crop;
+            crop.dir = options.dir;
+            crop.camera = w.camera;
+            crop.window = w.window;
+            crop.last_frame = options.last_frame;
+            crop.params = options.params;
+            row.windows.push_back(measure_real_crop(crop));
+        }
         row.ms_per_frame = median(ms);
         row.cpu_ms_per_frame = median(cpu_ms);
         rows.push_back(row);

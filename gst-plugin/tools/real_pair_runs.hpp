@@ -1,5 +1,6 @@
 // gesturecam-bench on the real calibrated pair (tests/data/handpose3d): each detector's
-// figures against the reference key points, and its cost timed over --runs runs.
+// figures against the reference key points (in stereo, and one view through windows its
+// hand enters from the edge of), and its cost timed over --runs runs.
 #pragma once
 
 #include "tools/bench_options.hpp"
@@ -11,9 +12,10 @@ namespace gc::tools {
 
 struct RealPairRow {
     gc::HandDetector detector = gc::HandDetector::Learned;
-    RealPairFigures figures;        // of the first run (the runs track alike)
-    double ms_per_frame = 0.0;      // median over runs of each run's median stereo frame
-    double cpu_ms_per_frame = 0.0;  // ... of its CPU time
+    RealPairFigures figures;               // of the first run (the runs track alike)
+    std::vector<RealCropFigures> windows;  // one per kEdgeWindows, the view tracked alone
+    double ms_per_frame = 0.0;             // median over runs of each run's median stereo frame
+    double cpu_ms_per_frame = 0.0;         // ... of its CPU time
 };
 
 // One row per detector of `o`; none when the real pair is skipped, or when the source

@@ -3,6 +3,7 @@
 // are rejected.
 #include "tool_run.hpp"
 #include "tools/json_reader.hpp"
+#include "tools/real_pair.hpp"
 #include "tools/tool_version.hpp"
 
 #include <gtest/gtest.h>
@@ -174,6 +175,21 @@ TEST(BenchTool, QuickJsonRunHasTheRealPairForEachDetector)
     }
     EXPECT_EQ(detectors, (std::set<std::string>{"learned", "motion"}));
     EXPECT_EQ(rows_of("real_pair").size(), 2u);
+
+    // The view alone through each narrower window, per detector.
+    std::set<std::pair<std::string, std::string>> windows;
+    for (const JsonValue& w : rows_of("real_window")) {
+        const std::string detector = w["detector"].string(), window = w["window"].string();
+        windows.insert({detector, window});
+        EXPECT_TRUE(in_range(w["reference_frames"], 1.0, 40.0)) << detector << ' ' << window;
+        EXPECT_TRUE(in_range(w["cut_frames"], 0.0, w["reference_frames"].number())) << detector << ' ' << window;
+        for (const char* share : {"coverage", "within_30px", "models_share"})
+            EXPECT_TRUE(in_range(w[share], 0.0, 1.0)) << detector << ' ' << window << ' ' << share;
+        if (detector == "learned") {
+            EXPECT_GE(w["coverage"].number(), 0.5) << window;
+        }
+    }
+    EXPECT_EQ(windows.size(), 2 * std::size(gc::tools::kEdgeWindows));
 }
 
 std::size_t count(const std::string& text, const std::string& what)
@@ -198,9 +214,11 @@ TEST(BenchTool, MarkdownTablesByDefault)
     EXPECT_EQ(count(r.out, "## Real pair"), 1u) << r.out;
     for (const char* row : {"| learned | left | ", "| learned | right | ", "| motion | left | ", "| motion | right | "})
         EXPECT_EQ(count(r.out, row), 1u) << row << '\n' << r.out;
-    // Stereo and the real pair's 3D table: one row per detector each.
-    EXPECT_EQ(count(r.out, "| learned | "), 4u) << r.out;
-    EXPECT_EQ(count(r.out, "| motion | "), 4u) << r.out;
+    // Stereo and the real pair's 3D table: one row per detector each; the windows' table
+    // one per detector and window.
+    const std::size_t rows = 2 + std::size(gc::tools::kEdgeWindows);
+    EXPECT_EQ(count(r.out, "| learned | "), 2 + rows) << r.out;
+    EXPECT_EQ(count(r.out, "| motion | "), 2 + rows) << r.out;
 }
 
 TEST(BenchTool, OneDetectorAndNoRealPair)
