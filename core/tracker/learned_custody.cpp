@@ -157,7 +157,8 @@ std::optional<FoundHand> HandTracker::Impl::confirm_detection(const cv::Mat& bgr
 void HandTracker::Impl::check_with_models(const cv::Mat& bgr, bool view_changed)
 {
     ++frames_since_check;
-    const bool doubt = view_changed || estimate.confidence < params.lost_ratio;
+    const bool doubt = view_changed || flow_disagreed || estimate.confidence < params.lost_ratio;
+    flow_disagreed = false;
     if (!doubt && frames_since_check < check_interval) return;
     frames_since_check = 0;
     estimate.models_ran = true;
@@ -258,8 +259,14 @@ void HandTracker::Impl::carry_key_points(const cv::Mat& bgr)
     // A point the flow took farther from where the contour put it than a finger can bend
     // has slid onto something else.
     const double reach = kFlowReach * palm_size(placed);
-    for (std::size_t i = 0; i < key_points.size(); ++i)
-        if (moved[i] && cv::norm(points[i] - placed[i]) <= reach) key_points[i] = unplace(previous, points[i]);
+    flow_disagreed = false;
+    for (std::size_t i = 0; i < key_points.size(); ++i) {
+        if (!moved[i]) continue;
+        if (cv::norm(points[i] - placed[i]) <= reach)
+            key_points[i] = unplace(previous, points[i]);
+        else if (i >= 6 && i <= 8)
+            flow_disagreed = true;
+    }
     report(previous);
 }
 

@@ -73,20 +73,22 @@ TEST(LearnedTracker, ClaimsNoPointingWhereTheRealHandDoesNotPoint)
     EXPECT_GE(f.right.within_30px, 0.8);
 }
 
-// The left view through a narrower window whose top edge cuts the wrist or palm off on 237
-// of its 340 frames with a hand: the hand is taken as far as it is in view, not only once
-// it is whole.
+// The right view through a narrower window, 1.7 times closer, whose left edge cuts the
+// wrist or palm off on 229 of its 309 frames with a hand: the hand is taken as far as it is
+// in view, and a finger that bends or swings between the landmark model's checks (the
+// optical flow takes the index finger where the contour does not) is checked at once.
 TEST(LearnedTracker, FollowsARealHandEnteringFromTheFrameEdge)
 {
+    const gc::tools::NamedWindow& window = gc::tools::kEdgeWindows[1];
     gc::tools::RealCropOptions options;
     options.dir = real_pair_dir();
-    options.camera = gc::tools::kEdgeWindows[0].camera;
-    options.window = gc::tools::kEdgeWindows[0].window;
+    options.camera = window.camera;
+    options.window = window.window;
     const gc::tools::RealCropFigures f = gc::tools::measure_real_crop(options);
-    ASSERT_EQ(f.view.reference_frames, 340);
+    ASSERT_EQ(f.view.reference_frames, 309);
     EXPECT_GE(f.cut_frames, 200);
-    EXPECT_GE(f.view.coverage, 0.85);
-    EXPECT_GE(f.view.within_30px, 0.7);
+    EXPECT_GE(f.view.coverage, 0.9);
+    EXPECT_GE(f.view.within_30px, 0.85);
     EXPECT_LE(f.view.median_px, 15.0);
 }
 
