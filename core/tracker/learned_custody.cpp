@@ -42,8 +42,13 @@ constexpr int kBones[][2] = {{0, 1},   {1, 2},   {2, 3},   {3, 4},   {0, 5},   {
                              {7, 8},   {5, 9},   {9, 10},  {10, 11}, {11, 12}, {9, 13},  {13, 14},
                              {14, 15}, {15, 16}, {13, 17}, {17, 18}, {18, 19}, {19, 20}, {0, 17}};
 constexpr int kPalmOutline[] = {0, 1, 5, 9, 13, 17};
+// The index finger's key points: knuckle, the two joints, tip.
+constexpr int kIndexKnuckle = 5, kIndexTip = 8;
 
 double palm_size(const std::array<cv::Point2f, 21>& p) { return cv::norm(p[9] - p[0]); }
+
+// A finger's width in pixels, drawn as a line: about a third of the palm's size.
+int finger_width(const std::array<cv::Point2f, 21>& p) { return std::max(3, cvRound(0.32 * palm_size(p))); }
 
 std::vector<cv::Point> palm_polygon(const std::array<cv::Point2f, 21>& p)
 {
@@ -65,8 +70,7 @@ bool touches_border(const cv::Mat1b& mask)
 bool index_finger_cut(const std::array<cv::Point2f, 21>& p, cv::Size size)
 {
     cv::Mat1b finger(size, uchar(0));
-    const int width = std::max(3, cvRound(0.32 * palm_size(p)));
-    for (int i = 5; i < 8; ++i) cv::line(finger, p[i], p[i + 1], 255, width, cv::LINE_8);
+    for (int i = kIndexKnuckle; i < kIndexTip; ++i) cv::line(finger, p[i], p[i + 1], 255, finger_width(p), cv::LINE_8);
     return touches_border(finger);
 }
 
@@ -75,8 +79,7 @@ cv::Mat1b hand_region(const std::array<cv::Point2f, 21>& p, cv::Size size)
 {
     cv::Mat1b region(size, uchar(0));
     cv::fillConvexPoly(region, palm_polygon(p), 255);
-    const int finger = std::max(3, cvRound(0.32 * palm_size(p)));
-    for (const auto& bone : kBones) cv::line(region, p[bone[0]], p[bone[1]], 255, finger, cv::LINE_8);
+    for (const auto& bone : kBones) cv::line(region, p[bone[0]], p[bone[1]], 255, finger_width(p), cv::LINE_8);
     // The wrist beyond its key point, most of the palm's width: a sleeve or the end of the
     // skin ends it in the mask, so the outline closes where the hand's silhouette does.
     const cv::Point2f away = (p[0] - p[9]) * float(kWristReach);
@@ -264,8 +267,8 @@ void HandTracker::Impl::carry_key_points(const cv::Mat& bgr)
         if (!moved[i]) continue;
         if (cv::norm(points[i] - placed[i]) <= reach)
             key_points[i] = unplace(previous, points[i]);
-        else if (i >= 6 && i <= 8)
-            flow_disagreed = true;
+        else if (int(i) > kIndexKnuckle && int(i) <= kIndexTip)
+            flow_disagreed = true;  // the finger bent or swung against the rigid contour
     }
     report(previous);
 }
