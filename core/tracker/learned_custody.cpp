@@ -174,12 +174,12 @@ void HandTracker::Impl::check_with_models(const cv::Mat& bgr, bool view_changed)
         return;
     }
     const double error = key_point_move(carried, hand->points);
-    // A template made of a hand the border cut is made again once the hand is whole in view.
-    const bool whole_now = template_cut && !touches_border(hand_region(hand->points, bgr.size()));
-    if (error > kDriftedError || whole_now) {
+    if (error > kDriftedError) {
         if (!adopt_found(bgr, *hand)) lose();
         return;
     }
+    // A template made of a hand the border cut is made again once the hand is whole in view.
+    if (template_cut && !touches_border(hand_region(hand->points, bgr.size())) && adopt_found(bgr, *hand)) return;
     check_interval = error < kAgreedError ? std::min(2 * check_interval, params.max_model_interval) : 1;
     for (std::size_t i = 0; i < key_points.size(); ++i) key_points[i] = unplace(previous, hand->points[i]);
     gesture = hand->gesture;
