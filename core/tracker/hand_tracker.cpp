@@ -89,11 +89,11 @@ const EyeEstimate& HandTracker::Impl::process(const cv::Mat& bgr, const ImageMot
     const bool was_tracking = estimate.state == TrackState::Tracking;
     if (was_tracking) track(bgr, moved);
     const bool carried = finder && was_tracking && estimate.state == TrackState::Tracking && flow.ready();
-    if (carried) carry_key_points(bgr);
+    const bool finger_bent = carried && carry_key_points(bgr);
     if (!finder) {
         if (!was_tracking) acquire(bgr);
     } else if (estimate.state == TrackState::Tracking) {
-        check_with_models(bgr, unannounced);
+        check_with_models(bgr, unannounced || finger_bent);
         watch_for_moving_hand(bgr, told || seen.shifted);
     } else {
         search_with_models(bgr);  // a hand lost on this frame is looked for at once

@@ -86,16 +86,15 @@ struct TrackerSession {
     bool has_key_points = false;
     std::array<cv::Point2f, 21> key_points{};
     Gesture gesture = Gesture::Unknown;
-    bool template_cut = false;    // the template was made of a hand the frame's border cut
-    int frames_since_check = 0;   // tracked frames since the landmark model last looked
-    int check_interval = 1;       // frames between its checks: longer while the contour agrees
-    int search_turn = 0;          // frames searched by the palm detector without a hand
-    KeyPointFlow flow;            // carries the key points between the model's checks
-    bool flow_disagreed = false;  // the flow took the index finger beyond the contour's reach
-    cv::Point2f still_anchor;     // where the contour was when it or the view last moved
-    int still_frames = 0;         // tracked frames the contour has stayed with the room
-    int unsettled_frames = 0;     // consecutive tracked frames the landmark model disagreed
-    int view_still_frames = 0;    // consecutive tracked frames the view did not move
+    bool template_cut = false;   // the template was made of a hand the frame's border cut
+    int frames_since_check = 0;  // tracked frames since the landmark model last looked
+    int check_interval = 1;      // frames between its checks: longer while the contour agrees
+    int search_turn = 0;         // frames searched by the palm detector without a hand
+    KeyPointFlow flow;           // carries the key points between the model's checks
+    cv::Point2f still_anchor;    // where the contour was when it or the view last moved
+    int still_frames = 0;        // tracked frames the contour has stayed with the room
+    int unsettled_frames = 0;    // consecutive tracked frames the landmark model disagreed
+    int view_still_frames = 0;   // consecutive tracked frames the view did not move
 };
 
 struct HandTracker::Impl : TrackerSession {
@@ -161,10 +160,10 @@ struct HandTracker::Impl : TrackerSession {
     void search_with_models(const cv::Mat& bgr);
     std::optional<FoundHand> propose_by_motion(const cv::Mat& bgr);
     std::optional<FoundHand> confirm_detection(const cv::Mat& bgr, const Detection& found);
-    void check_with_models(const cv::Mat& bgr, bool view_changed);
+    void check_with_models(const cv::Mat& bgr, bool in_doubt);
     bool adopt_found(const cv::Mat& bgr, const FoundHand& hand);
     void place_key_points(const HandState& s);
-    void carry_key_points(const cv::Mat& bgr);
+    bool carry_key_points(const cv::Mat& bgr);  // true: the flow bent the index finger
     void keep_key_points(const cv::Mat& bgr, bool carried);
 
     // moving_hand_watch.cpp: a moving hand takes over from one that holds still in the room.

@@ -153,15 +153,14 @@ std::optional<FoundHand> HandTracker::Impl::confirm_detection(const cv::Mat& bgr
 }
 
 // A tracked frame: the landmark model checks the contour when the check is due, the edges
-// are weak or the view changed under it. No hand where the contour is: lost. Key points
+// are weak, or the caller is in doubt (the view changed under it, the flow bent the finger). No hand where the contour is: lost. Key points
 // far from where the contour carried them: a new template from this frame. Else the key
 // points and gesture are the model's, re-expressed on the template, and the next check
 // waits longer while the two agree.
-void HandTracker::Impl::check_with_models(const cv::Mat& bgr, bool view_changed)
+void HandTracker::Impl::check_with_models(const cv::Mat& bgr, bool in_doubt)
 {
     ++frames_since_check;
-    const bool doubt = view_changed || flow_disagreed || estimate.confidence < params.lost_ratio;
-    flow_disagreed = false;
+    const bool doubt = in_doubt || estimate.confidence < params.lost_ratio;
     if (!doubt && frames_since_check < check_interval) return;
     frames_since_check = 0;
     estimate.models_ran = true;
@@ -251,26 +250,29 @@ void HandTracker::Impl::place_key_points(const HandState& s)
 
 // The key points the contour placed on this frame, moved to where optical flow followed
 // them from the last frame, and re-expressed on the template so the contour carries them on.
-void HandTracker::Impl::carry_key_points(const cv::Mat& bgr)
+// True when the flow took the index finger beyond the contour's reach.
+bool HandTracker::Impl::carry_key_points(const cv::Mat& bgr)
 {
-    if (!has_key_points || estimate.landmarks.size() != KeyPointFlow::kPoints) return;
+    if (!has_key_points || estimate.landmarks.size() != KeyPointFlow::kPoints) return false;
     KeyPointFlow::Points points;
     std::copy(estimate.landmarks.begin(), estimate.landmarks.end(), points.begin());
     std::array<bool, KeyPointFlow::kPoints> moved;
     const KeyPointFlow::Points placed = points;
     flow.carry(bgr, points, moved);
     // A point the flow took farther from where the contour put it than a finger can bend
-    // has slid onto something else.
+    // is not taken: it slid onto something else, or, on the index finger, the finger bent
+    // against the rigid contour, which the landmark model then checks.
     const double reach = kFlowReach * palm_size(placed);
-    flow_disagreed = false;
+    bool bent = false;
     for (std::size_t i = 0; i < key_points.size(); ++i) {
         if (!moved[i]) continue;
         if (cv::norm(points[i] - placed[i]) <= reach)
             key_points[i] = unplace(previous, points[i]);
         else if (int(i) > kIndexKnuckle && int(i) <= kIndexTip)
-            flow_disagreed = true;  // the finger bent or swung against the rigid contour
+            bent = true;  // the finger bent or swung against the rigid contour
     }
     report(previous);
+    return bent;
 }
 
 // After the frame: its key points are where the next frame's flow starts.
