@@ -140,15 +140,21 @@ TEST(HeadLoop, AHeadRestartedMidStreamIsBackWithinTwoSeconds)
     }
     EXPECT_LT(largest_gap_s, 0.5);
 
-    // One warning from the tracker for the outage, naming the head, after the kill.
-    int tracker_warnings = 0;
+    // One warning from the tracker for the outage, naming the head, after the kill. The only
+    // other warning allowed is the one a machine too busy for 30 stereo frames/s gives
+    // (views reaching the tracker late), which is about the machine, not the head.
+    int outage_warnings = 0;
     for (size_t i = 0; i < r.warnings.size(); ++i) {
         if (r.warnings[i].rfind("t: ", 0) != 0) continue;
-        ++tracker_warnings;
+        if (r.warnings[i].find("after capture") != std::string::npos) {
+            std::printf("busy machine: %s\n", r.warnings[i].c_str());
+            continue;
+        }
+        ++outage_warnings;
         EXPECT_NE(r.warnings[i].find(uri), std::string::npos) << r.warnings[i];
         EXPECT_GE(r.warnings_s[i], killed_s - 0.1);
     }
-    EXPECT_EQ(tracker_warnings, 1);
+    EXPECT_EQ(outage_warnings, 1);
 
     // Connected again: the tracker's head-connection messages after the restart.
     std::optional<double> back_s;
@@ -181,13 +187,15 @@ TEST(HeadLoop, AManualMoveIsLeftAloneForManualPauseAndReported)
     driver_config.uri = head.uri();
     gc::headctl::HeadClient driver(driver_config);
     bool moved = false;
+    double moved_at_s = 0.0;
     std::thread mover([&] {
         const auto start = std::chrono::steady_clock::now();
         std::this_thread::sleep_for(3000ms);
         for (int resting = 0; resting < 25 && std::chrono::steady_clock::now() - start < 9000ms;) {
             std::this_thread::sleep_for(20ms);
             const auto s = driver.latest();
-            const bool still = s && std::none_of(s->state.moving.begin(), s->state.moving.end(), [](bool m) { return m; });
+            const bool still =
+                s && std::none_of(s->state.moving.begin(), s->state.moving.end(), [](bool m) { return m; });
             resting = still ? resting + 1 : 0;
             moved = resting == 25;
         }
@@ -195,6 +203,7 @@ TEST(HeadLoop, AManualMoveIsLeftAloneForManualPauseAndReported)
         gc::headctl::HeadCommand turn{gc::headctl::CommandKind::Absolute, {}};
         turn.values.set(gc::headctl::Axis::Pan, 15.0);
         driver.submit(turn);
+        moved_at_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     });
     const gc::test::RunResult r = gc::test::run_pipeline(
         "handscenesrc name=l eye=left" + common + "! t.sink_left handscenesrc name=r eye=right truth-messages=false" +
@@ -210,6 +219,9 @@ TEST(HeadLoop, AManualMoveIsLeftAloneForManualPauseAndReported)
             std::printf("%.2f s: %s: %s\n", r.received_s[i], events.back().c_str(),
                         gst_structure_get_string(r.messages[i].get(), "detail"));
         }
+    std::printf("%.2f s: moved to pan 15 deg\n", moved_at_s);
+    for (size_t i = 0; i < r.warnings.size(); ++i)
+        std::printf("%.2f s: warning: %s\n", r.warnings_s[i], r.warnings[i].c_str());
     ASSERT_EQ(events.size(), 2u);
     EXPECT_EQ(events[0], "manual-pause");
     EXPECT_EQ(events[1], "resume");
