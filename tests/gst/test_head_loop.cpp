@@ -219,7 +219,7 @@ TEST(HeadLoop, AManualMoveIsLeftAloneForManualPauseAndReported)
             std::printf("%.2f s: %s: %s\n", r.received_s[i], events.back().c_str(),
                         gst_structure_get_string(r.messages[i].get(), "detail"));
         }
-    std::printf("%.2f s: moved to pan 15 deg\n", moved_at_s);
+    std::printf("moved to pan 15 deg %.2f s after the test started (before PLAYING)\n", moved_at_s);
     for (size_t i = 0; i < r.warnings.size(); ++i)
         std::printf("%.2f s: warning: %s\n", r.warnings_s[i], r.warnings[i].c_str());
     ASSERT_EQ(events.size(), 2u);
