@@ -14,6 +14,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <mutex>
@@ -169,8 +170,17 @@ struct Scene::Impl {
     cv::Mat noise_pool;  // CV_16SC3, (height + margin) x (width + margin)
     cv::Mat vignetting;  // wide: CV_16UC3 gains
     double light_phase[2] = {0.0, 0.0};
+    // The wall as each eye last saw it: a head at rest sees the same wall every frame, and
+    // its warp is most of a frame's rendering.
+    struct WallView {
+        cv::Matx33d H;
+        cv::Mat image;
+    };
+    mutable std::mutex wall_views_mutex;
+    mutable std::array<WallView, 2> wall_views;
 
     explicit Impl(const SceneConfig& c);
+    void draw_wall(const cv::Matx33d& H, Eye eye, cv::Mat& bgr) const;
     void pick_hand(Rng& hand_rng);
     void place_face_pass(double half_x, double half_y);
     void place_people(double half_x, double half_y);
@@ -525,6 +535,17 @@ void Scene::render_pose(const HandPose& pose, int frame, Eye eye, const HeadPose
     checked(impl_).render(pose, {}, frame, eye, head, bgr, truth);
 }
 
+void Scene::Impl::draw_wall(const cv::Matx33d& H, Eye eye, cv::Mat& bgr) const
+{
+    const std::lock_guard<std::mutex> lock(wall_views_mutex);
+    WallView& seen = wall_views[eye == Eye::Left ? 0 : 1];
+    if (seen.image.size() != bgr.size() || seen.H != H) {
+        cv::warpPerspective(wall.image, seen.image, H, bgr.size(), cv::INTER_LINEAR, cv::BORDER_REFLECT_101);
+        seen.H = H;
+    }
+    seen.image.copyTo(bgr);
+}
+
 void Scene::Impl::render(const HandPose& pose, cv::Point2d smear, int frame, Eye eye, const HeadPose& head,
                          cv::Mat& bgr, EyeTruth* truth) const
 {
@@ -544,9 +565,9 @@ void Scene::Impl::render(const HandPose& pose, cv::Point2d smear, int frame, Eye
     }
 
     bgr.create(size, CV_8UC3);
-    const cv::Matx33d H = cam.plane_homography({wall.origin_mm.x, wall.origin_mm.y, wall.distance_mm},
-                                               {wall.texel_mm, 0, 0}, {0, wall.texel_mm, 0});
-    cv::warpPerspective(wall.image, bgr, H, size, cv::INTER_LINEAR, cv::BORDER_REFLECT_101);
+    draw_wall(cam.plane_homography({wall.origin_mm.x, wall.origin_mm.y, wall.distance_mm}, {wall.texel_mm, 0, 0},
+                                   {0, wall.texel_mm, 0}),
+              eye, bgr);
     if (truth && !people.empty()) {
         truth->face.create(size);
         truth->face.setTo(0);
