@@ -63,15 +63,18 @@ SkinModel::SkinModel(const cv::Vec2d& mean, const cv::Matx22d& covariance, int d
     rebuild();
 }
 
-SkinModel SkinModel::generic()
+const SkinModel& SkinModel::generic()
 {
     // Skin tones from pale to dark cluster near r = 0.45, g = 0.31 in normalised colour,
     // spread mostly along r (0.40-0.48 from fair to dark under white light): broad, but
     // with grey (r = g = 1/3) at 3.9 sigma, so that sensor noise on a grey sleeve (a
     // pixel's r moves by about 0.5 sigma at a channel sum of 150) leaves it outside the
     // 3-sigma segmentation. Refined by fit() once the hand is found.
-    const double sr = 0.03, sg = 0.02, rho = -0.3;
-    return SkinModel({0.45, 0.31}, {sr * sr, rho * sr * sg, rho * sr * sg, sg * sg});
+    static const SkinModel prior = [] {
+        const double sr = 0.03, sg = 0.02, rho = -0.3;
+        return SkinModel({0.45, 0.31}, {sr * sr, rho * sr * sg, rho * sr * sg, sg * sg});
+    }();
+    return prior;
 }
 
 SkinModel SkinModel::fit(const cv::Mat& bgr, const cv::Mat& mask, int dark_threshold, int min_pixels)

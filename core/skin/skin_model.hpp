@@ -22,8 +22,9 @@ public:
     // symmetric positive definite, the mean lies in the rg triangle and 0 <= dark < 765.
     SkinModel(const cv::Vec2d& mean, const cv::Matx22d& covariance, int dark_threshold = kDefaultDarkThreshold);
 
-    // A broad prior of human skin under indoor light, used before any hand was seen.
-    static SkinModel generic();
+    // A broad prior of human skin under indoor light, used before any hand was seen. Built
+    // once: its lookup table is most of a small detection's cost.
+    static const SkinModel& generic();
 
     // Fits mean and covariance to the non-dark pixels of `bgr` (CV_8UC3) where `mask` is
     // non-zero. Throws std::invalid_argument on a wrong type or size, or fewer than
