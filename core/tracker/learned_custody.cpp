@@ -167,6 +167,14 @@ void HandTracker::Impl::check_with_models(const cv::Mat& bgr, bool in_doubt)
     std::array<cv::Point2f, 21> carried;
     std::copy(estimate.landmarks.begin(), estimate.landmarks.end(), carried.begin());
     std::optional<FoundHand> hand = finder->follow(bgr, carried);
+    // Key points the models place away from the carried ones came through a crop fitted to
+    // where the hand was: a finger that straightened fast may lie outside it.
+    if (const double moved = hand ? key_point_move(carried, hand->points) : 0.0; moved >= kAgreedError) {
+        // Taken only if it settles (moves less than the first look did): a second look that
+        // wanders on is sliding onto something else, such as a face behind the hand.
+        const std::optional<FoundHand> again = finder->follow(bgr, hand->points);
+        if (again && key_point_move(hand->points, again->points) < moved) hand = again;
+    }
     if (!hand) hand = finder->find(bgr);
     if (!hand) {
         lose();

@@ -64,7 +64,7 @@ TEST_F(DebugLog, TrackerLogsTheHandAndEveryFrame)
 {
     const int frames = 60;
     const std::string eye =
-        " scene=light motion=mixed seed=5 truth-messages=false num-buffers=" + std::to_string(frames) + " ! ";
+        " scene=light motion=translate seed=3 truth-messages=false num-buffers=" + std::to_string(frames) + " ! ";
     const auto result =
         gc::test::run_pipeline("handscenesrc eye=left" + eye + "t.sink_left handscenesrc eye=right" + eye +
                                "t.sink_right handtracker name=t message-updates=none ! "
