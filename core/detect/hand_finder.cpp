@@ -97,11 +97,18 @@ std::optional<FoundHand> HandFinder::find(const cv::Mat& bgr)
     return std::nullopt;
 }
 
-std::optional<FoundHand> HandFinder::follow(const cv::Mat& bgr, const std::array<cv::Point2f, 21>& around)
+std::optional<FoundHand> HandFinder::follow(const cv::Mat& bgr, const std::array<cv::Point2f, 21>& around,
+                                            double look_again_beyond)
 {
     HandKeyPoints known;
     known.points = around;
-    return impl_->confirmed(bgr, crop_from_landmarks(known));
+    std::optional<FoundHand> first = impl_->confirmed(bgr, crop_from_landmarks(known));
+    const double moved = first ? key_point_move(around, first->points) : 0.0;
+    if (!first || !(moved >= look_again_beyond)) return first;
+    // A second look that wanders on is sliding onto something else, such as a face behind the hand.
+    known.points = first->points;
+    std::optional<FoundHand> again = impl_->confirmed(bgr, crop_from_landmarks(known));
+    return again && key_point_move(first->points, again->points) < moved ? again : first;
 }
 
 // The crop a pointing hand fills: centred a little towards the finger, 2.5 palm-to-tip

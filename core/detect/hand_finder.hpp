@@ -8,6 +8,7 @@
 #include <opencv2/core.hpp>
 
 #include <array>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -45,8 +46,12 @@ public:
     // Searches the whole frame (BGR): the best palm, then its key points.
     std::optional<FoundHand> find(const cv::Mat& bgr);
     // The key points of a hand known to be near `around` (last key points, moved to this
-    // frame): the landmark model alone, on a crop taken from them.
-    std::optional<FoundHand> follow(const cv::Mat& bgr, const std::array<cv::Point2f, 21>& around);
+    // frame): the landmark model alone, on a crop taken from them. Key points that moved
+    // `look_again_beyond` palm sizes or more from `around` are looked at once more through
+    // their own crop (a finger that straightened fast may lie outside the first), and the
+    // second look is kept if it settles: moves them less than the first look did.
+    std::optional<FoundHand> follow(const cv::Mat& bgr, const std::array<cv::Point2f, 21>& around,
+                                    double look_again_beyond = std::numeric_limits<double>::infinity());
     // The key points of a hand proposed by other means (a moving skin blob): its palm centre
     // and the tip of its longest finger, in frame pixels. The landmark model alone decides.
     std::optional<FoundHand> confirm(const cv::Mat& bgr, cv::Point2f palm, cv::Point2f fingertip);

@@ -153,10 +153,10 @@ std::optional<FoundHand> HandTracker::Impl::confirm_detection(const cv::Mat& bgr
 }
 
 // A tracked frame: the landmark model checks the contour when the check is due, the edges
-// are weak, or the caller is in doubt (the view changed under it, the flow bent the finger). No hand where the contour is: lost. Key points
-// far from where the contour carried them: a new template from this frame. Else the key
-// points and gesture are the model's, re-expressed on the template, and the next check
-// waits longer while the two agree.
+// are weak, or the caller is in doubt (the view changed under it, the flow bent the
+// finger). No hand where the contour is: lost. Key points far from where the contour
+// carried them: a new template from this frame. Else the key points and gesture are the
+// model's, re-expressed on the template, and the next check waits longer while the two agree.
 void HandTracker::Impl::check_with_models(const cv::Mat& bgr, bool in_doubt)
 {
     ++frames_since_check;
@@ -166,15 +166,8 @@ void HandTracker::Impl::check_with_models(const cv::Mat& bgr, bool in_doubt)
     estimate.models_ran = true;
     std::array<cv::Point2f, 21> carried;
     std::copy(estimate.landmarks.begin(), estimate.landmarks.end(), carried.begin());
-    std::optional<FoundHand> hand = finder->follow(bgr, carried);
-    // Key points the models place away from the carried ones came through a crop fitted to
-    // where the hand was: a finger that straightened fast may lie outside it.
-    if (const double moved = hand ? key_point_move(carried, hand->points) : 0.0; moved >= kAgreedError) {
-        // Taken only if it settles (moves less than the first look did): a second look that
-        // wanders on is sliding onto something else, such as a face behind the hand.
-        const std::optional<FoundHand> again = finder->follow(bgr, hand->points);
-        if (again && key_point_move(hand->points, again->points) < moved) hand = again;
-    }
+    // A look that disagrees with the carried points looks again (docs/adr/0031).
+    std::optional<FoundHand> hand = finder->follow(bgr, carried, kAgreedError);
     if (!hand) hand = finder->find(bgr);
     if (!hand) {
         lose();
