@@ -85,4 +85,21 @@ void jpeg_round_trip(cv::Mat& bgr, int quality)
     cv::imdecode(encoded, cv::IMREAD_COLOR, &bgr);
 }
 
+SensorNoise::SensorNoise(cv::Size frame, double sigma, std::uint64_t seed)
+{
+    cv::Mat noise(frame.height + kMargin, frame.width + kMargin, CV_16SC3);
+    cv::RNG(seed).fill(noise, cv::RNG::NORMAL, 0.0, sigma);
+    noise.convertTo(up_, CV_8U);  // saturates: negative values become 0
+    const cv::Mat negated = -noise;
+    negated.convertTo(down_, CV_8U);
+}
+
+void SensorNoise::apply(cv::Mat& bgr, std::uint64_t where) const
+{
+    if (up_.empty()) return;
+    const cv::Rect window(int(where % kMargin), int((where >> 16) % kMargin), bgr.cols, bgr.rows);
+    cv::add(bgr, up_(window), bgr);
+    cv::subtract(bgr, down_(window), bgr);
+}
+
 }  // namespace gc::sim

@@ -29,7 +29,6 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kWallDistanceMm = 3000.0;
-constexpr int kNoiseMargin = 64;          // noise pool border: 64 x 64 distinct offsets
 constexpr double kMinHandDepthMm = 50.0;  // nearer than this to a camera, the hand is not drawn
 constexpr int kMinVisiblePixels = 150;
 
@@ -167,9 +166,7 @@ struct Scene::Impl {
     std::vector<double> folds;
     cv::Vec3d light = kLight;  // towards the key light
     double ambient = 0.35, diffuse = 0.65;
-    // The camera's noise, (height + margin) x (width + margin): its positive part and its
-    // negated negative part, each CV_8UC3, so that two saturating 8-bit passes apply it.
-    cv::Mat noise_up, noise_down;
+    SensorNoise noise;
     cv::Mat vignetting;  // wide: CV_16UC3 gains
     double light_phase[2] = {0.0, 0.0};
     // The wall as each eye last saw it: a head at rest sees the same wall every frame, and
@@ -231,12 +228,7 @@ Scene::Impl::Impl(const SceneConfig& c) : config(c)
 
     const double sigma = looks ? looks->camera.noise_sigma : c.noise_sigma;
     if (sigma > 0.0) {
-        cv::Mat noise(c.height + kNoiseMargin, c.width + kNoiseMargin, CV_16SC3);
-        cv::RNG noise_rng(mix_seed(c.seed, kNoiseStream));
-        noise_rng.fill(noise, cv::RNG::NORMAL, 0.0, sigma);
-        noise.convertTo(noise_up, CV_8U);  // saturates: negative values become 0
-        cv::Mat negated = -noise;
-        negated.convertTo(noise_down, CV_8U);
+        noise = SensorNoise({c.width, c.height}, sigma, mix_seed(c.seed, kNoiseStream));
     }
     if (looks) vignetting = vignetting_gains({c.width, c.height}, looks->camera.vignetting);
 }
@@ -488,14 +480,9 @@ cv::Point2d Scene::Impl::hand_smear(const EyeCamera& cam, int frame) const
 
 void Scene::Impl::apply_noise(cv::Mat& bgr, int frame, Eye eye) const
 {
-    if (noise_up.empty()) return;
-    // A window of the pool at an offset seeded by (seed, frame, eye).
-    const std::uint64_t h =
-        mix_seed(config.seed ^ (std::uint64_t(frame) << 1 | std::uint64_t(eye == Eye::Right)), kFrameStream);
-    const int ox = int(h % kNoiseMargin), oy = int((h >> 16) % kNoiseMargin);
-    const cv::Rect window(ox, oy, bgr.cols, bgr.rows);
-    cv::add(bgr, noise_up(window), bgr);
-    cv::subtract(bgr, noise_down(window), bgr);
+    // The pool's window is chosen by (seed, frame, eye).
+    noise.apply(bgr,
+                mix_seed(config.seed ^ (std::uint64_t(frame) << 1 | std::uint64_t(eye == Eye::Right)), kFrameStream));
 }
 
 Scene::Scene(const SceneConfig& config) : impl_(std::make_unique<Impl>(config)) {}
