@@ -37,12 +37,6 @@ std::pair<double, double> aim_at(const cv::Vec3d& target, const HeadGeometry& g)
     return {pan, tilt};
 }
 
-// Whether a velocity command names only axes at 0.
-bool holds_still(const AxisValues& values)
-{
-    return std::none_of(kAllAxes.begin(), kAllAxes.end(), [&](Axis a) { return values.has(a) && values.get(a) != 0.0; });
-}
-
 // A head-frame point in eye E's camera frame at pan/tilt with that eye not verged.
 cv::Vec3d in_unverged_eye(const HeadGeometry& g, const HeadPose& pose, Eye eye, const cv::Vec3d& point)
 {
@@ -151,12 +145,13 @@ struct HeadLink::Impl {
     // Someone else moving the head pauses steering until then (seconds on the clock).
     headctl::ManualMoveWatch watch;
     std::optional<double> paused_until_s;
-    bool at_rest_sent = false;  // the last command sent held every axis it named at velocity 0
+    // Per axis: the last command that named it held it at velocity 0.
+    std::array<bool, headctl::kAxisCount> still_sent{};
 
     Impl(HeadLinkConfig c, StereoCalibration cal)
-        : config(std::move(c)), calibration(std::move(cal)), fixate(config.fixate),
-          hand_depth_mm{config.nominal_depth_mm, config.nominal_depth_mm}, director(director_config()),
-          watch(config.manual)
+        : config(std::move(c)), calibration(std::move(cal)),
+          fixate(config.fixate), hand_depth_mm{config.nominal_depth_mm, config.nominal_depth_mm},
+          director(director_config()), watch(config.manual)
     {
         headctl::HeadClientConfig cc;
         cc.uri = config.uri;
@@ -238,6 +233,17 @@ struct HeadLink::Impl {
 
     const headctl::AxisLimits& axis_limits(Axis a) const { return limits ? (*limits)[a] : config.fixate.limits[a]; }
 
+    void remember_still(const HeadCommand& command)
+    {
+        for (Axis a : kAllAxes) {
+            bool& still = still_sent[static_cast<std::size_t>(a)];
+            if (command.kind == CommandKind::Velocity)
+                still = command.values.has(a) ? command.values.get(a) == 0.0 : still;
+            else if (command.kind != CommandKind::SavePreset)
+                still = false;
+        }
+    }
+
     // Submits; a head without vergence axes gets the command without them from then on.
     void submit(HeadCommand command)
     {
@@ -249,13 +255,18 @@ struct HeadLink::Impl {
         if (command.values.empty() && command.kind != CommandKind::Home && command.kind != CommandKind::Stop &&
             !headctl::is_preset(command.kind))
             return;
-        // A head already told to hold still is not told again: the repeat would cancel a move
-        // someone else makes meanwhile (headctl move), which the watch then could not see.
-        const bool at_rest = command.kind == CommandKind::Velocity && holds_still(command.values);
-        if (at_rest && at_rest_sent) return;
+        // An axis already told to hold still is not told again, even while the others move:
+        // the repeat would cancel a move someone else makes meanwhile (headctl move), which
+        // the watch then could not see.
+        if (command.kind == CommandKind::Velocity) {
+            for (Axis a : kAllAxes)
+                if (command.values.has(a) && command.values.get(a) == 0.0 && still_sent[static_cast<std::size_t>(a)])
+                    command.values.clear(a);
+            if (command.values.empty()) return;
+        }
         try {
             client->submit(command);
-            at_rest_sent = at_rest;
+            remember_still(command);
             watch.commanded(command, seconds(client->now()));
             if (config.on_command) config.on_command(command);
         } catch (const std::invalid_argument&) {
@@ -384,7 +395,8 @@ struct HeadLink::Impl {
         case headctl::PointStep::Kind::Hold:
             return false;
         case headctl::PointStep::Kind::Aim:
-            std::snprintf(detail, sizeof detail, "a held pointing picked (%.0f, %.0f, %.0f) mm: looking there, pan %.1f tilt %.1f deg",
+            std::snprintf(detail, sizeof detail,
+                          "a held pointing picked (%.0f, %.0f, %.0f) mm: looking there, pan %.1f tilt %.1f deg",
                           step.aim.target_mm[0], step.aim.target_mm[1], step.aim.target_mm[2], step.aim.pan_deg,
                           step.aim.tilt_deg);
             submit(look_command(step.aim));
@@ -414,7 +426,7 @@ struct HeadLink::Impl {
             }
             paused_until_s = t_s + config.times.manual_pause_s;  // from the last move seen
             watch.reset();
-            at_rest_sent = false;
+            still_sent = {};
         }
         if (!paused_until_s) return false;
         if (t_s < *paused_until_s) return true;

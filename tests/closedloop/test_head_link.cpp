@@ -22,15 +22,15 @@ namespace gc {
 namespace {
 
 using namespace std::chrono_literals;
-using loopback::eventually;
-using loopback::loopback_head;
-using loopback::RunningHead;
 using headctl::ConnectionState;
 using headctl::HeadAtCapture;
 using headctl::HeadLink;
 using headctl::HeadLinkConfig;
 using headctl::steer_mode_from_string;
 using headctl::SteerMode;
+using loopback::eventually;
+using loopback::loopback_head;
+using loopback::RunningHead;
 
 const StereoCalibration& calibration()
 {
@@ -63,6 +63,31 @@ HeadPose latest_pose(const HeadLink& link)
 {
     const auto s = link.client().latest();
     return s ? s->state.pose : HeadPose{};
+}
+
+// A hand at `palm_head` (head frame, mm) seen by the left eye at the pose at capture;
+// nothing when it is out of that view.
+FrameResult hand_seen_at(const HeadAtCapture& at, const cv::Vec3d& palm_head)
+{
+    const HeadPose pose = at.pose.value_or(HeadPose{});
+    const cv::Vec3d c = camera_to_head(calibration().head, pose, Eye::Left).inverse().apply(palm_head);
+    if (c[2] <= 0.0 || std::abs(c[0] / c[2]) > 0.55) return FrameResult{};
+    const cv::Matx33d& K = calibration().M1;
+    FrameResult r = left_hand_at(K(0, 0) * c[0] / c[2] + K(0, 2), K(1, 1) * c[1] / c[2] + K(1, 2));
+    r.pointing.palm_head_mm = palm_head;
+    r.pointing.palm_mm = c;
+    return r;
+}
+
+// The same hand pointing up, with its 3D position known.
+FrameResult pointing_up_at(const HeadAtCapture& at, const cv::Vec3d& palm_head)
+{
+    FrameResult r = hand_seen_at(at, palm_head);
+    if (!r.left.valid()) return r;
+    r.pointing.valid = true;
+    r.pointing.fingertip_head_mm = palm_head + cv::Vec3d(0.0, -80.0, 0.0);
+    r.pointing.direction_head = {0.0, -1.0, 0.0};
+    return r;
 }
 
 // What `headctl move AXIS=VALUE` does while the link runs: another client's absolute move.
@@ -205,19 +230,8 @@ TEST(HeadLink, FixateVergesOnTheHandsDepth)
     // A static hand 600 mm straight ahead of the head, seen where the left eye's pose at
     // capture puts it, with its 3D position known.
     const cv::Vec3d palm_head(0.0, 0.0, 600.0);
-    const cv::Matx33d& K = calibration().M1;
     // Long enough for the eyes to verge and the neck to settle after them, also under ASan.
-    run_frames(link, 4000ms, [&](const HeadAtCapture& at) {
-        const HeadPose pose = at.pose.value_or(HeadPose{});
-        const cv::Vec3d c = camera_to_head(calibration().head, pose, Eye::Left).inverse().apply(palm_head);
-        FrameResult r = left_hand_at(K(0, 0) * c[0] / c[2] + K(0, 2), K(1, 1) * c[1] / c[2] + K(1, 2));
-        r.pointing.valid = true;
-        r.pointing.palm_head_mm = palm_head;
-        r.pointing.palm_mm = c;
-        r.pointing.fingertip_head_mm = palm_head + cv::Vec3d(0.0, -80.0, 0.0);
-        r.pointing.direction_head = {0.0, -1.0, 0.0};
-        return r;
-    });
+    run_frames(link, 4000ms, [&](const HeadAtCapture& at) { return pointing_up_at(at, palm_head); });
     const HeadPose p = latest_pose(link);
     const double expected = std::atan2(60.0, 600.0) * 180.0 / std::numbers::pi;  // 5.7 degrees
     EXPECT_NEAR(p.verge_left_deg, expected, 0.6);
@@ -232,16 +246,10 @@ TEST(HeadLink, FixateVergesOnTheHandsDepth)
 // where the pose at capture puts it in the left view; nothing when it is out of view.
 FrameResult pointing_along(const HeadAtCapture& at, const cv::Vec3d& direction)
 {
-    const cv::Vec3d palm_head(-80.0, 0.0, 800.0);
-    const HeadPose pose = at.pose.value_or(HeadPose{});
-    const cv::Vec3d c = camera_to_head(calibration().head, pose, Eye::Left).inverse().apply(palm_head);
-    if (c[2] <= 0.0 || std::abs(c[0] / c[2]) > 0.55) return FrameResult{};
-    const cv::Matx33d& K = calibration().M1;
-    FrameResult r = left_hand_at(K(0, 0) * c[0] / c[2] + K(0, 2), K(1, 1) * c[1] / c[2] + K(1, 2));
+    FrameResult r = hand_seen_at(at, {-80.0, 0.0, 800.0});
+    if (!r.left.valid()) return r;
     r.pointing.valid = true;
     r.pointing.fingertip_head_mm = {0.0, 0.0, 800.0};
-    r.pointing.palm_head_mm = palm_head;
-    r.pointing.palm_mm = c;
     r.pointing.direction_head = cv::normalize(direction);
     return r;
 }
@@ -324,40 +332,71 @@ TEST(HeadLink, PointMovesNothingForATalkingHand)
     EXPECT_LT(std::abs(latest_pose(link).tilt_deg), 2.0);
 }
 
+// A fixate link whose steering pauses 1.5 s after someone else moves the head.
+struct PausingLink {
+    RunningHead head{loopback_head()};
+    Recorded recorded;
+    HeadLink link{config(), calibration()};
+
+    HeadLinkConfig config()
+    {
+        HeadLinkConfig c = link_config(head.uri(), SteerMode::Fixate);
+        c.times.manual_pause_s = 1.5;
+        recorded.attach(c);
+        return c;
+    }
+};
+
 TEST(HeadLink, AManualMovePausesSteeringThenItResumes)
 {
-    RunningHead head(loopback_head());
-    HeadLinkConfig config = link_config(head.uri(), SteerMode::Fixate);
-    config.times.manual_pause_s = 1.5;
-    Recorded recorded;
-    recorded.attach(config);
-    HeadLink link(config, calibration());
+    PausingLink rig;
+    HeadLink& link = rig.link;
     ASSERT_TRUE(eventually([&] { return link.client().limits().has_value(); }, 2000ms));
     // A still hand 1 m straight ahead, seen where each frame's pose puts it.
     const cv::Vec3d palm_head(0.0, 0.0, 1000.0);
-    const cv::Matx33d& K = calibration().M1;
-    const auto still_hand = [&](const HeadAtCapture& at) {
-        const HeadPose pose = at.pose.value_or(HeadPose{});
-        const cv::Vec3d c = camera_to_head(calibration().head, pose, Eye::Left).inverse().apply(palm_head);
-        if (c[2] <= 0.0 || std::abs(c[0] / c[2]) > 0.55) return FrameResult{};  // out of view
-        return left_hand_at(K(0, 0) * c[0] / c[2] + K(0, 2), K(1, 1) * c[1] / c[2] + K(1, 2));
-    };
+    const auto still_hand = [&](const HeadAtCapture& at) { return hand_seen_at(at, palm_head); };
     run_frames(link, 1500ms, still_hand);
     const HeadPose before = latest_pose(link);  // the hand in the middle of the left view
     ASSERT_LT(std::abs(before.pan_deg), 5.0);
 
     // Someone runs `headctl move pan=20` while the element steers.
-    const auto driver = move_from_outside(head.uri(), headctl::Axis::Pan, 20.0);
+    const auto driver = move_from_outside(rig.head.uri(), headctl::Axis::Pan, 20.0);
     run_frames(link, 1000ms, still_hand);
     EXPECT_NEAR(latest_pose(link).pan_deg, 20.0, 0.1) << "the element undid the move";
     EXPECT_TRUE(link.paused());
-    EXPECT_EQ(recorded.count(headctl::SteeringEvent::ManualPause), 1);
-    EXPECT_EQ(recorded.count(headctl::SteeringEvent::Resume), 0);
+    EXPECT_EQ(rig.recorded.count(headctl::SteeringEvent::ManualPause), 1);
+    EXPECT_EQ(rig.recorded.count(headctl::SteeringEvent::Resume), 0);
     // The pause runs from the end of the move; then the head follows the hand again.
     run_frames(link, 2500ms, still_hand);
     EXPECT_FALSE(link.paused());
-    EXPECT_EQ(recorded.count(headctl::SteeringEvent::Resume), 1);
+    EXPECT_EQ(rig.recorded.count(headctl::SteeringEvent::Resume), 1);
     EXPECT_NEAR(latest_pose(link).pan_deg, before.pan_deg, 2.0);
+}
+
+TEST(HeadLink, AManualPanIsSeenWhileTheEyesVerge)
+{
+    // The hand comes closer and goes back along the left eye's line of sight, so the eyes
+    // keep verging while pan and tilt rest. Someone pans the head meanwhile: the link's
+    // vergence commands must not hold pan at 0 again and so cancel the move before the watch
+    // sees it.
+    PausingLink rig;
+    HeadLink& link = rig.link;
+    ASSERT_TRUE(eventually([&] { return link.client().limits().has_value(); }, 2000ms));
+    const auto start = std::chrono::steady_clock::now();
+    const cv::Vec3d left_eye = camera_to_head(calibration().head, HeadPose{}, Eye::Left).apply({0.0, 0.0, 0.0});
+    const auto nearing_hand = [&](const HeadAtCapture& at) {
+        const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        return pointing_up_at(at, left_eye + cv::Vec3d(0.0, 0.0, 700.0 + 250.0 * std::sin(2.0 * t)));
+    };
+    run_frames(link, 1500ms, nearing_hand);
+    const HeadPose before = latest_pose(link);
+    ASSERT_LT(std::abs(before.pan_deg), 5.0);
+
+    const auto driver = move_from_outside(rig.head.uri(), headctl::Axis::Pan, 20.0);
+    run_frames(link, 1000ms, nearing_hand);
+    EXPECT_NEAR(latest_pose(link).pan_deg, 20.0, 0.1) << "the element undid the move";
+    EXPECT_TRUE(link.paused());
+    EXPECT_EQ(rig.recorded.count(headctl::SteeringEvent::ManualPause), 1);
 }
 
 TEST(HeadLink, OffOnlyReadsThePose)
