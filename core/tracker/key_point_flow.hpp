@@ -29,11 +29,14 @@ public:
     const Points& kept_points() const { return kept_; }
 
 private:
-    void build(const cv::Mat& bgr, std::vector<cv::Mat>& pyramid);
+    // The pyramids cover only `area_`, a region around the points: the kept frame's
+    // pyramid is built again from its grey image when the points near the region's edge.
+    void place_area(const cv::Size& frame);
 
     bool ready_ = false;
     Points kept_{};
-    cv::Mat1b grey_;
+    cv::Rect area_;
+    cv::Mat1b grey_, next_grey_;
     std::vector<cv::Mat> previous_, current_;
     std::vector<cv::Point2f> from_, to_, back_;
     std::vector<std::uint8_t> status_, back_status_;

@@ -8,12 +8,12 @@
 namespace {
 
 // A textured frame (random blobs), and the same frame moved by (dx, dy).
-cv::Mat textured(int dx, int dy)
+cv::Mat textured(int dx, int dy, cv::Size size = {320, 240})
 {
-    cv::Mat3b frame(240, 320, cv::Vec3b(90, 110, 130));
+    cv::Mat3b frame(size, cv::Vec3b(90, 110, 130));
     cv::RNG rng(7);
-    for (int i = 0; i < 400; ++i) {
-        const cv::Point centre(rng.uniform(0, 320) + dx, rng.uniform(0, 240) + dy);
+    for (int i = 0; i < size.area() / 192; ++i) {
+        const cv::Point centre(rng.uniform(0, size.width) + dx, rng.uniform(0, size.height) + dy);
         cv::circle(frame, centre, rng.uniform(2, 7), cv::Scalar(rng.uniform(0, 255), rng.uniform(0, 255), 60),
                    cv::FILLED);
     }
@@ -45,6 +45,25 @@ TEST(KeyPointFlow, PointsFollowTheImage)
         EXPECT_NEAR(points[i].y, start[i].y - 4.0f, 0.3f) << "point " << i;
     }
     EXPECT_EQ(flow.kept_points()[3], points[3]);
+}
+
+TEST(KeyPointFlow, PointsPlacedFarFromTheLastOnesAreFollowedThere)
+{
+    // The flow looks only around the points; the landmark model may place them anywhere.
+    const cv::Size large(960, 720);
+    gc::KeyPointFlow flow;
+    flow.keep(textured(0, 0, large), grid());
+    gc::KeyPointFlow::Points elsewhere = grid();
+    for (cv::Point2f& p : elsewhere) p += cv::Point2f(560.0f, 420.0f);
+    flow.replace_points(elsewhere);
+    gc::KeyPointFlow::Points points = elsewhere;
+    std::array<bool, gc::KeyPointFlow::kPoints> moved;
+    flow.carry(textured(-7, 5, large), points, moved);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        ASSERT_TRUE(moved[i]) << "point " << i;
+        EXPECT_NEAR(points[i].x, elsewhere[i].x - 7.0f, 0.3f) << "point " << i;
+        EXPECT_NEAR(points[i].y, elsewhere[i].y + 5.0f, 0.3f) << "point " << i;
+    }
 }
 
 TEST(KeyPointFlow, PointsOnAFeaturelessFrameStayPut)
