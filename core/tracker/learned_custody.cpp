@@ -36,6 +36,8 @@ constexpr double kContourTipReach = 2.5;
 constexpr double kFlowReach = 0.3;
 // How far past the wrist key point the template's region runs, in palm sizes.
 constexpr double kWristReach = 0.6;
+// The width of the line along each bone whose pixels teach the skin model, in finger widths.
+constexpr double kSureBoneWidth = 0.15;
 
 // The bones drawn between key points (MediaPipe's hand topology).
 constexpr int kBones[][2] = {{0, 1},   {1, 2},   {2, 3},   {3, 4},   {0, 5},   {5, 6},   {6, 7},
@@ -72,6 +74,18 @@ bool index_finger_cut(const std::array<cv::Point2f, 21>& p, cv::Size size)
     cv::Mat1b finger(size, uchar(0));
     for (int i = kIndexKnuckle; i < kIndexTip; ++i) cv::line(finger, p[i], p[i + 1], 255, finger_width(p), cv::LINE_8);
     return touches_border(finger);
+}
+
+// The pixels surely on the hand, to learn its colours from: the palm and a thin line along
+// each bone (a sixth of a finger's width), so the fingers' shading is learnt too without the
+// background between them (docs/adr/0033).
+cv::Mat1b surely_hand(const std::array<cv::Point2f, 21>& p, cv::Size size)
+{
+    cv::Mat1b sure(size, uchar(0));
+    cv::fillConvexPoly(sure, palm_polygon(p), 255);
+    const int width = std::max(1, cvRound(kSureBoneWidth * finger_width(p)));
+    for (const auto& bone : kBones) cv::line(sure, p[bone[0]], p[bone[1]], 255, width, cv::LINE_8);
+    return sure;
 }
 
 // Where the hand may be: the palm filled and every bone drawn as thick as a finger.
@@ -194,11 +208,9 @@ bool HandTracker::Impl::adopt_found(const cv::Mat& bgr, const FoundHand& hand)
 {
     if (index_finger_cut(hand.points, bgr.size())) return false;
     const cv::Mat1b region = hand_region(hand.points, bgr.size());
-    cv::Mat1b palm(bgr.size(), uchar(0));
-    cv::fillConvexPoly(palm, palm_polygon(hand.points), 255);
     SkinModel model = SkinModel::generic();
     try {
-        model = SkinModel::fit(bgr, palm);
+        model = SkinModel::fit(bgr, surely_hand(hand.points, bgr.size()));
     } catch (const std::invalid_argument&) {
         return false;  // too few or too uniform palm pixels to learn from
     }

@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <locale>
 #include <set>
 #include <string>
@@ -238,60 +240,85 @@ TEST(PointingTracker, ExposesTheHypothesesOfTheEyesItTracks)
     EXPECT_EQ(tracker.particles(gc::Eye::Right).size(), 50u);
 }
 
+gc::sim::SceneConfig translating_scene(std::uint64_t seed)
+{
+    gc::sim::SceneConfig config;
+    config.preset = gc::sim::Preset::Clean;
+    config.motion = gc::sim::Motion::Translate;
+    config.seed = seed;
+    return config;
+}
+
 // Renders the synthetic stereo scene and runs the pipeline over it.
 class PipelineOnScene : public ::testing::Test {
 protected:
     static constexpr int kFrames = 60;
 
-    void SetUp() override
-    {
-        gc::sim::SceneConfig config;
-        config.preset = gc::sim::Preset::Clean;
-        config.motion = gc::sim::Motion::Translate;
-        config.seed = 3;
-        scene_ = std::make_unique<gc::sim::Scene>(config);
-    }
+    void SetUp() override { scene_ = std::make_unique<gc::sim::Scene>(translating_scene(3)); }
 
     std::unique_ptr<gc::sim::Scene> scene_;
 };
 
-TEST_F(PipelineOnScene, StereoAcquiresTracksAndPoints)
+struct StereoRun {
+    int tracking = 0, pointing = 0, first_tracking = -1;
+};
+
+// One rendered scene through the stereo pipeline: tracked and pointing frames, with the
+// per-frame invariants checked on the way.
+StereoRun run_stereo(std::uint64_t scene_seed, int frames)
 {
+    const gc::sim::Scene scene(translating_scene(scene_seed));
     gc::TrackerParams params;
     params.particles = 300;
     params.seed = 5;
-    gc::PointingTracker tracker(params, scene_->calibration());
+    gc::PointingTracker tracker(params, scene.calibration());
     cv::Mat left, right;
     gc::sim::EyeTruth truth;
-    int tracking = 0, pointing = 0, first_tracking = -1;
-    for (int f = 0; f < kFrames; ++f) {
-        scene_->render(f, gc::Eye::Left, {}, left, &truth);
-        scene_->render(f, gc::Eye::Right, {}, right);
+    StereoRun run;
+    for (int f = 0; f < frames; ++f) {
+        scene.render(f, gc::Eye::Left, {}, left, &truth);
+        scene.render(f, gc::Eye::Right, {}, right);
         const gc::FrameResult& r = tracker.process_stereo(left, right, f * 33'333'333LL);
-        ASSERT_EQ(r.frame, f);
-        ASSERT_EQ(r.pts_ns, f * 33'333'333LL);
-        ASSERT_TRUE(r.stereo);
+        EXPECT_EQ(r.frame, f);
+        EXPECT_EQ(r.pts_ns, f * 33'333'333LL);
+        EXPECT_TRUE(r.stereo);
         // The overall state is the conjunction of the eyes'.
         const bool both = r.left.state == gc::TrackState::Tracking && r.right.state == gc::TrackState::Tracking;
         const bool any_lost = r.left.state == gc::TrackState::Lost || r.right.state == gc::TrackState::Lost;
-        ASSERT_EQ(r.state == gc::TrackState::Tracking, both);
-        ASSERT_EQ(r.state == gc::TrackState::Lost, any_lost);
+        EXPECT_EQ(r.state == gc::TrackState::Tracking, both);
+        EXPECT_EQ(r.state == gc::TrackState::Lost, any_lost);
         if (!both) {
-            ASSERT_FALSE(r.pointing.valid) << "pointing needs both eyes, frame " << f;
+            EXPECT_FALSE(r.pointing.valid) << "pointing needs both eyes, frame " << f;
             continue;
         }
-        if (first_tracking < 0) first_tracking = f;
-        ++tracking;
-        pointing += r.pointing.valid ? 1 : 0;
+        if (run.first_tracking < 0) run.first_tracking = f;
+        ++run.tracking;
+        run.pointing += r.pointing.valid ? 1 : 0;
         if (truth.visible) {
             EXPECT_GT((r.left.bbox & truth.bbox).area(), 0) << "frame " << f;
         }
         // The line parses whatever the state.
-        ASSERT_NO_THROW(JsonReader::parse(gc::to_json_line(r)));
+        EXPECT_NO_THROW(JsonReader::parse(gc::to_json_line(r)));
     }
-    ASSERT_GE(first_tracking, 0) << "never tracked in both eyes";
-    EXPECT_LT(first_tracking, 30);
-    EXPECT_GE(tracking, (kFrames - first_tracking) * 8 / 10);
+    return run;
+}
+
+// Four rendered hands: each is acquired within a second and kept; together they point on
+// at least half of the tracked frames (whether one rendered hand reads as pointing to the
+// landmark model varies from scene to scene, so the share is pooled).
+TEST_F(PipelineOnScene, StereoAcquiresTracksAndPoints)
+{
+    int tracking = 0, pointing = 0;
+    for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+        const StereoRun run = run_stereo(seed, kFrames);
+        std::printf("scene seed %d: tracked %d, pointing %d, first tracked frame %d\n", int(seed), run.tracking,
+                    run.pointing, run.first_tracking);
+        ASSERT_GE(run.first_tracking, 0) << "never tracked in both eyes, scene seed " << seed;
+        EXPECT_LT(run.first_tracking, 30) << "scene seed " << seed;
+        EXPECT_GE(run.tracking, (kFrames - run.first_tracking) * 8 / 10) << "scene seed " << seed;
+        tracking += run.tracking;
+        pointing += run.pointing;
+    }
     EXPECT_GE(pointing, tracking / 2);
 }
 
