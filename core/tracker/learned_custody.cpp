@@ -76,24 +76,27 @@ bool index_finger_cut(const std::array<cv::Point2f, 21>& p, cv::Size size)
     return touches_border(finger);
 }
 
+// The palm filled and every bone drawn as a line `bone_width` pixels wide.
+cv::Mat1b palm_and_bones(const std::array<cv::Point2f, 21>& p, cv::Size size, int bone_width)
+{
+    cv::Mat1b mask(size, uchar(0));
+    cv::fillConvexPoly(mask, palm_polygon(p), 255);
+    for (const auto& bone : kBones) cv::line(mask, p[bone[0]], p[bone[1]], 255, bone_width, cv::LINE_8);
+    return mask;
+}
+
 // The pixels surely on the hand, to learn its colours from: the palm and a thin line along
 // each bone (a sixth of a finger's width), so the fingers' shading is learnt too without the
 // background between them (docs/adr/0033).
 cv::Mat1b surely_hand(const std::array<cv::Point2f, 21>& p, cv::Size size)
 {
-    cv::Mat1b sure(size, uchar(0));
-    cv::fillConvexPoly(sure, palm_polygon(p), 255);
-    const int width = std::max(1, cvRound(kSureBoneWidth * finger_width(p)));
-    for (const auto& bone : kBones) cv::line(sure, p[bone[0]], p[bone[1]], 255, width, cv::LINE_8);
-    return sure;
+    return palm_and_bones(p, size, std::max(1, cvRound(kSureBoneWidth * finger_width(p))));
 }
 
 // Where the hand may be: the palm filled and every bone drawn as thick as a finger.
 cv::Mat1b hand_region(const std::array<cv::Point2f, 21>& p, cv::Size size)
 {
-    cv::Mat1b region(size, uchar(0));
-    cv::fillConvexPoly(region, palm_polygon(p), 255);
-    for (const auto& bone : kBones) cv::line(region, p[bone[0]], p[bone[1]], 255, finger_width(p), cv::LINE_8);
+    cv::Mat1b region = palm_and_bones(p, size, finger_width(p));
     // The wrist beyond its key point, most of the palm's width: a sleeve or the end of the
     // skin ends it in the mask, so the outline closes where the hand's silhouette does.
     const cv::Point2f away = (p[0] - p[9]) * float(kWristReach);
