@@ -34,8 +34,11 @@ constexpr double kContourTipReach = 2.5;
 // How far a key point the optical flow followed may lie from where the contour's state
 // placed it, in palm sizes.
 constexpr double kFlowReach = 0.3;
-// How far past the wrist key point the template's region runs, in palm sizes.
+// How far past the wrist key point the template's region runs, in palm sizes, and how wide,
+// in palm widths (thumb to little-finger knuckle): as wide as the heel of the palm, which the
+// wrist key point may lie above (docs/adr/0034).
 constexpr double kWristReach = 0.6;
+constexpr double kWristWidth = 1.2;
 // The width of the line along each bone whose pixels teach the skin model, in finger widths.
 constexpr double kSureBoneWidth = 0.15;
 
@@ -97,10 +100,10 @@ cv::Mat1b surely_hand(const std::array<cv::Point2f, 21>& p, cv::Size size)
 cv::Mat1b hand_region(const std::array<cv::Point2f, 21>& p, cv::Size size)
 {
     cv::Mat1b region = palm_and_bones(p, size, finger_width(p));
-    // The wrist beyond its key point, most of the palm's width: a sleeve or the end of the
+    // The heel of the palm and the wrist beyond its key point: a sleeve or the end of the
     // skin ends it in the mask, so the outline closes where the hand's silhouette does.
     const cv::Point2f away = (p[0] - p[9]) * float(kWristReach);
-    const int wide = std::max(3, cvRound(0.8 * cv::norm(p[17] - p[1])));
+    const int wide = std::max(3, cvRound(kWristWidth * cv::norm(p[17] - p[1])));
     cv::line(region, p[0], p[0] + away, 255, wide, cv::LINE_8);
     return region;
 }
