@@ -26,6 +26,8 @@ constexpr int kProposeEvery = 3;
 // Frames the view must hold still before the motion detector's blobs are trusted: its
 // motion history (DetectionParams::history_frames).
 constexpr int kQuietViewFrames = DetectionParams{}.history_frames;
+// The share of the tracked box a moving blob covers from which it is that hand moving.
+constexpr double kSameHandCover = 0.25;
 
 }  // namespace
 
@@ -63,11 +65,14 @@ void HandTracker::Impl::watch_for_moving_hand(const cv::Mat& bgr, bool view_move
     still_frames = unsettled_frames = 0;
 }
 
-// The moving blob is the tracked hand itself: its centre lies in the contour's box.
+// The moving blob is the tracked hand itself: its centre lies in the contour's box, or it
+// covers much of the box (the hand moving with its arm, whose centre lies down the arm).
 bool HandTracker::Impl::moves_inside(const Detection& found, const cv::Rect& box)
 {
     const cv::Moments m = cv::moments(found.mask, true);
-    return m.m00 > 0.0 && box.contains(cv::Point(cvRound(m.m10 / m.m00), cvRound(m.m01 / m.m00)));
+    if (m.m00 > 0.0 && box.contains(cv::Point(cvRound(m.m10 / m.m00), cvRound(m.m01 / m.m00)))) return true;
+    const cv::Rect inside = box & cv::Rect(0, 0, found.mask.cols, found.mask.rows);
+    return inside.area() > 0 && cv::countNonZero(found.mask(inside)) >= kSameHandCover * inside.area();
 }
 
 }  // namespace gc
