@@ -22,6 +22,10 @@ constexpr std::size_t kPalmsTried = 3;
 // more hands through and the moving-hand watch catches the decoys that pass.
 constexpr double kSettledMove = 0.25;
 constexpr int kSettlingLooks = 3;
+// A palm whose key points settle within this many palm sizes is taken at once; one that
+// settles less well is taken only if no other palm tried settles better. A shelf the
+// models take for a hand settled at 0.25 where the rendered hand beside it did at 0.06.
+constexpr double kSurelySettled = 0.1;
 
 FoundHand found(const HandKeyPoints& h) { return FoundHand{h.points, h.presence, classify_gesture(h)}; }
 
@@ -69,14 +73,18 @@ struct HandFinder::Impl {
     // crop its own key points give, up to three times: a hand's key points settle, while on a
     // hand-coloured object they scatter anew with each look. The first look's key points
     // are returned: on the real pair they made the better template (3D coverage 98.5 %
-    // against 92 % with the settled ones).
-    std::optional<FoundHand> settled(const cv::Mat& bgr, const HandCrop& crop)
+    // against 92 % with the settled ones). `settle_move` gets the look's move that settled.
+    std::optional<FoundHand> settled(const cv::Mat& bgr, const HandCrop& crop, double* settle_move = nullptr)
     {
         const std::optional<HandKeyPoints> first = run(bgr, crop);
         std::optional<HandKeyPoints> last = first;
         for (int look = 0; last && look < kSettlingLooks; ++look) {
             const std::optional<HandKeyPoints> next = run(bgr, crop_from_landmarks(*last));
-            if (next && key_point_move(last->points, next->points) <= kSettledMove) return found(*first);
+            const double move = next ? key_point_move(last->points, next->points) : 0.0;
+            if (next && move <= kSettledMove) {
+                if (settle_move) *settle_move = move;
+                return found(*first);
+            }
             last = next;
         }
         return std::nullopt;
@@ -92,9 +100,17 @@ std::optional<FoundHand> HandFinder::find(const cv::Mat& bgr)
 {
     ++impl_->palm_calls;
     const std::vector<PalmDetection> palms = impl_->palms.detect(bgr, impl_->params.min_palm_score);
-    for (std::size_t i = 0; i < std::min(palms.size(), kPalmsTried); ++i)
-        if (auto hand = impl_->settled(bgr, crop_from_palm(palms[i]))) return hand;
-    return std::nullopt;
+    std::optional<FoundHand> best;
+    double best_move = 0.0;
+    for (std::size_t i = 0; i < std::min(palms.size(), kPalmsTried); ++i) {
+        double move = 0.0;
+        auto hand = impl_->settled(bgr, crop_from_palm(palms[i]), &move);
+        if (!hand || (best && move >= best_move)) continue;
+        best = hand;
+        best_move = move;
+        if (move <= kSurelySettled) break;
+    }
+    return best;
 }
 
 std::optional<FoundHand> HandFinder::follow(const cv::Mat& bgr, const std::array<cv::Point2f, 21>& around,

@@ -43,7 +43,8 @@ public:
     HandFinder(HandFinder&&) noexcept;
     HandFinder& operator=(HandFinder&&) noexcept;
 
-    // Searches the whole frame (BGR): the best palm, then its key points.
+    // Searches the whole frame (BGR): the palms the detector rates best (up to three), each
+    // with its key points; the first whose key points settle well, else the one that settled best.
     std::optional<FoundHand> find(const cv::Mat& bgr);
     // The key points of a hand known to be near `around` (last key points, moved to this
     // frame): the landmark model alone, on a crop taken from them. Key points that moved
