@@ -249,16 +249,6 @@ gc::sim::SceneConfig translating_scene(std::uint64_t seed)
     return config;
 }
 
-// Renders the synthetic stereo scene and runs the pipeline over it.
-class PipelineOnScene : public ::testing::Test {
-protected:
-    static constexpr int kFrames = 60;
-
-    void SetUp() override { scene_ = std::make_unique<gc::sim::Scene>(translating_scene(3)); }
-
-    std::unique_ptr<gc::sim::Scene> scene_;
-};
-
 struct StereoRun {
     int tracking = 0, pointing = 0, first_tracking = -1;
 };
@@ -306,8 +296,9 @@ StereoRun run_stereo(std::uint64_t scene_seed, int frames)
 // Four rendered hands: each is acquired within a second and kept; together they point on
 // at least half of the tracked frames (whether one rendered hand reads as pointing to the
 // landmark model varies from scene to scene, so the share is pooled).
-TEST_F(PipelineOnScene, StereoAcquiresTracksAndPoints)
+TEST(PipelineOnScene, StereoAcquiresTracksAndPoints)
 {
+    constexpr int kFrames = 60;
     int tracking = 0, pointing = 0;
     for (std::uint64_t seed = 1; seed <= 4; ++seed) {
         const StereoRun run = run_stereo(seed, kFrames);
@@ -322,8 +313,9 @@ TEST_F(PipelineOnScene, StereoAcquiresTracksAndPoints)
     EXPECT_GE(pointing, tracking / 2);
 }
 
-TEST_F(PipelineOnScene, MonoIsReproducibleForTheSameSeed)
+TEST(PipelineOnScene, MonoIsReproducibleForTheSameSeed)
 {
+    const gc::sim::Scene scene(translating_scene(3));
     gc::TrackerParams params;
     params.particles = 200;
     params.seed = 11;
@@ -331,7 +323,7 @@ TEST_F(PipelineOnScene, MonoIsReproducibleForTheSameSeed)
     cv::Mat frame;
     int tracking = 0;
     for (int f = 0; f < 40; ++f) {
-        scene_->render(f, gc::Eye::Left, {}, frame);
+        scene.render(f, gc::Eye::Left, {}, frame);
         const std::string la = gc::to_json_line(a.process_mono(frame, f));
         const std::string lb = gc::to_json_line(b.process_mono(frame, f));
         ASSERT_EQ(la, lb) << "frame " << f;
