@@ -169,6 +169,34 @@ void print_stereo(const BenchOptions& o, const BenchResults& r, std::ostream& ou
     }
 }
 
+void print_models(const BenchOptions& o, const BenchResults& r, std::ostream& out)
+{
+    if (!o.json && !r.models.empty())
+        out << "\n## Learned models, CPU ms per call (one thread, median of " << r.models.front().calls
+            << " alternating calls)\n\n"
+            << "| model | input | OpenCV's layers | with the product's depthwise convolution | ratio | "
+               "largest output difference |\n|---|---|---|---|---|---|\n";
+    for (const ModelTiming& m : r.models) {
+        const double ratio = m.opencv_ms / m.product_ms;
+        if (o.json) {
+            out << JsonObject()
+                       .add("kind", "models")
+                       .add("model", m.model)
+                       .add("input_side", m.input_side)
+                       .add("calls", m.calls)
+                       .add("opencv_cpu_ms", m.opencv_ms, 3)
+                       .add("product_cpu_ms", m.product_ms, 3)
+                       .add("ratio", ratio, 2)
+                       .add("max_abs_diff", m.max_abs_diff, 6)
+                       .str()
+                << '\n';
+            continue;
+        }
+        out << "| " << m.model << " | " << m.input_side << "x" << m.input_side << " | " << fixed(m.opencv_ms, 2)
+            << " | " << fixed(m.product_ms, 2) << " | " << fixed(ratio, 2) << " | " << m.max_abs_diff << " |\n";
+    }
+}
+
 }  // namespace
 
 void print_report(const BenchOptions& o, const BenchResults& r, std::ostream& out)
@@ -177,6 +205,7 @@ void print_report(const BenchOptions& o, const BenchResults& r, std::ostream& ou
     print_accuracy(o, r, out);
     print_peers(o, r, out);
     print_stereo(o, r, out);
+    print_models(o, r, out);
     print_real_pair(o, r.real, out);
 }
 

@@ -4,6 +4,7 @@
 
 #include "tools/bench_options.hpp"
 #include "tools/machine_info.hpp"
+#include "tools/model_runs.hpp"
 #include "tools/peer_runs.hpp"
 #include "tools/real_pair_runs.hpp"
 #include "tools/stereo_runs.hpp"
@@ -25,6 +26,7 @@ struct BenchResults {
     std::vector<PeerRow> peers;         // ours with o.detectors.front()
     std::vector<StereoFigures> stereo;  // one per detector
     std::vector<RealPairRow> real;      // one per detector, or none
+    std::vector<ModelTiming> models;    // with the learned detector only
 };
 
 void print_report(const BenchOptions& o, const BenchResults& r, std::ostream& out);

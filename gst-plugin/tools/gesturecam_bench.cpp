@@ -1,13 +1,15 @@
 // gesturecam-bench: the thesis's Tables 4.1 (accuracy) and 4.2 (cost) on the synthetic
 // scenes for each hand detector, OpenCV's own trackers as peers on the same frames, the 3D
-// step's cost, the stereo pipeline's throughput, and the real calibrated pair. Output: markdown tables, or JSON lines with --json
-// (one object per line, "kind" says which table it belongs to; docs/benchmarks.md).
+// step's cost, the stereo pipeline's throughput, one call of each learned model, and the
+// real calibrated pair. Output: markdown tables, or JSON lines with --json (one object per
+// line, "kind" says which table it belongs to; docs/benchmarks.md).
 #include "tools/bench_options.hpp"
 #include "tools/bench_report.hpp"
 #include "tools/bench_stats.hpp"
 
 #include <opencv2/core/utility.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <stdexcept>
@@ -16,6 +18,8 @@
 namespace {
 
 using namespace gc::tools;
+
+constexpr int kModelCalls = 20;  // timed calls of each model, each way
 
 // Every detector and particle count and, unless --no-peers, the peers, on one scene over
 // every seed.
@@ -71,6 +75,10 @@ int run_bench(const BenchOptions& o)
     for (gc::HandDetector detector : o.detectors) {
         std::cerr << "gesturecam-bench: stereo, " << detector_name(detector) << '\n';
         r.stereo.push_back(measure_stereo(o, detector));
+    }
+    if (std::find(o.detectors.begin(), o.detectors.end(), gc::HandDetector::Learned) != o.detectors.end()) {
+        std::cerr << "gesturecam-bench: learned models, one call\n";
+        r.models = measure_models(kModelCalls);
     }
     r.real = measure_real_pair_rows(o);
     std::vector<double> copy_ms, convert_ms;

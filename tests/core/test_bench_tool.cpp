@@ -140,6 +140,22 @@ TEST(BenchTool, QuickJsonRunHasAStereoRowPerDetector)
     EXPECT_TRUE(in_range(by_detector["motion"]["models_share"], 0.0, 0.0));
 }
 
+// One row per learned model: both ways timed, their outputs the same but for the order of
+// floating-point sums.
+TEST(BenchTool, QuickJsonRunTimesEachLearnedModelBothWays)
+{
+    std::set<std::string> models;
+    for (const JsonValue& m : rows_of("models")) {
+        models.insert(m["model"].string());
+        EXPECT_TRUE(in_range(m["opencv_cpu_ms"], 1e-6, 1e6)) << m["model"].string();
+        EXPECT_TRUE(in_range(m["product_cpu_ms"], 1e-6, 1e6)) << m["model"].string();
+        EXPECT_TRUE(in_range(m["ratio"], 1e-6, 1e6)) << m["model"].string();
+        EXPECT_TRUE(in_range(m["max_abs_diff"], 0.0, 1e-2)) << m["model"].string();
+    }
+    EXPECT_EQ(models, (std::set<std::string>{"palm_detection.onnx", "hand_landmark.onnx"}));
+    EXPECT_EQ(rows_of("models").size(), 2u);
+}
+
 // --quick tracks the real pair's first 40 frames: 26 of them (14-39) point.
 TEST(BenchTool, QuickJsonRunHasTheRealPairForEachDetector)
 {
@@ -230,6 +246,7 @@ TEST(BenchTool, OneDetectorAndNoRealPair)
     EXPECT_EQ(r.out.find("### learned"), std::string::npos) << r.out;
     EXPECT_EQ(r.out.find("| learned |"), std::string::npos) << r.out;
     EXPECT_EQ(r.out.find("Real pair"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("Learned models"), std::string::npos) << "no model timing without the learned detector";
     EXPECT_EQ(count(r.out, "| motion | "), 1u) << "one stereo row\n" << r.out;
 }
 
