@@ -29,6 +29,12 @@ constexpr double kSurelySettled = 0.1;
 
 FoundHand found(const HandKeyPoints& h) { return FoundHand{h.points, h.presence, classify_gesture(h)}; }
 
+// A found hand and how far its key points moved on the look that settled them, in palm sizes.
+struct SettledHand {
+    FoundHand hand;
+    double move = 0.0;
+};
+
 }  // namespace
 
 cv::Point2f palm_centre(const std::array<cv::Point2f, 21>& p) { return (p[0] + p[5] + p[9] + p[13] + p[17]) * 0.2f; }
@@ -73,18 +79,15 @@ struct HandFinder::Impl {
     // crop its own key points give, up to three times: a hand's key points settle, while on a
     // hand-coloured object they scatter anew with each look. The first look's key points
     // are returned: on the real pair they made the better template (3D coverage 98.5 %
-    // against 92 % with the settled ones). `settle_move` gets the look's move that settled.
-    std::optional<FoundHand> settled(const cv::Mat& bgr, const HandCrop& crop, double* settle_move = nullptr)
+    // against 92 % with the settled ones), with the move of the look that settled.
+    std::optional<SettledHand> settled(const cv::Mat& bgr, const HandCrop& crop)
     {
         const std::optional<HandKeyPoints> first = run(bgr, crop);
         std::optional<HandKeyPoints> last = first;
         for (int look = 0; last && look < kSettlingLooks; ++look) {
             const std::optional<HandKeyPoints> next = run(bgr, crop_from_landmarks(*last));
             const double move = next ? key_point_move(last->points, next->points) : 0.0;
-            if (next && move <= kSettledMove) {
-                if (settle_move) *settle_move = move;
-                return found(*first);
-            }
+            if (next && move <= kSettledMove) return SettledHand{found(*first), move};
             last = next;
         }
         return std::nullopt;
@@ -100,17 +103,15 @@ std::optional<FoundHand> HandFinder::find(const cv::Mat& bgr)
 {
     ++impl_->palm_calls;
     const std::vector<PalmDetection> palms = impl_->palms.detect(bgr, impl_->params.min_palm_score);
-    std::optional<FoundHand> best;
-    double best_move = 0.0;
+    std::optional<SettledHand> best;
     for (std::size_t i = 0; i < std::min(palms.size(), kPalmsTried); ++i) {
-        double move = 0.0;
-        auto hand = impl_->settled(bgr, crop_from_palm(palms[i]), &move);
-        if (!hand || (best && move >= best_move)) continue;
+        const std::optional<SettledHand> hand = impl_->settled(bgr, crop_from_palm(palms[i]));
+        if (!hand || (best && hand->move >= best->move)) continue;
         best = hand;
-        best_move = move;
-        if (move <= kSurelySettled) break;
+        if (hand->move <= kSurelySettled) break;
     }
-    return best;
+    if (!best) return std::nullopt;
+    return best->hand;
 }
 
 std::optional<FoundHand> HandFinder::follow(const cv::Mat& bgr, const std::array<cv::Point2f, 21>& around,
@@ -135,7 +136,9 @@ std::optional<FoundHand> HandFinder::confirm(const cv::Mat& bgr, cv::Point2f pal
     const float length = std::hypot(reach.x, reach.y);
     if (!(length > 4.0f)) return std::nullopt;
     const HandCrop crop{palm + 0.3f * reach, 2.5f * length, std::atan2(reach.x, -reach.y)};
-    return impl_->settled(bgr, crop);
+    const std::optional<SettledHand> hand = impl_->settled(bgr, crop);
+    if (!hand) return std::nullopt;
+    return hand->hand;
 }
 
 int HandFinder::palm_calls() const { return impl_->palm_calls; }
