@@ -345,6 +345,19 @@ struct PausingLink {
         recorded.attach(c);
         return c;
     }
+
+    // Someone runs `headctl move pan=20` while the element steers `hand`: the move stands
+    // and steering pauses. The outside client is returned to live as long as the caller's run.
+    template <class Hand>
+    std::unique_ptr<headctl::HeadClient> pan_from_outside(Hand hand)
+    {
+        auto driver = move_from_outside(head.uri(), headctl::Axis::Pan, 20.0);
+        run_frames(link, 1000ms, hand);
+        EXPECT_NEAR(latest_pose(link).pan_deg, 20.0, 0.1) << "the element undid the move";
+        EXPECT_TRUE(link.paused());
+        EXPECT_EQ(recorded.count(headctl::SteeringEvent::ManualPause), 1);
+        return driver;
+    }
 };
 
 TEST(HeadLink, AManualMovePausesSteeringThenItResumes)
@@ -359,12 +372,7 @@ TEST(HeadLink, AManualMovePausesSteeringThenItResumes)
     const HeadPose before = latest_pose(link);  // the hand in the middle of the left view
     ASSERT_LT(std::abs(before.pan_deg), 5.0);
 
-    // Someone runs `headctl move pan=20` while the element steers.
-    const auto driver = move_from_outside(rig.head.uri(), headctl::Axis::Pan, 20.0);
-    run_frames(link, 1000ms, still_hand);
-    EXPECT_NEAR(latest_pose(link).pan_deg, 20.0, 0.1) << "the element undid the move";
-    EXPECT_TRUE(link.paused());
-    EXPECT_EQ(rig.recorded.count(headctl::SteeringEvent::ManualPause), 1);
+    const auto driver = rig.pan_from_outside(still_hand);
     EXPECT_EQ(rig.recorded.count(headctl::SteeringEvent::Resume), 0);
     // The pause runs from the end of the move; then the head follows the hand again.
     run_frames(link, 2500ms, still_hand);
@@ -392,11 +400,7 @@ TEST(HeadLink, AManualPanIsSeenWhileTheEyesVerge)
     const HeadPose before = latest_pose(link);
     ASSERT_LT(std::abs(before.pan_deg), 5.0);
 
-    const auto driver = move_from_outside(rig.head.uri(), headctl::Axis::Pan, 20.0);
-    run_frames(link, 1000ms, nearing_hand);
-    EXPECT_NEAR(latest_pose(link).pan_deg, 20.0, 0.1) << "the element undid the move";
-    EXPECT_TRUE(link.paused());
-    EXPECT_EQ(rig.recorded.count(headctl::SteeringEvent::ManualPause), 1);
+    rig.pan_from_outside(nearing_hand);
 }
 
 TEST(HeadLink, OffOnlyReadsThePose)
