@@ -92,6 +92,36 @@ TEST(DepthwiseConvolution, GivesOpenCVsResultsOnEveryShapeItTakes)
     }
 }
 
+// OpenCV folds a batch normalisation that follows a convolution into that layer's weights
+// when the network is set up; a depthwise layer computed here must keep it.
+TEST(DepthwiseConvolution, KeepsABatchNormalisationThatFollows)
+{
+    const LayerShape s{6, 12, 12, 5, 1, 2, false};
+    const cv::Mat weights = random_blob({6, 1, 5, 5}, -1.0f, 1.0f);
+    const cv::Mat bias = random_blob({6}, -0.5f, 0.5f);
+    const cv::Mat input = random_blob({1, 6, 12, 12}, -1.0f, 1.0f);
+    const auto with_batch_norm = [&] {
+        cv::dnn::Net net = one_convolution(s, weights, bias, 6);
+        cv::dnn::LayerParams norm;
+        norm.blobs = {random_blob({6}, -1.0f, 1.0f), random_blob({6}, 0.5f, 2.0f), random_blob({6}, 0.5f, 2.0f),
+                      random_blob({6}, -1.0f, 1.0f)};  // mean, variance, scale, shift
+        norm.set("has_weight", true);
+        norm.set("has_bias", true);
+        norm.set("eps", 1e-5f);
+        net.addLayerToPrev("norm", "BatchNorm", norm);
+        for (const std::string& name : net.getLayerNames()) net.getLayer(name);
+        return net;
+    };
+    cv::setRNGSeed(5);
+    cv::dnn::Net opencv = with_batch_norm();
+    cv::setRNGSeed(5);
+    cv::dnn::Net ours = gc::with_depthwise_convolution(with_batch_norm);
+    const cv::Mat expected = run(opencv, input);
+    cv::dnn::Net plain = one_convolution(s, weights, bias, 6);
+    EXPECT_GT(cv::norm(expected, run(plain, input), cv::NORM_INF), 0.1) << "the normalisation changes the output";
+    EXPECT_LE(cv::norm(run(ours, input), expected, cv::NORM_INF), 1e-4);
+}
+
 TEST(DepthwiseConvolution, LeavesAGroupedConvolutionThatIsNotDepthwiseToOpenCV)
 {
     const LayerShape s{4, 9, 9, 5, 1, 2, false};
