@@ -3,6 +3,7 @@
 #include "tools/bench_stats.hpp"
 
 #include "detect/depthwise_convolution.hpp"
+#include "detect/dnn_input.hpp"
 #include "detect/model_files.hpp"
 
 #include <opencv2/dnn.hpp>
@@ -36,8 +37,7 @@ ModelTiming time_model(const std::string& file, int side, int calls)
     TimedNet opencv{cv::dnn::readNetFromONNX(path), {}, {}, {}};
     TimedNet product{gc::read_onnx_with_depthwise_convolution(path), {}, {}, {}};
     opencv.outputs = product.outputs = opencv.net.getUnconnectedOutLayersNames();
-    const int shape[] = {1, 3, side, side};
-    cv::Mat input(4, shape, CV_32F);
+    cv::Mat input = gc::make_square_blob(side);
     cv::RNG(1).fill(input, cv::RNG::UNIFORM, 0.0, 1.0);
     // Alternating calls share whatever else the machine does at the time.
     for (int i = 0; i < kWarmUpCalls + calls; ++i) {
