@@ -101,11 +101,23 @@ HandFinder& HandFinder::operator=(HandFinder&&) noexcept = default;
 
 std::optional<FoundHand> HandFinder::find(const cv::Mat& bgr)
 {
+    return find_in(bgr, cv::Rect(0, 0, bgr.cols, bgr.rows));
+}
+
+std::optional<FoundHand> HandFinder::find_in(const cv::Mat& bgr, const cv::Rect& region)
+{
+    const cv::Rect inside = region & cv::Rect(0, 0, bgr.cols, bgr.rows);
+    if (inside.empty()) return std::nullopt;
     ++impl_->palm_calls;
-    const std::vector<PalmDetection> palms = impl_->palms.detect(bgr, impl_->params.min_palm_score);
+    std::vector<PalmDetection> palms = impl_->palms.detect(bgr(inside), impl_->params.min_palm_score);
+    const cv::Point2f offset(inside.tl());
     std::optional<SettledHand> best;
     for (std::size_t i = 0; i < std::min(palms.size(), kPalmsTried); ++i) {
-        const std::optional<SettledHand> hand = impl_->settled(bgr, crop_from_palm(palms[i]));
+        PalmDetection& palm = palms[i];
+        palm.box += offset;
+        for (cv::Point2f& p : palm.points) p += offset;
+        // The landmark model looks at the whole frame: a crop may reach beyond the region.
+        const std::optional<SettledHand> hand = impl_->settled(bgr, crop_from_palm(palm));
         if (!hand || (best && hand->move >= best->move)) continue;
         best = hand;
         if (hand->move <= kSurelySettled) break;

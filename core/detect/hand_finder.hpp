@@ -46,6 +46,10 @@ public:
     // Searches the whole frame (BGR): the palms the detector rates best (up to three), each
     // with its key points; the first whose key points settle well, else the one that settled best.
     std::optional<FoundHand> find(const cv::Mat& bgr);
+    // The same search in one square region of the frame, such as where something moved: the
+    // palm detector sees the region larger than the whole frame, and finds hands that are
+    // small or unlike those it learnt from. Nothing when the region is empty.
+    std::optional<FoundHand> find_in(const cv::Mat& bgr, const cv::Rect& region);
     // The key points of a hand known to be near `around` (last key points, moved to this
     // frame): the landmark model alone, on a crop taken from them. Key points that moved
     // `look_again_beyond` palm sizes or more from `around` are looked at once more through

@@ -158,7 +158,7 @@ struct HandTracker::Impl : TrackerSession {
 
     // learned_custody.cpp: the learned models find the hand, check the contour, give key points.
     void search_with_models(const cv::Mat& bgr);
-    std::optional<FoundHand> propose_by_motion(const cv::Mat& bgr);
+    std::optional<FoundHand> search_where_it_moved(const cv::Mat& bgr, const Detection& moved);
     std::optional<FoundHand> confirm_detection(const cv::Mat& bgr, const Detection& found);
     void check_with_models(const cv::Mat& bgr, bool in_doubt);
     bool adopt_found(const cv::Mat& bgr, const FoundHand& hand);

@@ -27,6 +27,14 @@ constexpr double kAgreedError = 0.12;
 // every kSlowSearchEvery-th: an empty room costs less.
 constexpr int kEagerSearchFrames = 15;
 constexpr int kSlowSearchEvery = 3;
+// The square the palm detector searches around what moved: this many times the moving box's
+// longer side, at least kMovedRegionLeast pixels, and searched only when the whole frame is at
+// least kMovedRegionGain times its side (else the whole frame's search has seen it as well).
+constexpr double kMovedRegionMargin = 1.25;
+constexpr int kMovedRegionLeast = 160;
+constexpr double kMovedRegionGain = 1.25;
+// The share of a hand found there that must lie on the moving blob.
+constexpr double kMovedShare = 0.5;
 // The contour's fingertip is reported when it lies within this angle of the key points'
 // index direction and at most this many times their tip's distance from the palm.
 constexpr double kContourTipAngle = 20.0 * std::numbers::pi / 180.0;
@@ -135,28 +143,44 @@ cv::Point2f unplace(const HandState& s, const cv::Point2f& p)
 }  // namespace
 
 // No hand is tracked: the palm detector looks (every frame at first, then less often), and
-// a hand it finds with key points the landmark model confirms becomes the template.
+// a hand it finds with key points the landmark model confirms becomes the template. The
+// thesis's detector proposes a waving skin-coloured blob, which the landmark model, given
+// the blob's palm and fingertip, confirms or not: this finds hands the palm detector misses
+// (a dark hand against clutter, a hand seen edge-on) without trusting colour and motion
+// alone. Where it moved, the palm detector looks once more at a larger scale.
 void HandTracker::Impl::search_with_models(const cv::Mat& bgr)
 {
     const int turn = search_turn++;
-    const std::optional<FoundHand> proposed = propose_by_motion(bgr);
+    const SkinModel prior = skin ? *skin : SkinModel::generic();
+    const auto moved = detector.process(bgr, prior, true, static_scene(bgr, true, {}));
+    const std::optional<FoundHand> proposed = moved ? confirm_detection(bgr, *moved) : std::nullopt;
     if (turn >= kEagerSearchFrames && turn % kSlowSearchEvery != 0 && !proposed) return;
     estimate.models_ran = true;
     std::optional<FoundHand> hand = finder->find(bgr);
     if (!hand) hand = proposed;
+    if (!hand && moved) hand = search_where_it_moved(bgr, *moved);
     if (hand && adopt_found(bgr, *hand)) search_turn = 0;
 }
 
-// The thesis's detector proposes a waving skin-coloured blob; the landmark model, given
-// the blob's palm and fingertip, says whether it is a hand. This finds hands the palm
-// detector misses (a dark hand against clutter, a hand seen edge-on) without trusting
-// colour and motion alone.
-std::optional<FoundHand> HandTracker::Impl::propose_by_motion(const cv::Mat& bgr)
+// The palm detector on a square around what moved: larger there than in the whole frame, a
+// hand it missed in the whole frame is often found (docs/adr/0037). Nothing when the square
+// would be nearly the whole frame.
+std::optional<FoundHand> HandTracker::Impl::search_where_it_moved(const cv::Mat& bgr, const Detection& moved)
 {
-    const SkinModel prior = skin ? *skin : SkinModel::generic();
-    const auto found = detector.process(bgr, prior, true, static_scene(bgr, true, {}));
-    if (!found) return std::nullopt;
-    return confirm_detection(bgr, *found);
+    const int side = std::min(
+        std::min(bgr.cols, bgr.rows),
+        std::max(kMovedRegionLeast, cvRound(kMovedRegionMargin * std::max(moved.box.width, moved.box.height))));
+    if (kMovedRegionGain * side > std::max(bgr.cols, bgr.rows)) return std::nullopt;
+    const cv::Point centre = (moved.box.tl() + moved.box.br()) / 2;
+    const cv::Rect region(std::clamp(centre.x - side / 2, 0, bgr.cols - side),
+                          std::clamp(centre.y - side / 2, 0, bgr.rows - side), side, side);
+    const std::optional<FoundHand> hand = finder->find_in(bgr, region);
+    if (!hand) return std::nullopt;
+    // The hand must be what moved: a face beside a moving arm settles as well as a hand.
+    const cv::Mat1b where = hand_region(hand->points, bgr.size());
+    const int area = cv::countNonZero(where);
+    if (area == 0 || cv::countNonZero(where & moved.mask) < kMovedShare * area) return std::nullopt;
+    return hand;
 }
 
 // The landmark model's word on a moving skin blob, given the blob's palm and fingertip.
