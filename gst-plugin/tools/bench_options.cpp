@@ -24,7 +24,8 @@ options:
                      OpenCV's trackers
   --frames N         frames per sequence (default 150)
   --runs R           timed runs per measurement; the median is reported (default 5)
-  --seeds LIST       scene seeds; figures are pooled over them (default 1,2,3)
+  --seeds LIST       scene seeds; figures are pooled over them, the real pair's are
+                     the means of its per-seed figures (default 1,2,3)
   --peer-particles N our particle count in the comparison with OpenCV's trackers, the 3D
                      step, the throughput and the real pair (default 1000)
   --no-peers         skip the comparison with OpenCV's trackers

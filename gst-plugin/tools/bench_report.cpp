@@ -10,8 +10,6 @@
 
 namespace gc::tools {
 
-namespace {
-
 std::string seeds_text(const std::vector<std::uint64_t>& seeds)
 {
     std::string text;
@@ -21,6 +19,8 @@ std::string seeds_text(const std::vector<std::uint64_t>& seeds)
     }
     return text;
 }
+
+namespace {
 
 void print_header(const BenchOptions& o, const BenchResults& r, std::ostream& out)
 {

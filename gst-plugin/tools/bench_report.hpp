@@ -31,6 +31,9 @@ struct BenchResults {
 
 void print_report(const BenchOptions& o, const BenchResults& r, std::ostream& out);
 
+// The seeds as the reports name them: "1,2,3".
+std::string seeds_text(const std::vector<std::uint64_t>& seeds);
+
 // The real pair's tables (real_pair_report.cpp).
 void print_real_pair(const BenchOptions& o, const std::vector<RealPairRow>& rows, std::ostream& out);
 

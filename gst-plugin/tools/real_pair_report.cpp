@@ -1,5 +1,6 @@
 // gesturecam-bench's tables for the real pair: per view (fingertip against the reference,
-// and on which frames the learned models looked), and in 3D (the pointing ray and the cost).
+// and on which frames the learned models looked), and in 3D (the pointing ray and the cost);
+// each figure the mean of the per-seed figures.
 #include "tools/bench_report.hpp"
 #include "tools/bench_stats.hpp"
 #include "tools/json_writer.hpp"
@@ -10,12 +11,14 @@ namespace gc::tools {
 
 namespace {
 
-void print_view(const RealPairRow& row, std::string_view view, const ViewFigures& v, bool json, std::ostream& out)
+void print_view(const BenchOptions& o, const RealPairRow& row, std::string_view view, const ViewFigures& v,
+                std::ostream& out)
 {
-    if (json) {
+    if (o.json) {
         out << JsonObject()
                    .add("kind", "real_view")
                    .add("detector", detector_name(row.detector))
+                   .add("seeds", seeds_text(o.seeds))
                    .add("view", view)
                    .add("reference_frames", v.reference_frames)
                    .add("coverage", v.coverage, 3)
@@ -46,6 +49,7 @@ void print_3d(const BenchOptions& o, const RealPairRow& row, std::ostream& out)
         out << JsonObject()
                    .add("kind", "real_pair")
                    .add("detector", detector_name(row.detector))
+                   .add("seeds", seeds_text(o.seeds))
                    .add("particles", o.peer_particles)
                    .add("frames", f.frames)
                    .add("pointing_frames", f.pointing_frames)
@@ -82,6 +86,7 @@ void print_windows(const BenchOptions& o, const std::vector<RealPairRow>& rows, 
                 out << JsonObject()
                            .add("kind", "real_window")
                            .add("detector", detector_name(row.detector))
+                           .add("seeds", seeds_text(o.seeds))
                            .add("window", kEdgeWindows[i].name)
                            .add("reference_frames", w.view.reference_frames)
                            .add("cut_frames", w.cut_frames)
@@ -107,7 +112,9 @@ void print_real_pair(const BenchOptions& o, const std::vector<RealPairRow>& rows
     if (rows.empty()) return;
     if (!o.json)
         out << "\n## Real pair (" << o.real_dir << ": 720x720, " << rows.front().figures.frames << " stereo frames, "
-            << o.peer_particles << " particles per eye, seed " << o.seeds.front() << ")\n\n"
+            << o.peer_particles << " particles per eye, seeds " << seeds_text(o.seeds) << ")\n\n"
+            << "Each figure is the mean of the per-seed figures: one seed's move with the tracker's random "
+               "path alone.\n\n"
             << "Fingertip against the reference key points, per view; \"models\" are the frames "
                "where the learned models ran, \"carried\" those the contour carried alone.\n\n"
             << "| detector | view | reference frames | tracked | within 30 px | median px | "
@@ -115,12 +122,12 @@ void print_real_pair(const BenchOptions& o, const std::vector<RealPairRow>& rows
                "pointing frames | tracked while pointing | median px while pointing |\n"
             << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const RealPairRow& row : rows) {
-        print_view(row, "left", row.figures.left, o.json, out);
-        print_view(row, "right", row.figures.right, o.json, out);
+        print_view(o, row, "left", row.figures.left, out);
+        print_view(o, row, "right", row.figures.right, out);
     }
     if (!o.json)
         out << "\nThe 3D pointing ray against the reference's, and the cost (median of " << o.runs
-            << " run(s); both eyes on two threads, one OpenCV thread each):\n\n"
+            << " run(s) of each seed; both eyes on two threads, one OpenCV thread each):\n\n"
             << "| detector | pointing frames | 3D ray | median angle deg | p90 angle deg | "
                "other frames | false pointing | ms/stereo frame | stereo frames/s | "
                "CPU ms/stereo frame |\n"

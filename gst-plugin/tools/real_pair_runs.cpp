@@ -4,8 +4,78 @@
 
 #include <filesystem>
 #include <iostream>
+#include <stdexcept>
 
 namespace gc::tools {
+
+namespace {
+
+// The mean of one field over `items`, read through `field`.
+template <typename T, typename Field>
+double mean_of(const std::vector<T>& items, Field field)
+{
+    double sum = 0.0;
+    for (const T& item : items) sum += field(item);
+    return sum / double(items.size());
+}
+
+ViewFigures mean_view(const std::vector<ViewFigures>& views)
+{
+    ViewFigures m = views.front();
+    m.coverage = mean_of(views, [](const ViewFigures& v) { return v.coverage; });
+    m.within_30px = mean_of(views, [](const ViewFigures& v) { return v.within_30px; });
+    m.median_px = mean_of(views, [](const ViewFigures& v) { return v.median_px; });
+    m.median_px_models = mean_of(views, [](const ViewFigures& v) { return v.median_px_models; });
+    m.median_px_carried = mean_of(views, [](const ViewFigures& v) { return v.median_px_carried; });
+    m.models_share = mean_of(views, [](const ViewFigures& v) { return v.models_share; });
+    m.pointing_coverage = mean_of(views, [](const ViewFigures& v) { return v.pointing_coverage; });
+    m.pointing_median_px = mean_of(views, [](const ViewFigures& v) { return v.pointing_median_px; });
+    return m;
+}
+
+template <typename T, typename Part>
+std::vector<ViewFigures> views_of(const std::vector<T>& items, Part part)
+{
+    std::vector<ViewFigures> views;
+    for (const T& item : items) views.push_back(part(item));
+    return views;
+}
+
+RealCropFigures measure_window(const RealPairOptions& options, const NamedWindow& w)
+{
+    RealCropOptions crop;
+    crop.dir = options.dir;
+    crop.camera = w.camera;
+    crop.window = w.window;
+    crop.last_frame = options.last_frame;
+    crop.params = options.params;
+    return measure_real_crop(crop);
+}
+
+}  // namespace
+
+RealPairFigures mean_figures(const std::vector<RealPairFigures>& per_seed)
+{
+    if (per_seed.empty()) throw std::invalid_argument("mean_figures: no figures to average");
+    RealPairFigures m = per_seed.front();
+    m.left = mean_view(views_of(per_seed, [](const RealPairFigures& f) { return f.left; }));
+    m.right = mean_view(views_of(per_seed, [](const RealPairFigures& f) { return f.right; }));
+    m.ray_coverage = mean_of(per_seed, [](const RealPairFigures& f) { return f.ray_coverage; });
+    m.angle_median_deg = mean_of(per_seed, [](const RealPairFigures& f) { return f.angle_median_deg; });
+    m.angle_p90_deg = mean_of(per_seed, [](const RealPairFigures& f) { return f.angle_p90_deg; });
+    m.false_pointing = mean_of(per_seed, [](const RealPairFigures& f) { return f.false_pointing; });
+    m.ms_per_frame = mean_of(per_seed, [](const RealPairFigures& f) { return f.ms_per_frame; });
+    m.cpu_ms_per_frame = mean_of(per_seed, [](const RealPairFigures& f) { return f.cpu_ms_per_frame; });
+    return m;
+}
+
+RealCropFigures mean_figures(const std::vector<RealCropFigures>& per_seed)
+{
+    if (per_seed.empty()) throw std::invalid_argument("mean_figures: no figures to average");
+    RealCropFigures m = per_seed.front();
+    m.view = mean_view(views_of(per_seed, [](const RealCropFigures& f) { return f.view; }));
+    return m;
+}
 
 std::vector<RealPairRow> measure_real_pair_rows(const BenchOptions& o)
 {
@@ -20,29 +90,32 @@ std::vector<RealPairRow> measure_real_pair_rows(const BenchOptions& o)
     options.dir = o.real_dir;
     options.last_frame = o.real_frames;
     options.params.particles = o.peer_particles;
-    options.params.seed = o.seeds.front();
     for (gc::HandDetector detector : o.detectors) {
         options.params.detector = detector;
         RealPairRow row;
         row.detector = detector;
+        row.seeds = int(o.seeds.size());
+        std::vector<RealPairFigures> per_seed;
+        std::vector<std::vector<RealCropFigures>> windows(std::size(kEdgeWindows));
         std::vector<double> ms, cpu_ms;
-        for (int run = 0; run < o.runs; ++run) {
-            std::cerr << "gesturecam-bench: real pair, " << detector_name(detector) << ", run " << run + 1 << '\n';
-            const RealPairFigures f = measure_real_pair(options);
-            if (run == 0) row.figures = f;
-            ms.push_back(f.ms_per_frame);
-            cpu_ms.push_back(f.cpu_ms_per_frame);
+        for (std::uint64_t seed : o.seeds) {
+            options.params.seed = seed;
+            for (int run = 0; run < o.runs; ++run) {
+                std::cerr << "gesturecam-bench: real pair, " << detector_name(detector) << ", seed " << seed << ", run "
+                          << run + 1 << '\n';
+                const RealPairFigures f = measure_real_pair(options);
+                if (run == 0) per_seed.push_back(f);
+                ms.push_back(f.ms_per_frame);
+                cpu_ms.push_back(f.cpu_ms_per_frame);
+            }
+            for (std::size_t i = 0; i < std::size(kEdgeWindows); ++i) {
+                std::cerr << "gesturecam-bench: real pair, " << detector_name(detector) << ", seed " << seed << ", "
+                          << kEdgeWindows[i].name << '\n';
+                windows[i].push_back(measure_window(options, kEdgeWindows[i]));
+            }
         }
-        for (const NamedWindow& w : kEdgeWindows) {
-            std::cerr << "gesturecam-bench: real pair, " << detector_name(detector) << ", " << w.name << '\n';
-            RealCropOptions crop;
-            crop.dir = options.dir;
-            crop.camera = w.camera;
-            crop.window = w.window;
-            crop.last_frame = options.last_frame;
-            crop.params = options.params;
-            row.windows.push_back(measure_real_crop(crop));
-        }
+        row.figures = mean_figures(per_seed);
+        for (const std::vector<RealCropFigures>& w : windows) row.windows.push_back(mean_figures(w));
         row.ms_per_frame = median(ms);
         row.cpu_ms_per_frame = median(cpu_ms);
         rows.push_back(row);

@@ -59,22 +59,26 @@ bool in_range(const JsonValue& v, double lo, double hi)
 
 using Rows = std::map<std::string, std::vector<JsonValue>>;
 
+// A JSON run's lines by kind.
+Rows json_rows(const std::string& args)
+{
+    Rows by_kind;
+    const RunResult r = run_bench(args + " --json");
+    EXPECT_EQ(r.status, 0) << r.err;
+    std::istringstream in(r.out);
+    for (std::string line; std::getline(in, line);) {
+        JsonValue v;
+        EXPECT_NO_THROW(v = JsonReader::parse(line)) << line;
+        EXPECT_TRUE(v.has("kind")) << line;
+        if (v.has("kind")) by_kind[v["kind"].string()].push_back(v);
+    }
+    return by_kind;
+}
+
 // The quick run's JSON lines by kind; parsed once for the tests below.
 const Rows& quick_json_rows()
 {
-    static const Rows rows = [] {
-        Rows by_kind;
-        const RunResult r = run_bench("--quick --json");
-        EXPECT_EQ(r.status, 0) << r.err;
-        std::istringstream in(r.out);
-        for (std::string line; std::getline(in, line);) {
-            JsonValue v;
-            EXPECT_NO_THROW(v = JsonReader::parse(line)) << line;
-            EXPECT_TRUE(v.has("kind")) << line;
-            if (v.has("kind")) by_kind[v["kind"].string()].push_back(v);
-        }
-        return by_kind;
-    }();
+    static const Rows rows = json_rows("--quick");
     return rows;
 }
 
@@ -206,6 +210,39 @@ TEST(BenchTool, QuickJsonRunHasTheRealPairForEachDetector)
         }
     }
     EXPECT_EQ(windows.size(), 2 * std::size(gc::tools::kEdgeWindows));
+}
+
+// Over several seeds each real-pair figure is the mean of the per-seed figures (one seed's
+// figures move with the tracker's random path alone). The JSON rounds to 3 decimals (shares)
+// or 1 (pixels, degrees), so the mean of two printed figures may be off by that much.
+TEST(BenchTool, RealPairFiguresAreMeansOverTheSeeds)
+{
+    const std::string args =
+        "--quick --no-peers --detectors learned --scenes clean --particles 20 --frames 10 --seeds ";
+    const Rows one = json_rows(args + "1"), two = json_rows(args + "2"), both = json_rows(args + "1,2");
+    struct Figure {
+        const char* kind;
+        const char* field;
+        double rounding;
+    };
+    const Figure figures[] = {{"real_pair", "ray_coverage", 1e-3}, {"real_pair", "angle_median_deg", 0.1},
+                              {"real_pair", "angle_p90_deg", 0.1}, {"real_view", "median_px", 0.1},
+                              {"real_view", "models_share", 1e-3}, {"real_window", "median_px", 0.1},
+                              {"real_window", "within_30px", 1e-3}};
+    int differing = 0;
+    for (const Figure& f : figures) {
+        SCOPED_TRACE(std::string(f.kind) + " " + f.field);
+        ASSERT_EQ(one.count(f.kind), 1u);
+        ASSERT_EQ(two.count(f.kind), 1u);
+        ASSERT_EQ(both.count(f.kind), 1u);
+        const JsonValue &a = one.at(f.kind).front(), &b = two.at(f.kind).front(), &ab = both.at(f.kind).front();
+        EXPECT_EQ(ab["seeds"].string(), "1,2");
+        const double mean = (a[f.field].number() + b[f.field].number()) / 2;
+        EXPECT_NEAR(ab[f.field].number(), mean, f.rounding + 1e-9);
+        differing += a[f.field].number() != b[f.field].number();
+    }
+    // The check means something only if the seeds' figures differ.
+    EXPECT_GE(differing, 2);
 }
 
 std::size_t count(const std::string& text, const std::string& what)
