@@ -86,15 +86,16 @@ struct TrackerSession {
     bool has_key_points = false;
     std::array<cv::Point2f, 21> key_points{};
     Gesture gesture = Gesture::Unknown;
-    bool template_cut = false;   // the template was made of a hand the frame's border cut
-    int frames_since_check = 0;  // tracked frames since the landmark model last looked
-    int check_interval = 1;      // frames between its checks: longer while the contour agrees
-    int search_turn = 0;         // frames searched by the palm detector without a hand
-    KeyPointFlow flow;           // carries the key points between the model's checks
-    cv::Point2f still_anchor;    // where the contour was when it or the view last moved
-    int still_frames = 0;        // tracked frames the contour has stayed with the room
-    int unsettled_frames = 0;    // consecutive tracked frames the landmark model disagreed
-    int view_still_frames = 0;   // consecutive tracked frames the view did not move
+    std::optional<Gesture> new_gesture;  // read by the last check, not yet by two in a row
+    bool template_cut = false;           // the template was made of a hand the frame's border cut
+    int frames_since_check = 0;          // tracked frames since the landmark model last looked
+    int check_interval = 1;              // frames between its checks: longer while the contour agrees
+    int search_turn = 0;                 // frames searched by the palm detector without a hand
+    KeyPointFlow flow;                   // carries the key points between the model's checks
+    cv::Point2f still_anchor;            // where the contour was when it or the view last moved
+    int still_frames = 0;                // tracked frames the contour has stayed with the room
+    int unsettled_frames = 0;            // consecutive tracked frames the landmark model disagreed
+    int view_still_frames = 0;           // consecutive tracked frames the view did not move
 };
 
 struct HandTracker::Impl : TrackerSession {
@@ -161,6 +162,7 @@ struct HandTracker::Impl : TrackerSession {
     std::optional<FoundHand> search_where_it_moved(const cv::Mat& bgr, const Detection& moved);
     std::optional<FoundHand> confirm_detection(const cv::Mat& bgr, const Detection& found);
     void check_with_models(const cv::Mat& bgr, bool in_doubt);
+    void take_gesture(Gesture read);
     bool adopt_found(const cv::Mat& bgr, const FoundHand& hand);
     void place_key_points(const HandState& s);
     bool carry_key_points(const cv::Mat& bgr);  // true: the flow bent the index finger

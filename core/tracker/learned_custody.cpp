@@ -226,8 +226,22 @@ void HandTracker::Impl::check_with_models(const cv::Mat& bgr, bool in_doubt)
     if (template_cut && !touches_border(hand_region(hand->points, bgr.size())) && adopt_found(bgr, *hand)) return;
     check_interval = error < kAgreedError ? std::min(2 * check_interval, params.max_model_interval) : 1;
     for (std::size_t i = 0; i < key_points.size(); ++i) key_points[i] = unplace(previous, hand->points[i]);
-    gesture = hand->gesture;
+    take_gesture(hand->gesture);
     report(previous);
+}
+
+// A gesture one check reads differently from the last is taken when the next check, a frame
+// later, reads it too (docs/adr/0038): one check's misreading would otherwise hold until the
+// next check, up to max_model_interval frames.
+void HandTracker::Impl::take_gesture(Gesture read)
+{
+    if (read == gesture || read == new_gesture) {
+        gesture = read;
+        new_gesture.reset();
+        return;
+    }
+    new_gesture = read;
+    check_interval = 1;
 }
 
 // A template from a hand the models found: the skin model learnt from its palm, the mask
@@ -260,6 +274,7 @@ bool HandTracker::Impl::adopt_found(const cv::Mat& bgr, const FoundHand& hand)
     has_key_points = true;
     template_cut = touches_border(region);
     gesture = hand.gesture;
+    new_gesture.reset();
     frames_since_check = 0;
     check_interval = 1;
     adopt(std::move(*shaped), model, CaptureQuality::Clean, at);

@@ -49,11 +49,14 @@ Shares run_gesture(Gesture gesture)
     return s;
 }
 
+// The landmark model reads the rendered pointing hand as a fist or "other" on single checks
+// now and then; such a reading is not taken unless the next check repeats it (without that,
+// 82 % of these frames were reported pointing).
 TEST(LearnedGestures, PointingHandIsReportedPointing)
 {
     const Shares s = run_gesture(Gesture::Pointing);
     EXPECT_GE(s.tracked(), 0.9);
-    EXPECT_GE(s.pointed(), 0.6);
+    EXPECT_GE(s.pointed(), 0.9);
 }
 
 TEST(LearnedGestures, OpenHandIsTrackedButNotPointing)
