@@ -3,6 +3,7 @@
 #include "tools/bench_stats.hpp"
 
 #include <filesystem>
+#include <initializer_list>
 #include <iostream>
 #include <stdexcept>
 
@@ -10,35 +11,34 @@ namespace gc::tools {
 
 namespace {
 
-// The mean of one field over `items`, read through `field`.
-template <typename T, typename Field>
-double mean_of(const std::vector<T>& items, Field field)
+// The first of `items`, with each of `fields` set to its mean over all of them.
+template <typename T>
+T mean_of_fields(const std::vector<T>& items, std::initializer_list<double T::*> fields)
 {
-    double sum = 0.0;
-    for (const T& item : items) sum += field(item);
-    return sum / double(items.size());
+    T mean = items.front();
+    for (double T::*field : fields) {
+        double sum = 0.0;
+        for (const T& item : items) sum += item.*field;
+        mean.*field = sum / double(items.size());
+    }
+    return mean;
+}
+
+// The view `part` of every item.
+template <typename T>
+std::vector<ViewFigures> views_of(const std::vector<T>& items, ViewFigures T::*part)
+{
+    std::vector<ViewFigures> views;
+    for (const T& item : items) views.push_back(item.*part);
+    return views;
 }
 
 ViewFigures mean_view(const std::vector<ViewFigures>& views)
 {
-    ViewFigures m = views.front();
-    m.coverage = mean_of(views, [](const ViewFigures& v) { return v.coverage; });
-    m.within_30px = mean_of(views, [](const ViewFigures& v) { return v.within_30px; });
-    m.median_px = mean_of(views, [](const ViewFigures& v) { return v.median_px; });
-    m.median_px_models = mean_of(views, [](const ViewFigures& v) { return v.median_px_models; });
-    m.median_px_carried = mean_of(views, [](const ViewFigures& v) { return v.median_px_carried; });
-    m.models_share = mean_of(views, [](const ViewFigures& v) { return v.models_share; });
-    m.pointing_coverage = mean_of(views, [](const ViewFigures& v) { return v.pointing_coverage; });
-    m.pointing_median_px = mean_of(views, [](const ViewFigures& v) { return v.pointing_median_px; });
-    return m;
-}
-
-template <typename T, typename Part>
-std::vector<ViewFigures> views_of(const std::vector<T>& items, Part part)
-{
-    std::vector<ViewFigures> views;
-    for (const T& item : items) views.push_back(part(item));
-    return views;
+    return mean_of_fields(views,
+                          {&ViewFigures::coverage, &ViewFigures::within_30px, &ViewFigures::median_px,
+                           &ViewFigures::median_px_models, &ViewFigures::median_px_carried, &ViewFigures::models_share,
+                           &ViewFigures::pointing_coverage, &ViewFigures::pointing_median_px});
 }
 
 RealCropFigures measure_window(const RealPairOptions& options, const NamedWindow& w)
@@ -57,15 +57,11 @@ RealCropFigures measure_window(const RealPairOptions& options, const NamedWindow
 RealPairFigures mean_figures(const std::vector<RealPairFigures>& per_seed)
 {
     if (per_seed.empty()) throw std::invalid_argument("mean_figures: no figures to average");
-    RealPairFigures m = per_seed.front();
-    m.left = mean_view(views_of(per_seed, [](const RealPairFigures& f) { return f.left; }));
-    m.right = mean_view(views_of(per_seed, [](const RealPairFigures& f) { return f.right; }));
-    m.ray_coverage = mean_of(per_seed, [](const RealPairFigures& f) { return f.ray_coverage; });
-    m.angle_median_deg = mean_of(per_seed, [](const RealPairFigures& f) { return f.angle_median_deg; });
-    m.angle_p90_deg = mean_of(per_seed, [](const RealPairFigures& f) { return f.angle_p90_deg; });
-    m.false_pointing = mean_of(per_seed, [](const RealPairFigures& f) { return f.false_pointing; });
-    m.ms_per_frame = mean_of(per_seed, [](const RealPairFigures& f) { return f.ms_per_frame; });
-    m.cpu_ms_per_frame = mean_of(per_seed, [](const RealPairFigures& f) { return f.cpu_ms_per_frame; });
+    RealPairFigures m = mean_of_fields(per_seed, {&RealPairFigures::ray_coverage, &RealPairFigures::angle_median_deg,
+                                                  &RealPairFigures::angle_p90_deg, &RealPairFigures::false_pointing,
+                                                  &RealPairFigures::ms_per_frame, &RealPairFigures::cpu_ms_per_frame});
+    m.left = mean_view(views_of(per_seed, &RealPairFigures::left));
+    m.right = mean_view(views_of(per_seed, &RealPairFigures::right));
     return m;
 }
 
@@ -73,7 +69,7 @@ RealCropFigures mean_figures(const std::vector<RealCropFigures>& per_seed)
 {
     if (per_seed.empty()) throw std::invalid_argument("mean_figures: no figures to average");
     RealCropFigures m = per_seed.front();
-    m.view = mean_view(views_of(per_seed, [](const RealCropFigures& f) { return f.view; }));
+    m.view = mean_view(views_of(per_seed, &RealCropFigures::view));
     return m;
 }
 
