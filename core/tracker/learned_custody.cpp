@@ -39,6 +39,8 @@ constexpr double kMovedShare = 0.5;
 // index direction and at most this many times their tip's distance from the palm.
 constexpr double kContourTipAngle = 20.0 * std::numbers::pi / 180.0;
 constexpr double kContourTipReach = 2.5;
+// ... and when the skin model sees skin on at least this share of the way from their tip to it.
+constexpr double kContourTipSkin = 0.7;
 // How far a key point the optical flow followed may lie from where the contour's state
 // placed it, in palm sizes.
 constexpr double kFlowReach = 0.3;
@@ -130,6 +132,20 @@ cv::Mat1b skin_of_hand(const cv::Mat1b& region, const cv::Mat1b& membership, cv:
     mask = labels == label;
     if (cv::countNonZero(mask) < 0.5 * cv::countNonZero(region)) return {};
     return mask;
+}
+
+// The share of the pixels on the line from `a` to `b` that the skin model sees as skin, among
+// those inside `roi` (where `membership` holds this frame's); 0 when none is.
+double skin_share_along(const cv::Mat1b& membership, const cv::Rect& roi, cv::Point2f a, cv::Point2f b)
+{
+    int seen = 0, skin = 0;
+    cv::LineIterator line(membership, cv::Point(cvRound(a.x), cvRound(a.y)), cv::Point(cvRound(b.x), cvRound(b.y)));
+    for (int i = 0; i < line.count; ++i, ++line) {
+        if (!roi.contains(line.pos())) continue;
+        ++seen;
+        skin += **line >= kSkinEdgeLevel;
+    }
+    return seen > 0 ? double(skin) / seen : 0.0;
 }
 
 // The template point that `s` places at `p` (the inverse of place()).
@@ -295,15 +311,20 @@ void HandTracker::Impl::place_key_points(const HandState& s)
     // The contour's own fingertip (its extreme point along the finger) is where the
     // silhouette ends, which the key points only estimate: it is taken when the hand points
     // and it lies the way the key points' index finger points, no nearer the palm than their
-    // tip. A rigid contour keeps the finger it was made with after the index has curled.
+    // tip. A rigid contour keeps the finger it was made with after the index has curled. One
+    // that slid along the finger onto the background (camera noise gives it edges everywhere)
+    // ends where the skin does not go: the skin must run from their tip to it (docs/adr/0039).
     if (gesture != Gesture::Pointing) return;
     const cv::Point2f by_contour = cv::Point2f(place(s, shape->fingertip)) - estimate.palm;
     const cv::Point2f by_points = placed[8] - estimate.palm;
     const double along = by_contour.dot(by_points), points_length = cv::norm(by_points);
     const double contour_length = cv::norm(by_contour);
-    if (points_length > 0.0 && contour_length >= points_length && contour_length <= kContourTipReach * points_length &&
-        along >= std::cos(kContourTipAngle) * contour_length * points_length)
-        estimate.fingertip = placed[8] + (by_contour - by_points);
+    if (!(points_length > 0.0 && contour_length >= points_length &&
+          contour_length <= kContourTipReach * points_length &&
+          along >= std::cos(kContourTipAngle) * contour_length * points_length))
+        return;
+    const cv::Point2f tip = placed[8] + (by_contour - by_points);
+    if (skin_share_along(membership, membership_roi, placed[8], tip) >= kContourTipSkin) estimate.fingertip = tip;
 }
 
 // The key points the contour placed on this frame, moved to where optical flow followed

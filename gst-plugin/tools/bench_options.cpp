@@ -31,6 +31,8 @@ options:
   --no-peers         skip the comparison with OpenCV's trackers
   --real DIR         the real pair's folder (default: the source tree's tests/data/handpose3d)
   --real-frames N    track only the real pair's first N frames (default: all 378)
+  --real-noise SD    add camera noise to the real pair's frames: Gaussian, per pixel and
+                     channel, SD grey levels (default 0: the recording as it is)
   --no-real          skip the real pair
   --quick            a small smoke run: particles 50,200, scenes clean,heavy, 40 frames,
                      1 run, seed 1, 200 particles for the comparisons, the real pair's
@@ -76,7 +78,8 @@ gc::HandDetector parse_detector(std::string_view opt, std::string_view item)
 
 // The options' texts as CLI11 read them; converted afterwards with the messages above.
 struct GivenText {
-    std::optional<std::string> particles, scenes, motion, detectors, frames, runs, seeds, peer_particles, real_frames;
+    std::optional<std::string> particles, scenes, motion, detectors, frames, runs, seeds, peer_particles, real_frames,
+        real_noise;
 };
 
 void add_options(CLI::App& app, BenchOptions& o, Given& g, GivenText& t)
@@ -89,7 +92,8 @@ void add_options(CLI::App& app, BenchOptions& o, Given& g, GivenText& t)
                               {"--runs", &t.runs},
                               {"--seeds", &t.seeds},
                               {"--peer-particles", &t.peer_particles},
-                              {"--real-frames", &t.real_frames}})
+                              {"--real-frames", &t.real_frames},
+                              {"--real-noise", &t.real_noise}})
         app.add_option(name, *text);
     app.add_option("--real", g.real_dir);
     app.add_flag("--json", o.json);
@@ -118,6 +122,7 @@ void convert(const GivenText& t, BenchOptions& o, Given& g)
                                             [](auto opt, auto item) { return parse_number<std::uint64_t>(opt, item); });
     if (t.peer_particles) g.peer_particles = parse_number<int>("--peer-particles", *t.peer_particles, 1, 100000);
     if (t.real_frames) g.real_frames = parse_number<int>("--real-frames", *t.real_frames, 1, 1 << 30);
+    if (t.real_noise) o.real_noise = parse_number<double>("--real-noise", *t.real_noise, 0.0, 255.0);
 }
 
 void apply(const Given& g, BenchOptions& o)

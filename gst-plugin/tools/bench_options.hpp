@@ -30,6 +30,7 @@ struct BenchOptions {
     std::string real_dir;         // the real pair's folder; empty: skip it
     bool real_dir_given = false;  // named on the command line (else the source tree's)
     int real_frames = 1 << 30;    // the real pair's first frames that are tracked
+    double real_noise = 0.0;      // camera noise added to the real pair's frames (grey levels, sd)
     bool json = false;
 };
 

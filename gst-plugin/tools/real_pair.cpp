@@ -114,6 +114,21 @@ bool read_frame(GstFrameReader& view, cv::Mat& bgr, const std::string& path)
     return status == FrameStatus::Frame;
 }
 
+// The camera noise's random sequence: the same in every run.
+constexpr std::uint64_t kNoiseSeed = 0x6E6F697365ULL;
+
+// Adds Gaussian noise of `sd` grey levels to every pixel and channel of `bgr` (none for 0).
+void add_camera_noise(cv::Mat& bgr, double sd, cv::RNG& rng)
+{
+    if (sd <= 0.0) return;
+    cv::Mat noisy(bgr.size(), CV_32FC3);
+    rng.fill(noisy, cv::RNG::NORMAL, 0.0, sd);
+    cv::Mat levels;
+    bgr.convertTo(levels, CV_32FC3);
+    noisy += levels;
+    noisy.convertTo(bgr, CV_8UC3);
+}
+
 }  // namespace
 
 std::vector<ReferenceHand> read_reference_hands(const std::string& path)
@@ -146,10 +161,13 @@ RealPairFigures measure_real_pair(const RealPairOptions& o)
     ViewTally lt, rt;
     std::vector<double> angles, ms, cpu_ms;
     int pointing = 0, other = 0, false_rays = 0, frame = 0;
+    cv::RNG noise(kNoiseSeed);
     cv::Mat l, r;
     for (; frame < o.last_frame && read_frame(left, l, base + "cam0.mp4") && read_frame(right, r, base + "cam1.mp4");
          ++frame) {
         if (frame < o.first_frame) continue;
+        add_camera_noise(l, o.noise_sd, noise);
+        add_camera_noise(r, o.noise_sd, noise);
         const auto t0 = BenchClock::now();
         const double cpu0 = process_cpu_ms();
         const FrameResult& res = tracker.process_stereo(l, r);
@@ -202,6 +220,7 @@ RealCropFigures measure_real_crop(const RealCropOptions& o)
     const cv::Rect2d seen(0, 0, o.size.width, o.size.height);
     ViewTally tally;
     int cut = 0;
+    cv::RNG noise(kNoiseSeed);
     cv::Mat frame, view;
     for (int i = 0; i < o.last_frame && read_frame(reader, frame, video); ++i) {
         if (i < o.first_frame) continue;
@@ -209,6 +228,7 @@ RealCropFigures measure_real_crop(const RealCropOptions& o)
             throw std::invalid_argument("real crop: the window lies outside the " + std::to_string(frame.cols) + "x" +
                                         std::to_string(frame.rows) + " frames");
         cv::resize(frame(o.window), view, o.size, 0.0, 0.0, cv::INTER_AREA);
+        add_camera_noise(view, o.noise_sd, noise);
         const EyeEstimate& e = tracker.process(view);
         std::optional<cv::Point2d> tip;
         if (std::size_t(i) < hands.size() && hands[i]) {

@@ -21,6 +21,10 @@ struct RealPairOptions {
     int first_frame = 0;  // frames [first_frame, last_frame) are tracked
     int last_frame = 1 << 30;
     TrackerParams params;
+    // Camera noise added to every decoded frame of both views: Gaussian, independent per
+    // pixel and channel, this standard deviation in grey levels (0: the recording as it is).
+    // The same every run.
+    double noise_sd = 0.0;
 };
 
 struct ViewFigures {
@@ -61,6 +65,7 @@ struct RealCropOptions {
     int first_frame = 0;
     int last_frame = 1 << 30;
     TrackerParams params;
+    double noise_sd = 0.0;  // as RealPairOptions::noise_sd, added to the window's frames
 };
 
 // A frame counts when the reference fingertip and at least half of its key points lie in

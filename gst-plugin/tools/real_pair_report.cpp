@@ -19,6 +19,7 @@ void print_view(const BenchOptions& o, const RealPairRow& row, std::string_view 
                    .add("kind", "real_view")
                    .add("detector", detector_name(row.detector))
                    .add("seeds", seeds_text(o.seeds))
+                   .add("noise_sd", o.real_noise, 1)
                    .add("view", view)
                    .add("reference_frames", v.reference_frames)
                    .add("coverage", v.coverage, 3)
@@ -50,6 +51,7 @@ void print_3d(const BenchOptions& o, const RealPairRow& row, std::ostream& out)
                    .add("kind", "real_pair")
                    .add("detector", detector_name(row.detector))
                    .add("seeds", seeds_text(o.seeds))
+                   .add("noise_sd", o.real_noise, 1)
                    .add("particles", o.peer_particles)
                    .add("frames", f.frames)
                    .add("pointing_frames", f.pointing_frames)
@@ -87,6 +89,7 @@ void print_windows(const BenchOptions& o, const std::vector<RealPairRow>& rows, 
                            .add("kind", "real_window")
                            .add("detector", detector_name(row.detector))
                            .add("seeds", seeds_text(o.seeds))
+                           .add("noise_sd", o.real_noise, 1)
                            .add("window", kEdgeWindows[i].name)
                            .add("reference_frames", w.view.reference_frames)
                            .add("cut_frames", w.cut_frames)
@@ -112,7 +115,9 @@ void print_real_pair(const BenchOptions& o, const std::vector<RealPairRow>& rows
     if (rows.empty()) return;
     if (!o.json)
         out << "\n## Real pair (" << o.real_dir << ": 720x720, " << rows.front().figures.frames << " stereo frames, "
-            << o.peer_particles << " particles per eye, seeds " << seeds_text(o.seeds) << ")\n\n"
+            << o.peer_particles << " particles per eye, seeds " << seeds_text(o.seeds)
+            << (o.real_noise > 0.0 ? ", camera noise of " + fixed(o.real_noise, 1) + " grey levels added" : "")
+            << ")\n\n"
             << "Each figure is the mean of the per-seed figures: one seed's move with the tracker's random "
                "path alone.\n\n"
             << "Fingertip against the reference key points, per view; \"models\" are the frames "

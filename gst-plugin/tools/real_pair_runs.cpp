@@ -49,6 +49,7 @@ RealCropFigures measure_window(const RealPairOptions& options, const NamedWindow
     crop.window = w.window;
     crop.last_frame = options.last_frame;
     crop.params = options.params;
+    crop.noise_sd = options.noise_sd;
     return measure_real_crop(crop);
 }
 
@@ -85,6 +86,7 @@ std::vector<RealPairRow> measure_real_pair_rows(const BenchOptions& o)
     RealPairOptions options;
     options.dir = o.real_dir;
     options.last_frame = o.real_frames;
+    options.noise_sd = o.real_noise;
     options.params.particles = o.peer_particles;
     for (gc::HandDetector detector : o.detectors) {
         options.params.detector = detector;

@@ -187,6 +187,7 @@ TEST(BenchTool, QuickJsonRunHasTheRealPairForEachDetector)
         const std::string detector = p["detector"].string();
         detectors.insert(detector);
         EXPECT_EQ(p["frames"].number(), 40) << detector;
+        EXPECT_EQ(p["noise_sd"].number(), 0.0) << detector;  // the recording as it is
         EXPECT_EQ(p["pointing_frames"].number(), 26) << detector;
         EXPECT_TRUE(in_range(p["ray_coverage"], 0.0, 1.0)) << detector;
         EXPECT_TRUE(in_range(p["false_pointing"], 0.0, 1.0)) << detector;
@@ -289,8 +290,9 @@ TEST(BenchTool, OneDetectorAndNoRealPair)
 
 TEST(BenchTool, RejectsBadOptions)
 {
-    for (const char* args : {"--particles 0", "--scenes clean,nowhere", "--runs x", "--particles 20,,50", "--bogus",
-                             "--detectors learned,blob", "--real-frames 0", "--no-real=1"}) {
+    for (const char* args :
+         {"--particles 0", "--scenes clean,nowhere", "--runs x", "--particles 20,,50", "--bogus",
+          "--detectors learned,blob", "--real-frames 0", "--no-real=1", "--real-noise -1", "--real-noise x"}) {
         const RunResult r = run_bench(args);
         EXPECT_EQ(r.status, 2) << args;
         EXPECT_FALSE(r.err.empty()) << args;

@@ -65,6 +65,25 @@ TEST(LearnedTracker, CarriesTheRealFingertipBetweenModelChecks)
     }
 }
 
+// The same frames with camera noise (20 grey levels, as from a small sensor in a dim room):
+// the noise gives the contour edges everywhere, and one that slides along the finger onto
+// the desk must not take the fingertip with it.
+TEST(LearnedTracker, KeepsTheRealFingertipThroughCameraNoise)
+{
+    gc::tools::RealPairOptions options;
+    options.dir = real_pair_dir();
+    options.first_frame = 14;
+    options.last_frame = 110;
+    options.noise_sd = 20.0;
+    const gc::tools::RealPairFigures f = gc::tools::measure_real_pair(options);
+    for (const gc::tools::ViewFigures* view : {&f.left, &f.right}) {
+        EXPECT_GE(view->coverage, 0.95);
+        EXPECT_GE(view->within_30px, 0.9);
+    }
+    EXPECT_GE(f.ray_coverage, 0.75);
+    EXPECT_LE(f.angle_p90_deg, 12.0);
+}
+
 // Frames 230-329: an open hand and a fist; followed, but never reported as pointing.
 TEST(LearnedTracker, ClaimsNoPointingWhereTheRealHandDoesNotPoint)
 {
