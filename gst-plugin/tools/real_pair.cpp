@@ -1,5 +1,7 @@
 #include "tools/real_pair.hpp"
 
+#include "sim/appearance.hpp"
+#include "sim/camera_effects.hpp"
 #include "stereo/calibration.hpp"
 #include "tools/bench_stats.hpp"
 #include "tools/gst_frame_reader.hpp"
@@ -114,20 +116,15 @@ bool read_frame(GstFrameReader& view, cv::Mat& bgr, const std::string& path)
     return status == FrameStatus::Frame;
 }
 
-// The camera noise's random sequence: the same in every run.
-constexpr std::uint64_t kNoiseSeed = 0x6E6F697365ULL;
-
-// Adds Gaussian noise of `sd` grey levels to every pixel and channel of `bgr` (none for 0).
-void add_camera_noise(cv::Mat& bgr, double sd, cv::RNG& rng)
+// The camera noise of the rendered scenes, the same in every run: none for `sd` 0.
+sim::SensorNoise camera_noise(cv::Size frame, double sd)
 {
-    if (sd <= 0.0) return;
-    cv::Mat noisy(bgr.size(), CV_32FC3);
-    rng.fill(noisy, cv::RNG::NORMAL, 0.0, sd);
-    cv::Mat levels;
-    bgr.convertTo(levels, CV_32FC3);
-    noisy += levels;
-    noisy.convertTo(bgr, CV_8UC3);
+    constexpr std::uint64_t kNoiseSeed = 0x6E6F697365ULL;
+    return sd > 0.0 ? sim::SensorNoise(frame, sd, kNoiseSeed) : sim::SensorNoise();
 }
+
+// Where in the noise's pool frame `i` of a view takes its window.
+std::uint64_t noise_window(int i, int view) { return sim::mix_seed(std::uint64_t(i) << 1 | std::uint64_t(view), 0); }
 
 }  // namespace
 
@@ -156,18 +153,22 @@ RealPairFigures measure_real_pair(const RealPairOptions& o)
     // Decoded as gesturecam-track and the element decode them (GStreamer, then the element's
     // colour conversion), so the figures are the product's.
     GstFrameReader left(base + "cam0.mp4"), right(base + "cam1.mp4");
-    PointingTracker tracker(o.params, load_calibration(base + "calib.yml"));
+    const StereoCalibration calibration = load_calibration(base + "calib.yml");
+    PointingTracker tracker(o.params, calibration);
 
     ViewTally lt, rt;
     std::vector<double> angles, ms, cpu_ms;
     int pointing = 0, other = 0, false_rays = 0, frame = 0;
-    cv::RNG noise(kNoiseSeed);
+    const cv::Size frame_size = calibration.image_size;
+    const sim::SensorNoise noise = camera_noise(frame_size, o.noise_sd);
     cv::Mat l, r;
     for (; frame < o.last_frame && read_frame(left, l, base + "cam0.mp4") && read_frame(right, r, base + "cam1.mp4");
          ++frame) {
         if (frame < o.first_frame) continue;
-        add_camera_noise(l, o.noise_sd, noise);
-        add_camera_noise(r, o.noise_sd, noise);
+        if (l.size() != frame_size || r.size() != frame_size)
+            throw std::runtime_error("real pair: the frames are not the calibration's size");
+        noise.apply(l, noise_window(frame, 0));
+        noise.apply(r, noise_window(frame, 1));
         const auto t0 = BenchClock::now();
         const double cpu0 = process_cpu_ms();
         const FrameResult& res = tracker.process_stereo(l, r);
@@ -220,7 +221,7 @@ RealCropFigures measure_real_crop(const RealCropOptions& o)
     const cv::Rect2d seen(0, 0, o.size.width, o.size.height);
     ViewTally tally;
     int cut = 0;
-    cv::RNG noise(kNoiseSeed);
+    const sim::SensorNoise noise = camera_noise(o.size, o.noise_sd);
     cv::Mat frame, view;
     for (int i = 0; i < o.last_frame && read_frame(reader, frame, video); ++i) {
         if (i < o.first_frame) continue;
@@ -228,7 +229,7 @@ RealCropFigures measure_real_crop(const RealCropOptions& o)
             throw std::invalid_argument("real crop: the window lies outside the " + std::to_string(frame.cols) + "x" +
                                         std::to_string(frame.rows) + " frames");
         cv::resize(frame(o.window), view, o.size, 0.0, 0.0, cv::INTER_AREA);
-        add_camera_noise(view, o.noise_sd, noise);
+        noise.apply(view, noise_window(i, 0));
         const EyeEstimate& e = tracker.process(view);
         std::optional<cv::Point2d> tip;
         if (std::size_t(i) < hands.size() && hands[i]) {

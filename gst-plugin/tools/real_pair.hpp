@@ -21,9 +21,9 @@ struct RealPairOptions {
     int first_frame = 0;  // frames [first_frame, last_frame) are tracked
     int last_frame = 1 << 30;
     TrackerParams params;
-    // Camera noise added to every decoded frame of both views: Gaussian, independent per
-    // pixel and channel, this standard deviation in grey levels (0: the recording as it is).
-    // The same every run.
+    // Camera noise added to every decoded frame of both views: the rendered scenes' Gaussian
+    // sensor noise (sim::SensorNoise), this standard deviation in grey levels (0: the
+    // recording as it is). The same every run.
     double noise_sd = 0.0;
 };
 

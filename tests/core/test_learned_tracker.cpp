@@ -31,12 +31,14 @@ std::string real_pair_dir()
     return std::string(root ? root : ".") + "/tests/data/handpose3d";
 }
 
-gc::tools::RealPairFigures real_pair(int first, int last)
+// `noise_sd`: camera noise added to every frame, in grey levels.
+gc::tools::RealPairFigures real_pair(int first, int last, double noise_sd = 0.0)
 {
     gc::tools::RealPairOptions options;
     options.dir = real_pair_dir();
     options.first_frame = first;
     options.last_frame = last;
+    options.noise_sd = noise_sd;
     return gc::tools::measure_real_pair(options);
 }
 
@@ -70,12 +72,7 @@ TEST(LearnedTracker, CarriesTheRealFingertipBetweenModelChecks)
 // the desk must not take the fingertip with it.
 TEST(LearnedTracker, KeepsTheRealFingertipThroughCameraNoise)
 {
-    gc::tools::RealPairOptions options;
-    options.dir = real_pair_dir();
-    options.first_frame = 14;
-    options.last_frame = 110;
-    options.noise_sd = 20.0;
-    const gc::tools::RealPairFigures f = gc::tools::measure_real_pair(options);
+    const gc::tools::RealPairFigures f = real_pair(14, 110, 20.0);
     for (const gc::tools::ViewFigures* view : {&f.left, &f.right}) {
         EXPECT_GE(view->coverage, 0.95);
         EXPECT_GE(view->within_30px, 0.9);
