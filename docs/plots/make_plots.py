@@ -258,6 +258,32 @@ def real_pair_tables(views, pairs):
     return out
 
 
+def windows_table(windows):
+    out = ["", "One view of the real pair alone, through narrower windows scaled to 640x480 that the "
+           "hand enters from the edge of (\"cut\": frames with reference key points outside the "
+           "window):", "",
+           "| detector | window | reference frames | cut | tracked | within 30 px | median px | "
+           "models share of tracked |",
+           "|---|---|---|---|---|---|---|---|"]
+    for w in windows:
+        out.append(f"| {w['detector']} | {w['window']} | {w['reference_frames']} | {w['cut_frames']} | "
+                   f"{fmt(w['coverage'], 3)} | {fmt(w['within_30px'], 3)} | {fmt(w['median_px'], 1)} | "
+                   f"{fmt(w['models_share'], 3)} |")
+    return out
+
+
+def models_table(models):
+    out = ["", "The learned models' cost per call (one thread, median CPU time of alternating calls "
+           "on the same random input; the ratio is the figure to compare across machines):", "",
+           "| model | input | OpenCV's layers ms | with the product's depthwise convolution ms | "
+           "ratio | largest output difference |",
+           "|---|---|---|---|---|---|"]
+    for m in models:
+        out.append(f"| {m['model']} | {m['input_side']}x{m['input_side']} | {fmt(m['opencv_cpu_ms'], 2)} | "
+                   f"{fmt(m['product_cpu_ms'], 2)} | {fmt(m['ratio'], 2)} | {m['max_abs_diff']:.1e} |")
+    return out
+
+
 def tables(data):
     m = data["machine"][0]
     b = data["baseline"][0]
@@ -276,6 +302,10 @@ def tables(data):
         out += stereo_table(data["stereo"])
     if data.get("real_pair") and data.get("real_view"):
         out += real_pair_tables(data["real_view"], data["real_pair"])
+    if data.get("real_window"):
+        out += windows_table(data["real_window"])
+    if data.get("models"):
+        out += models_table(data["models"])
     return "\n".join(out)
 
 

@@ -206,6 +206,49 @@ RealPairFigures measure_real_pair(const RealPairOptions& o)
     return f;
 }
 
+// Frame pixels -> view pixels for frame i: the window, moved by its sway at i / 30 s
+// (seeded by nothing: the same path every run), scaled to the view.
+cv::Matx23d window_map(const RealCropOptions& o, int i)
+{
+    const double t = i / 30.0, two_pi = 2.0 * CV_PI;
+    const CameraSway& w = o.sway;
+    const cv::Point2d centre(o.window.x + 0.5 * o.window.width + w.drift_px * std::sin(two_pi * 0.31 * t) +
+                                 w.bob_px * std::sin(two_pi * 1.7 * t + 0.5),
+                             o.window.y + 0.5 * o.window.height + w.drift_px * std::sin(two_pi * 0.23 * t + 1.0) +
+                                 w.bob_px * std::sin(two_pi * 2.1 * t));
+    const double roll = w.roll_deg * std::sin(two_pi * 0.19 * t + 2.0) * CV_PI / 180.0;
+    const double sx = double(o.size.width) / o.window.width, sy = double(o.size.height) / o.window.height;
+    const double c = std::cos(roll), s = std::sin(roll);
+    // view = S R (frame - centre) + size / 2
+    const cv::Matx22d A(sx * c, sx * s, -sy * s, sy * c);
+    const cv::Vec2d b = cv::Vec2d(0.5 * o.size.width, 0.5 * o.size.height) - A * cv::Vec2d(centre.x, centre.y);
+    return {A(0, 0), A(0, 1), b[0], A(1, 0), A(1, 1), b[1]};
+}
+
+// The window's reach in the frame at the largest sway: throws std::invalid_argument when it
+// leaves the frame.
+void check_window(const RealCropOptions& o, cv::Size frame)
+{
+    const double roll = std::abs(o.sway.roll_deg) * CV_PI / 180.0;
+    const int margin = int(std::ceil(std::abs(o.sway.drift_px) + std::abs(o.sway.bob_px) +
+                                     0.5 * std::hypot(o.window.width, o.window.height) * std::sin(roll)));
+    const cv::Rect reach(o.window.x - margin, o.window.y - margin, o.window.width + 2 * margin,
+                         o.window.height + 2 * margin);
+    if ((cv::Rect(cv::Point(), frame) & reach) != reach)
+        throw std::invalid_argument("real crop: the window lies outside the " + std::to_string(frame.width) + "x" +
+                                    std::to_string(frame.height) + " frames");
+}
+
+RealCropOptions window_options(const std::string& dir, const NamedWindow& window)
+{
+    RealCropOptions o;
+    o.dir = dir;
+    o.camera = window.camera;
+    o.window = window.window;
+    o.sway = window.sway;
+    return o;
+}
+
 RealCropFigures measure_real_crop(const RealCropOptions& o)
 {
     const std::string name = "handpose3d_cam" + std::to_string(o.camera);
@@ -214,10 +257,8 @@ RealCropFigures measure_real_crop(const RealCropOptions& o)
     const std::string video = o.dir + "/" + name + ".mp4";
     GstFrameReader reader(video);
     HandTracker tracker(o.params);
-    const cv::Point2d scale(double(o.size.width) / o.window.width, double(o.size.height) / o.window.height);
-    const auto into_window = [&](const cv::Point2d& p) {
-        return cv::Point2d((p.x - o.window.x) * scale.x, (p.y - o.window.y) * scale.y);
-    };
+    cv::Matx23d map;
+    const auto into_window = [&](const cv::Point2d& p) { return cv::Point2d(map * cv::Vec3d(p.x, p.y, 1.0)); };
     const cv::Rect2d seen(0, 0, o.size.width, o.size.height);
     ViewTally tally;
     int cut = 0;
@@ -225,10 +266,12 @@ RealCropFigures measure_real_crop(const RealCropOptions& o)
     cv::Mat frame, view;
     for (int i = 0; i < o.last_frame && read_frame(reader, frame, video); ++i) {
         if (i < o.first_frame) continue;
-        if ((cv::Rect(0, 0, frame.cols, frame.rows) & o.window) != o.window)
-            throw std::invalid_argument("real crop: the window lies outside the " + std::to_string(frame.cols) + "x" +
-                                        std::to_string(frame.rows) + " frames");
-        cv::resize(frame(o.window), view, o.size, 0.0, 0.0, cv::INTER_AREA);
+        check_window(o, frame.size());
+        map = window_map(o, i);
+        if (o.sway.still())
+            cv::resize(frame(o.window), view, o.size, 0.0, 0.0, cv::INTER_AREA);
+        else
+            cv::warpAffine(frame, view, map, o.size, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
         noise.apply(view, noise_window(i, 0));
         const EyeEstimate& e = tracker.process(view);
         std::optional<cv::Point2d> tip;

@@ -53,6 +53,16 @@ struct RealPairFigures {
     double cpu_ms_per_frame = 0.0;  // median CPU time of one, every thread of the process
 };
 
+// A camera that moves while it films (held in the hand or worn): the window's centre wanders
+// slowly and bobs faster, as on a walk, and the window turns about its centre. Amplitudes
+// in the recording's pixels and in degrees; all zero keeps the window still.
+struct CameraSway {
+    double drift_px = 0.0;
+    double bob_px = 0.0;
+    double roll_deg = 0.0;
+    bool still() const { return drift_px == 0.0 && bob_px == 0.0 && roll_deg == 0.0; }
+};
+
 // One view of the pair seen through a narrower camera: a window of its frames scaled to
 // `size`, so that the hand enters from the window's edge (wrist or palm cut off) as it does
 // before a webcam close to the speaker. The view is tracked alone and scored against the
@@ -60,7 +70,8 @@ struct RealPairFigures {
 struct RealCropOptions {
     std::string dir;  // as RealPairOptions::dir
     int camera = 0;   // 0: handpose3d_cam0 (left), 1: cam1 (right)
-    cv::Rect window;  // in the recording's 720x720 frames
+    cv::Rect window;  // in the recording's 720x720 frames; where a swaying window is centred
+    CameraSway sway;
     cv::Size size{640, 480};
     int first_frame = 0;
     int last_frame = 1 << 30;
@@ -77,15 +88,22 @@ struct RealCropFigures {
 
 // The windows gesturecam-bench reports: the hand entering from the top of the left view
 // (its wrist cut on most frames), from the left of the right view (a closer camera: the
-// window is scaled up 1.7x), and the left view with the fingertip near the right edge.
+// window is scaled up 1.7x), the left view with the fingertip near the right edge, and the
+// left view through a moving camera (up to 11 px of motion per frame and 4 deg of
+// roll; the hand crosses the top edge as the window moves).
 struct NamedWindow {
     const char* name;
     int camera;
     cv::Rect window;
+    CameraSway sway{};
 };
 inline const NamedWindow kEdgeWindows[] = {{"cam0 from the top", 0, {80, 180, 640, 480}},
                                            {"cam1 from the left, closer", 1, {330, 220, 380, 285}},
-                                           {"cam0 towards the right", 0, {0, 100, 640, 480}}};
+                                           {"cam0 towards the right", 0, {0, 100, 640, 480}},
+                                           {"cam0, a moving camera", 0, {80, 150, 560, 420}, {40.0, 12.0, 4.0}}};
+
+// Options that track `window` of the pair in `dir`, every other option at its default.
+RealCropOptions window_options(const std::string& dir, const NamedWindow& window);
 
 // MediaPipe's 21 key points of one frame of a view, in pixels; nothing where it found no hand.
 using ReferenceHand = std::optional<std::array<cv::Point2d, 21>>;

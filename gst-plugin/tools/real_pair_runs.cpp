@@ -43,10 +43,7 @@ ViewFigures mean_view(const std::vector<ViewFigures>& views)
 
 RealCropFigures measure_window(const RealPairOptions& options, const NamedWindow& w)
 {
-    RealCropOptions crop;
-    crop.dir = options.dir;
-    crop.camera = w.camera;
-    crop.window = w.window;
+    RealCropOptions crop = window_options(options.dir, w);
     crop.last_frame = options.last_frame;
     crop.params = options.params;
     crop.noise_sd = options.noise_sd;
