@@ -1,5 +1,9 @@
 #include "detect/dnn_input.hpp"
 
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <array>
 #include <stdexcept>
 
 namespace gc {
@@ -22,6 +26,22 @@ void fill_rgb_blob(const cv::Mat3b& bgr, double scale, double shift, cv::Mat3f& 
                         cv::Mat(side, side, CV_32F, data + 2 * plane)};
     const int bgr_to_rgb[] = {2, 0, 1, 1, 0, 2};
     cv::mixChannels(&scratch, 1, planes, 3, bgr_to_rgb, 3);
+}
+
+double dark_image_gain(const cv::Mat3b& bgr, cv::Mat1b& grey)
+{
+    if (bgr.empty()) return 1.0;
+    cv::cvtColor(bgr, grey, cv::COLOR_BGR2GRAY);
+    std::array<int, 256> histogram{};
+    for (int y = 0; y < grey.rows; ++y) {
+        const uchar* row = grey.ptr<uchar>(y);
+        for (int x = 0; x < grey.cols; ++x) ++histogram[row[x]];
+    }
+    const int above = int(grey.total() / 20);  // pixels above the 95th percentile
+    int level = 255, count = 0;
+    while (level > 0 && count + histogram[std::size_t(level)] <= above) count += histogram[std::size_t(level--)];
+    if (level >= kDarkBrightEnd) return 1.0;
+    return std::min(kMaxDarkGain, double(kExposedBrightEnd) / std::max(level, 1));
 }
 
 }  // namespace gc

@@ -12,4 +12,12 @@ cv::Mat make_square_blob(int side);
 // RGB, each value v mapped to v * scale + shift. `scratch` is reused between calls.
 void fill_rgb_blob(const cv::Mat3b& bgr, double scale, double shift, cv::Mat3f& scratch, cv::Mat& blob);
 
+// The gain that brings a dark image's bright end (the 95th percentile of its grey levels,
+// below kDarkBrightEnd) up to kExposedBrightEnd, at most kMaxDarkGain; 1 for an image that
+// is not dark. `grey` is reused between calls.
+constexpr int kDarkBrightEnd = 100;
+constexpr int kExposedBrightEnd = 170;
+constexpr double kMaxDarkGain = 3.0;
+double dark_image_gain(const cv::Mat3b& bgr, cv::Mat1b& grey);
+
 }  // namespace gc

@@ -111,6 +111,10 @@ HandKeyPoints LandmarkModel::run(const cv::Mat& bgr, const HandCrop& crop)
     sample(1, 2) += 0.5f * (to_frame(1, 0) + to_frame(1, 1)) - 0.5f;
     cv::warpAffine(bgr, crop_, sample, crop_.size(), cv::INTER_LINEAR | cv::WARP_INVERSE_MAP, cv::BORDER_CONSTANT,
                    cv::Scalar::all(0));
+    // A hand in a dark picture (an underexposed camera, a backlit room) is shown to the
+    // model at a normal exposure.
+    const double gain = dark_image_gain(crop_, grey_);
+    if (gain != 1.0) crop_.convertTo(crop_, -1, gain);
     fill_rgb_blob(crop_, 1.0 / 255.0, 0.0, scaled_, blob_);
     net_.setInput(blob_);
     net_.forward(outputs_, output_names_);

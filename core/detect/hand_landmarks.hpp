@@ -91,6 +91,7 @@ private:
     std::vector<std::string> output_names_;
     // Preallocated per-call buffers: the warped crop, its float copy, the blob.
     cv::Mat3b crop_;
+    cv::Mat1b grey_;
     cv::Mat3f scaled_;
     cv::Mat blob_;
     std::vector<cv::Mat> outputs_;

@@ -33,6 +33,8 @@ options:
   --real-frames N    track only the real pair's first N frames (default: all 378)
   --real-noise SD    add camera noise to the real pair's frames: Gaussian, per pixel and
                      channel, SD grey levels (default 0: the recording as it is)
+  --real-dim F       show the real pair as in a dim room: each grey level v becomes
+                     255 F (v / 255)^2.2, F in (0, 1] (default 1: as it is)
   --no-real          skip the real pair
   --quick            a small smoke run: particles 50,200, scenes clean,heavy, 40 frames,
                      1 run, seed 1, 200 particles for the comparisons, the real pair's
@@ -79,7 +81,7 @@ gc::HandDetector parse_detector(std::string_view opt, std::string_view item)
 // The options' texts as CLI11 read them; converted afterwards with the messages above.
 struct GivenText {
     std::optional<std::string> particles, scenes, motion, detectors, frames, runs, seeds, peer_particles, real_frames,
-        real_noise;
+        real_noise, real_dim;
 };
 
 void add_options(CLI::App& app, BenchOptions& o, Given& g, GivenText& t)
@@ -93,7 +95,8 @@ void add_options(CLI::App& app, BenchOptions& o, Given& g, GivenText& t)
                               {"--seeds", &t.seeds},
                               {"--peer-particles", &t.peer_particles},
                               {"--real-frames", &t.real_frames},
-                              {"--real-noise", &t.real_noise}})
+                              {"--real-noise", &t.real_noise},
+                              {"--real-dim", &t.real_dim}})
         app.add_option(name, *text);
     app.add_option("--real", g.real_dir);
     app.add_flag("--json", o.json);
@@ -123,6 +126,7 @@ void convert(const GivenText& t, BenchOptions& o, Given& g)
     if (t.peer_particles) g.peer_particles = parse_number<int>("--peer-particles", *t.peer_particles, 1, 100000);
     if (t.real_frames) g.real_frames = parse_number<int>("--real-frames", *t.real_frames, 1, 1 << 30);
     if (t.real_noise) o.real_noise = parse_number<double>("--real-noise", *t.real_noise, 0.0, 255.0);
+    if (t.real_dim) o.real_dim = parse_number<double>("--real-dim", *t.real_dim, 0.01, 1.0);
 }
 
 void apply(const Given& g, BenchOptions& o)

@@ -31,6 +31,7 @@ struct BenchOptions {
     bool real_dir_given = false;  // named on the command line (else the source tree's)
     int real_frames = 1 << 30;    // the real pair's first frames that are tracked
     double real_noise = 0.0;      // camera noise added to the real pair's frames (grey levels, sd)
+    double real_dim = 1.0;        // the real pair's frames dimmed (RealPairOptions::dim)
     bool json = false;
 };
 

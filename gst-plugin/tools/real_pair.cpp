@@ -123,6 +123,21 @@ sim::SensorNoise camera_noise(cv::Size frame, double sd)
     return sd > 0.0 ? sim::SensorNoise(frame, sd, kNoiseSeed) : sim::SensorNoise();
 }
 
+// The grey levels of RealPairOptions::dim as a lookup table; empty for 1 (nothing to do).
+cv::Mat dim_levels(double dim)
+{
+    if (!(dim > 0.0 && dim <= 1.0)) throw std::invalid_argument("real pair: dim must lie in (0, 1]");
+    if (dim == 1.0) return {};
+    cv::Mat1b lut(1, 256);
+    for (int v = 0; v < 256; ++v) lut(0, v) = cv::saturate_cast<uchar>(255.0 * dim * std::pow(v / 255.0, 2.2));
+    return lut;
+}
+
+void apply_dim(cv::Mat& bgr, const cv::Mat& levels)
+{
+    if (!levels.empty()) cv::LUT(bgr, levels, bgr);
+}
+
 // Where in the noise's pool frame `i` of a view takes its window.
 std::uint64_t noise_window(int i, int view) { return sim::mix_seed(std::uint64_t(i) << 1 | std::uint64_t(view), 0); }
 
@@ -161,12 +176,15 @@ RealPairFigures measure_real_pair(const RealPairOptions& o)
     int pointing = 0, other = 0, false_rays = 0, frame = 0;
     const cv::Size frame_size = calibration.image_size;
     const sim::SensorNoise noise = camera_noise(frame_size, o.noise_sd);
+    const cv::Mat levels = dim_levels(o.dim);
     cv::Mat l, r;
     for (; frame < o.last_frame && read_frame(left, l, base + "cam0.mp4") && read_frame(right, r, base + "cam1.mp4");
          ++frame) {
         if (frame < o.first_frame) continue;
         if (l.size() != frame_size || r.size() != frame_size)
             throw std::runtime_error("real pair: the frames are not the calibration's size");
+        apply_dim(l, levels);
+        apply_dim(r, levels);
         noise.apply(l, noise_window(frame, 0));
         noise.apply(r, noise_window(frame, 1));
         const auto t0 = BenchClock::now();
@@ -263,6 +281,7 @@ RealCropFigures measure_real_crop(const RealCropOptions& o)
     ViewTally tally;
     int cut = 0;
     const sim::SensorNoise noise = camera_noise(o.size, o.noise_sd);
+    const cv::Mat levels = dim_levels(o.dim);
     cv::Mat frame, view;
     for (int i = 0; i < o.last_frame && read_frame(reader, frame, video); ++i) {
         if (i < o.first_frame) continue;
@@ -272,6 +291,7 @@ RealCropFigures measure_real_crop(const RealCropOptions& o)
             cv::resize(frame(o.window), view, o.size, 0.0, 0.0, cv::INTER_AREA);
         else
             cv::warpAffine(frame, view, map, o.size, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+        apply_dim(view, levels);
         noise.apply(view, noise_window(i, 0));
         const EyeEstimate& e = tracker.process(view);
         std::optional<cv::Point2d> tip;

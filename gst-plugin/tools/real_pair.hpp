@@ -25,6 +25,10 @@ struct RealPairOptions {
     // sensor noise (sim::SensorNoise), this standard deviation in grey levels (0: the
     // recording as it is). The same every run.
     double noise_sd = 0.0;
+    // A dim room through a camera that keeps its settings, below 1: each grey level v of
+    // both views becomes 255 * dim * (v / 255)^2.2 (darker, the shadows crushed), before the
+    // noise. 1: the recording as it is.
+    double dim = 1.0;
 };
 
 struct ViewFigures {
@@ -77,6 +81,7 @@ struct RealCropOptions {
     int last_frame = 1 << 30;
     TrackerParams params;
     double noise_sd = 0.0;  // as RealPairOptions::noise_sd, added to the window's frames
+    double dim = 1.0;       // as RealPairOptions::dim
 };
 
 // A frame counts when the reference fingertip and at least half of its key points lie in

@@ -47,6 +47,7 @@ RealCropFigures measure_window(const RealPairOptions& options, const NamedWindow
     crop.last_frame = options.last_frame;
     crop.params = options.params;
     crop.noise_sd = options.noise_sd;
+    crop.dim = options.dim;
     return measure_real_crop(crop);
 }
 
@@ -84,6 +85,7 @@ std::vector<RealPairRow> measure_real_pair_rows(const BenchOptions& o)
     options.dir = o.real_dir;
     options.last_frame = o.real_frames;
     options.noise_sd = o.real_noise;
+    options.dim = o.real_dim;
     options.params.particles = o.peer_particles;
     for (gc::HandDetector detector : o.detectors) {
         options.params.detector = detector;

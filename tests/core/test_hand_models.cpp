@@ -1,6 +1,7 @@
 // The learned hand models on the real stereo pair: the palm detector finds the hand, the
 // landmark model puts the fingertip where MediaPipe does, frames without a hand give none,
 // and broken model files are refused with their path.
+#include "detect/dnn_input.hpp"
 #include "detect/hand_finder.hpp"
 #include "detect/hand_landmarks.hpp"
 #include "detect/model_files.hpp"
@@ -305,3 +306,19 @@ TEST(HandModelFiles, NamedFolderAndEnvironmentComeFirst)
 }
 
 }  // namespace
+
+// A dark crop is brought up to a normal exposure for the models, at most 3 times brighter;
+// a normally exposed one, and an empty one, are left as they are.
+TEST(DarkImageGain, BrightensOnlyDarkImages)
+{
+    cv::Mat1b grey;
+    cv::Mat3b image(64, 64, cv::Vec3b(20, 20, 20));
+    image(cv::Rect(0, 0, 64, 16)).setTo(cv::Vec3b(85, 85, 85));  // a quarter brighter: the 95th percentile
+    EXPECT_NEAR(gc::dark_image_gain(image, grey), double(gc::kExposedBrightEnd) / 85.0, 1e-9);
+    image.setTo(cv::Vec3b(10, 10, 10));
+    EXPECT_DOUBLE_EQ(gc::dark_image_gain(image, grey), gc::kMaxDarkGain);
+    image.setTo(cv::Vec3b(60, 60, 60));
+    image(cv::Rect(0, 0, 64, 16)).setTo(cv::Vec3b(200, 200, 200));
+    EXPECT_DOUBLE_EQ(gc::dark_image_gain(image, grey), 1.0);
+    EXPECT_DOUBLE_EQ(gc::dark_image_gain(cv::Mat3b(), grey), 1.0);
+}

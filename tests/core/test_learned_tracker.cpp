@@ -32,14 +32,15 @@ std::string real_pair_dir()
     return std::string(root ? root : ".") + "/tests/data/handpose3d";
 }
 
-// `noise_sd`: camera noise added to every frame, in grey levels.
-gc::tools::RealPairFigures real_pair(int first, int last, double noise_sd = 0.0)
+// `noise_sd`: camera noise added to every frame, in grey levels; `dim`: RealPairOptions::dim.
+gc::tools::RealPairFigures real_pair(int first, int last, double noise_sd = 0.0, double dim = 1.0)
 {
     gc::tools::RealPairOptions options;
     options.dir = real_pair_dir();
     options.first_frame = first;
     options.last_frame = last;
     options.noise_sd = noise_sd;
+    options.dim = dim;
     return gc::tools::measure_real_pair(options);
 }
 
@@ -80,6 +81,20 @@ TEST(LearnedTracker, KeepsTheRealFingertipThroughCameraNoise)
     }
     EXPECT_GE(f.ray_coverage, 0.75);
     EXPECT_LE(f.angle_p90_deg, 12.0);
+}
+
+// The same frames as in a dim room (each grey level v becomes 255 x 0.45 x (v / 255)^2.2:
+// the hand over the black mouse pad barely stands out): the landmark model is shown the
+// hand's crop at a normal exposure, and both views keep the fingertip. Without that the
+// right view's fingertip was within 30 px on 47 % of the frames and a ray came on 43 %.
+TEST(LearnedTracker, FollowsARealPointingHandInADimRoom)
+{
+    const gc::tools::RealPairFigures f = real_pair(14, 110, 0.0, 0.45);
+    for (const gc::tools::ViewFigures* view : {&f.left, &f.right}) {
+        EXPECT_GE(view->coverage, 0.95);
+        EXPECT_GE(view->within_30px, 0.6);
+    }
+    EXPECT_GE(f.ray_coverage, 0.55);
 }
 
 // Frames 230-329: an open hand and a fist; followed, but never reported as pointing.
