@@ -116,30 +116,33 @@ bool read_frame(GstFrameReader& view, cv::Mat& bgr, const std::string& path)
     return status == FrameStatus::Frame;
 }
 
-// The camera noise of the rendered scenes, the same in every run: none for `sd` 0.
-sim::SensorNoise camera_noise(cv::Size frame, double sd)
-{
-    constexpr std::uint64_t kNoiseSeed = 0x6E6F697365ULL;
-    return sd > 0.0 ? sim::SensorNoise(frame, sd, kNoiseSeed) : sim::SensorNoise();
-}
+// What the options do to each decoded frame, dimming first, then the rendered scenes'
+// camera noise (the same in every run).
+class PictureChange {
+public:
+    PictureChange(cv::Size frame, double dim, double noise_sd)
+    {
+        if (!(dim > 0.0 && dim <= 1.0)) throw std::invalid_argument("real pair: dim must lie in (0, 1]");
+        if (dim < 1.0) {
+            levels_ = cv::Mat1b(1, 256);
+            for (int v = 0; v < 256; ++v)
+                levels_.at<uchar>(0, v) = cv::saturate_cast<uchar>(255.0 * dim * std::pow(v / 255.0, 2.2));
+        }
+        constexpr std::uint64_t kNoiseSeed = 0x6E6F697365ULL;
+        if (noise_sd > 0.0) noise_ = sim::SensorNoise(frame, noise_sd, kNoiseSeed);
+    }
 
-// The grey levels of RealPairOptions::dim as a lookup table; empty for 1 (nothing to do).
-cv::Mat dim_levels(double dim)
-{
-    if (!(dim > 0.0 && dim <= 1.0)) throw std::invalid_argument("real pair: dim must lie in (0, 1]");
-    if (dim == 1.0) return {};
-    cv::Mat1b lut(1, 256);
-    for (int v = 0; v < 256; ++v) lut(0, v) = cv::saturate_cast<uchar>(255.0 * dim * std::pow(v / 255.0, 2.2));
-    return lut;
-}
+    // Frame `i` of view `view` (0 left, 1 right) takes its own window of the noise's pool.
+    void apply(cv::Mat& bgr, int i, int view) const
+    {
+        if (!levels_.empty()) cv::LUT(bgr, levels_, bgr);
+        noise_.apply(bgr, sim::mix_seed(std::uint64_t(i) << 1 | std::uint64_t(view), 0));
+    }
 
-void apply_dim(cv::Mat& bgr, const cv::Mat& levels)
-{
-    if (!levels.empty()) cv::LUT(bgr, levels, bgr);
-}
-
-// Where in the noise's pool frame `i` of a view takes its window.
-std::uint64_t noise_window(int i, int view) { return sim::mix_seed(std::uint64_t(i) << 1 | std::uint64_t(view), 0); }
+private:
+    cv::Mat levels_;  // empty: no dimming
+    sim::SensorNoise noise_;
+};
 
 }  // namespace
 
@@ -175,18 +178,15 @@ RealPairFigures measure_real_pair(const RealPairOptions& o)
     std::vector<double> angles, ms, cpu_ms;
     int pointing = 0, other = 0, false_rays = 0, frame = 0;
     const cv::Size frame_size = calibration.image_size;
-    const sim::SensorNoise noise = camera_noise(frame_size, o.noise_sd);
-    const cv::Mat levels = dim_levels(o.dim);
+    const PictureChange change(frame_size, o.dim, o.noise_sd);
     cv::Mat l, r;
     for (; frame < o.last_frame && read_frame(left, l, base + "cam0.mp4") && read_frame(right, r, base + "cam1.mp4");
          ++frame) {
         if (frame < o.first_frame) continue;
         if (l.size() != frame_size || r.size() != frame_size)
             throw std::runtime_error("real pair: the frames are not the calibration's size");
-        apply_dim(l, levels);
-        apply_dim(r, levels);
-        noise.apply(l, noise_window(frame, 0));
-        noise.apply(r, noise_window(frame, 1));
+        change.apply(l, frame, 0);
+        change.apply(r, frame, 1);
         const auto t0 = BenchClock::now();
         const double cpu0 = process_cpu_ms();
         const FrameResult& res = tracker.process_stereo(l, r);
@@ -280,8 +280,7 @@ RealCropFigures measure_real_crop(const RealCropOptions& o)
     const cv::Rect2d seen(0, 0, o.size.width, o.size.height);
     ViewTally tally;
     int cut = 0;
-    const sim::SensorNoise noise = camera_noise(o.size, o.noise_sd);
-    const cv::Mat levels = dim_levels(o.dim);
+    const PictureChange change(o.size, o.dim, o.noise_sd);
     cv::Mat frame, view;
     for (int i = 0; i < o.last_frame && read_frame(reader, frame, video); ++i) {
         if (i < o.first_frame) continue;
@@ -291,8 +290,7 @@ RealCropFigures measure_real_crop(const RealCropOptions& o)
             cv::resize(frame(o.window), view, o.size, 0.0, 0.0, cv::INTER_AREA);
         else
             cv::warpAffine(frame, view, map, o.size, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
-        apply_dim(view, levels);
-        noise.apply(view, noise_window(i, 0));
+        change.apply(view, i, 0);
         const EyeEstimate& e = tracker.process(view);
         std::optional<cv::Point2d> tip;
         if (std::size_t(i) < hands.size() && hands[i]) {
