@@ -47,6 +47,7 @@ private:
     // Preallocated per-call buffers: the letterboxed input, its float copy, the blob.
     cv::Mat3b letterbox_;
     cv::Mat3f scaled_;
+    cv::Mat1b grey_;  // the letterboxed picture in grey, to judge its exposure
     cv::Mat blob_;
     std::vector<cv::Mat> outputs_;
     // Letterbox geometry of the last frame: input pixel = frame pixel * scale + offset.
