@@ -37,8 +37,12 @@ double dark_image_gain(const cv::Mat3b& bgr, cv::Mat1b& grey)
         const uchar* row = grey.ptr<uchar>(y);
         for (int x = 0; x < grey.cols; ++x) ++histogram[row[x]];
     }
-    const int above = int(grey.total() / 20);  // pixels above the 95th percentile
-    int level = 255, count = 0;
+    // Blown-out pixels (a window, a lamp) say nothing of how the rest is exposed: left out.
+    int level = 255, judged = int(grey.total());
+    for (; level >= kBlownOutLevel; --level) judged -= histogram[std::size_t(level)];
+    if (judged == 0) return 1.0;
+    const int above = judged / 20;  // pixels above the 95th percentile
+    int count = 0;
     while (level > 0 && count + histogram[std::size_t(level)] <= above) count += histogram[std::size_t(level--)];
     if (level >= kDarkBrightEnd) return 1.0;
     return std::min(kMaxDarkGain, double(kExposedBrightEnd) / std::max(level, 1));

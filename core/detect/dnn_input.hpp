@@ -14,7 +14,9 @@ void fill_rgb_blob(const cv::Mat3b& bgr, double scale, double shift, cv::Mat3f& 
 
 // The gain that brings a dark image's bright end (the 95th percentile of its grey levels,
 // below kDarkBrightEnd) up to kExposedBrightEnd, at most kMaxDarkGain; 1 for an image that
-// is not dark. `grey` is reused between calls.
+// is not dark. Pixels at kBlownOutLevel and above are left out of the percentile. `grey` is
+// reused between calls.
+constexpr int kBlownOutLevel = 250;
 constexpr int kDarkBrightEnd = 100;
 constexpr int kExposedBrightEnd = 170;
 constexpr double kMaxDarkGain = 3.0;

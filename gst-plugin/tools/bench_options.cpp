@@ -35,6 +35,8 @@ options:
                      channel, SD grey levels (default 0: the recording as it is)
   --real-dim F       show the real pair as in a dim room: each grey level v becomes
                      255 F (v / 255)^2.2, F in (0, 1] (default 1: as it is)
+  --real-window      a window in both views of the pair, blown out to white after the
+                     dimming, where the hand never goes (not in the windows' rows)
   --no-real          skip the real pair
   --quick            a small smoke run: particles 50,200, scenes clean,heavy, 40 frames,
                      1 run, seed 1, 200 particles for the comparisons, the real pair's
@@ -102,6 +104,7 @@ void add_options(CLI::App& app, BenchOptions& o, Given& g, GivenText& t)
     app.add_flag("--json", o.json);
     app.add_flag("--quick", g.quick);
     app.add_flag("--no-real", g.no_real);
+    app.add_flag("--real-window", o.real_bright_window);
     app.add_flag("!--no-peers", o.peers);
 }
 

@@ -27,11 +27,12 @@ struct BenchOptions {
     std::vector<std::uint64_t> seeds{1, 2, 3};
     int peer_particles = 1000;
     bool peers = true;
-    std::string real_dir;         // the real pair's folder; empty: skip it
-    bool real_dir_given = false;  // named on the command line (else the source tree's)
-    int real_frames = 1 << 30;    // the real pair's first frames that are tracked
-    double real_noise = 0.0;      // camera noise added to the real pair's frames (grey levels, sd)
-    double real_dim = 1.0;        // the real pair's frames dimmed (RealPairOptions::dim)
+    std::string real_dir;             // the real pair's folder; empty: skip it
+    bool real_dir_given = false;      // named on the command line (else the source tree's)
+    int real_frames = 1 << 30;        // the real pair's first frames that are tracked
+    double real_noise = 0.0;          // camera noise added to the real pair's frames (grey levels, sd)
+    double real_dim = 1.0;            // the real pair's frames dimmed (RealPairOptions::dim)
+    bool real_bright_window = false;  // RealPairOptions::bright_window
     bool json = false;
 };
 

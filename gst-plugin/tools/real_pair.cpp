@@ -116,11 +116,12 @@ bool read_frame(GstFrameReader& view, cv::Mat& bgr, const std::string& path)
     return status == FrameStatus::Frame;
 }
 
-// What the options do to each decoded frame, dimming first, then the rendered scenes'
-// camera noise (the same in every run).
+// What the options do to each decoded frame: dimming first, then the bright window, then
+// the rendered scenes' camera noise (the same in every run).
 class PictureChange {
 public:
-    PictureChange(cv::Size frame, double dim, double noise_sd)
+    PictureChange(cv::Size frame, double dim, double noise_sd, bool bright_window = false)
+        : bright_window_(bright_window)
     {
         if (!(dim > 0.0 && dim <= 1.0)) throw std::invalid_argument("real pair: dim must lie in (0, 1]");
         if (dim < 1.0) {
@@ -136,11 +137,13 @@ public:
     void apply(cv::Mat& bgr, int i, int view) const
     {
         if (!levels_.empty()) cv::LUT(bgr, levels_, bgr);
+        if (bright_window_) bgr(kBrightWindows[view] & cv::Rect(0, 0, bgr.cols, bgr.rows)).setTo(cv::Scalar::all(255));
         noise_.apply(bgr, sim::mix_seed(std::uint64_t(i) << 1 | std::uint64_t(view), 0));
     }
 
 private:
     cv::Mat levels_;  // empty: no dimming
+    bool bright_window_;
     sim::SensorNoise noise_;
 };
 
@@ -178,7 +181,7 @@ RealPairFigures measure_real_pair(const RealPairOptions& o)
     std::vector<double> angles, ms, cpu_ms;
     int pointing = 0, other = 0, false_rays = 0, frame = 0;
     const cv::Size frame_size = calibration.image_size;
-    const PictureChange change(frame_size, o.dim, o.noise_sd);
+    const PictureChange change(frame_size, o.dim, o.noise_sd, o.bright_window);
     cv::Mat l, r;
     for (; frame < o.last_frame && read_frame(left, l, base + "cam0.mp4") && read_frame(right, r, base + "cam1.mp4");
          ++frame) {

@@ -29,7 +29,14 @@ struct RealPairOptions {
     // both views becomes 255 * dim * (v / 255)^2.2 (darker, the shadows crushed), before the
     // noise. 1: the recording as it is.
     double dim = 1.0;
+    // A window in view that the camera's exposure cannot hold: kBrightWindows, set to white
+    // in both views after the dimming and before the noise. The hand never goes there.
+    bool bright_window = false;
 };
+
+// Where the bright window lies in the pair's 720x720 frames: the left view's shelf and floor
+// beside the desk, the right view's wall above it.
+inline const cv::Rect kBrightWindows[2] = {{0, 0, 180, 300}, {180, 0, 290, 120}};
 
 struct ViewFigures {
     int reference_frames = 0;         // frames where the reference has the hand in this view

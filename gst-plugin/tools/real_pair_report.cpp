@@ -11,16 +11,25 @@ namespace gc::tools {
 
 namespace {
 
+// The fields every real row starts with: what was measured and how its frames were changed
+// (the bright window is painted into the pair's views only, not into the windows').
+JsonObject real_row(std::string_view kind, const BenchOptions& o, const RealPairRow& row, bool bright_window)
+{
+    JsonObject j;
+    j.add("kind", kind)
+        .add("detector", detector_name(row.detector))
+        .add("seeds", seeds_text(o.seeds))
+        .add("noise_sd", o.real_noise, 1)
+        .add("dim", o.real_dim, 2)
+        .add("bright_window", bright_window);
+    return j;
+}
+
 void print_view(const BenchOptions& o, const RealPairRow& row, std::string_view view, const ViewFigures& v,
                 std::ostream& out)
 {
     if (o.json) {
-        out << JsonObject()
-                   .add("kind", "real_view")
-                   .add("detector", detector_name(row.detector))
-                   .add("seeds", seeds_text(o.seeds))
-                   .add("noise_sd", o.real_noise, 1)
-                   .add("dim", o.real_dim, 2)
+        out << real_row("real_view", o, row, o.real_bright_window)
                    .add("view", view)
                    .add("reference_frames", v.reference_frames)
                    .add("coverage", v.coverage, 3)
@@ -48,12 +57,7 @@ void print_3d(const BenchOptions& o, const RealPairRow& row, std::ostream& out)
     const RealPairFigures& f = row.figures;
     const double fps = row.ms_per_frame > 0.0 ? 1000.0 / row.ms_per_frame : std::nan("");
     if (o.json) {
-        out << JsonObject()
-                   .add("kind", "real_pair")
-                   .add("detector", detector_name(row.detector))
-                   .add("seeds", seeds_text(o.seeds))
-                   .add("noise_sd", o.real_noise, 1)
-                   .add("dim", o.real_dim, 2)
+        out << real_row("real_pair", o, row, o.real_bright_window)
                    .add("particles", o.peer_particles)
                    .add("frames", f.frames)
                    .add("pointing_frames", f.pointing_frames)
@@ -87,12 +91,7 @@ void print_windows(const BenchOptions& o, const std::vector<RealPairRow>& rows, 
         for (std::size_t i = 0; i < row.windows.size() && i < std::size(kEdgeWindows); ++i) {
             const RealCropFigures& w = row.windows[i];
             if (o.json) {
-                out << JsonObject()
-                           .add("kind", "real_window")
-                           .add("detector", detector_name(row.detector))
-                           .add("seeds", seeds_text(o.seeds))
-                           .add("noise_sd", o.real_noise, 1)
-                           .add("dim", o.real_dim, 2)
+                out << real_row("real_window", o, row, false)
                            .add("window", kEdgeWindows[i].name)
                            .add("reference_frames", w.view.reference_frames)
                            .add("cut_frames", w.cut_frames)
@@ -119,6 +118,8 @@ void print_real_pair(const BenchOptions& o, const std::vector<RealPairRow>& rows
     if (!o.json)
         out << "\n## Real pair (" << o.real_dir << ": 720x720, " << rows.front().figures.frames << " stereo frames, "
             << o.peer_particles << " particles per eye, seeds " << seeds_text(o.seeds)
+            << (o.real_dim < 1.0 ? ", dimmed to " + fixed(o.real_dim, 2) : "")
+            << (o.real_bright_window ? ", a bright window in view" : "")
             << (o.real_noise > 0.0 ? ", camera noise of " + fixed(o.real_noise, 1) + " grey levels added" : "")
             << ")\n\n"
             << "Each figure is the mean of the per-seed figures: one seed's move with the tracker's random "

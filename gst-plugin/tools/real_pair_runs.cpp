@@ -86,6 +86,7 @@ std::vector<RealPairRow> measure_real_pair_rows(const BenchOptions& o)
     options.last_frame = o.real_frames;
     options.noise_sd = o.real_noise;
     options.dim = o.real_dim;
+    options.bright_window = o.real_bright_window;
     options.params.particles = o.peer_particles;
     for (gc::HandDetector detector : o.detectors) {
         options.params.detector = detector;

@@ -188,6 +188,7 @@ TEST(BenchTool, QuickJsonRunHasTheRealPairForEachDetector)
         detectors.insert(detector);
         EXPECT_EQ(p["frames"].number(), 40) << detector;
         EXPECT_EQ(p["noise_sd"].number(), 0.0) << detector;  // the recording as it is
+        EXPECT_FALSE(std::get<bool>(p["bright_window"].v)) << detector;
         EXPECT_EQ(p["pointing_frames"].number(), 26) << detector;
         EXPECT_TRUE(in_range(p["ray_coverage"], 0.0, 1.0)) << detector;
         EXPECT_TRUE(in_range(p["false_pointing"], 0.0, 1.0)) << detector;

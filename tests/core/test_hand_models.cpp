@@ -322,3 +322,19 @@ TEST(DarkImageGain, BrightensOnlyDarkImages)
     EXPECT_DOUBLE_EQ(gc::dark_image_gain(image, grey), 1.0);
     EXPECT_DOUBLE_EQ(gc::dark_image_gain(cv::Mat3b(), grey), 1.0);
 }
+
+// A dark room with a blown-out window in view is still a dark room: the window's white is
+// left out of the exposure, whatever share of the picture it takes; a picture that is all
+// window is left as it is.
+TEST(DarkImageGain, LeavesBlownOutPixelsOutOfTheExposure)
+{
+    cv::Mat1b grey;
+    cv::Mat3b image(64, 64, cv::Vec3b(20, 20, 20));
+    image(cv::Rect(0, 0, 64, 16)).setTo(cv::Vec3b(85, 85, 85));
+    image(cv::Rect(0, 48, 64, 16)).setTo(cv::Vec3b(255, 255, 255));  // a quarter is window
+    EXPECT_NEAR(gc::dark_image_gain(image, grey), double(gc::kExposedBrightEnd) / 85.0, 1e-9);
+    image(cv::Rect(0, 48, 64, 16)).setTo(cv::Vec3b(249, 249, 249));  // bright, but not blown out
+    EXPECT_DOUBLE_EQ(gc::dark_image_gain(image, grey), 1.0);
+    image.setTo(cv::Vec3b(255, 255, 255));
+    EXPECT_DOUBLE_EQ(gc::dark_image_gain(image, grey), 1.0);
+}
