@@ -48,4 +48,10 @@ double dark_image_gain(const cv::Mat3b& bgr, cv::Mat1b& grey)
     return std::min(kMaxDarkGain, double(kExposedBrightEnd) / std::max(level, 1));
 }
 
+void brighten_if_dark(cv::Mat3b& bgr, cv::Mat1b& grey)
+{
+    const double gain = dark_image_gain(bgr, grey);
+    if (gain != 1.0) bgr.convertTo(bgr, -1, gain);
+}
+
 }  // namespace gc

@@ -22,4 +22,8 @@ constexpr int kExposedBrightEnd = 170;
 constexpr double kMaxDarkGain = 3.0;
 double dark_image_gain(const cv::Mat3b& bgr, cv::Mat1b& grey);
 
+// Scales `bgr` in place by dark_image_gain (saturating at 255): a dark picture shown to the
+// models at a normal exposure. Nothing changes when the gain is 1.
+void brighten_if_dark(cv::Mat3b& bgr, cv::Mat1b& grey);
+
 }  // namespace gc

@@ -113,8 +113,7 @@ HandKeyPoints LandmarkModel::run(const cv::Mat& bgr, const HandCrop& crop)
                    cv::Scalar::all(0));
     // A hand in a dark picture (an underexposed camera, a backlit room) is shown to the
     // model at a normal exposure.
-    const double gain = dark_image_gain(crop_, grey_);
-    if (gain != 1.0) crop_.convertTo(crop_, -1, gain);
+    brighten_if_dark(crop_, grey_);
     fill_rgb_blob(crop_, 1.0 / 255.0, 0.0, scaled_, blob_);
     net_.setInput(blob_);
     net_.forward(outputs_, output_names_);

@@ -59,12 +59,11 @@ void PalmDetector::prepare_input(const cv::Mat& bgr)
     const cv::Rect inner((kInputSide - w) / 2, (kInputSide - h) / 2, w, h);
     offset_ = cv::Point2f(float(inner.x), float(inner.y));
     letterbox_.setTo(cv::Scalar::all(0));
-    cv::Mat target = letterbox_(inner);
+    cv::Mat3b target = letterbox_(inner);
     cv::resize(bgr, target, inner.size(), 0, 0, cv::INTER_AREA);
     // A dark frame is brightened as the landmark crop is (docs/adr/0041); its exposure is
     // judged on the picture, not the bars.
-    const double gain = dark_image_gain(target, grey_);
-    if (gain != 1.0) target.convertTo(target, -1, gain);
+    brighten_if_dark(target, grey_);
     fill_rgb_blob(letterbox_, 1.0 / 127.5, -1.0, scaled_, blob_);
 }
 
