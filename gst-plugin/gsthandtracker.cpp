@@ -5,6 +5,7 @@
 #include "gsthandtracker.hpp"
 
 #include "handtracker_caps.hpp"
+#include "handtracker_director.hpp"
 #include "handtracker_head.hpp"
 #include "handtracker_output.hpp"
 #include "handtracker_settings.hpp"
@@ -111,6 +112,7 @@ static GstFlowReturn process_slot(GstHandTracker* self, GstBuffer* outbuf, bool&
         log_result(self, e, e.tracker->last());
         pick_target(self, settings, e.tracker->last());
         if (e.head) steer_head(self, settings, e.tracker->last());
+        direct_camera(self, settings, e.tracker->last());
     }
     int shown = 0;
     gc::gst::ReportContext context;
@@ -161,7 +163,8 @@ static gboolean gst_hand_tracker_start(GstAggregator* agg)
     // Load the calibration now so a bad file fails the state change with its reason.
     if (!build_tracker(self, settings)) return FALSE;
     self->rebuild->store(false);
-    if (!prepare_head(self, settings) || !open_json_output(self, settings)) return FALSE;
+    if (!prepare_head(self, settings) || !prepare_director(self, settings) || !open_json_output(self, settings))
+        return FALSE;
     return GST_AGGREGATOR_CLASS(gst_hand_tracker_parent_class)->start(agg);
 }
 
@@ -172,6 +175,7 @@ static gboolean gst_hand_tracker_stop(GstAggregator* agg)
     TrackerState& e = *self->state;
     e.tracker.reset();
     e.head.reset();  // joins the head client's thread
+    e.director.reset();
     close_json_output(self);
     e.forget();
     self->stats->reset();

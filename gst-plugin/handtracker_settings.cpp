@@ -34,8 +34,10 @@ enum {
     PROP_INPUT_FLAGS_OVERRIDE,
     PROP_LOOK_TIME,
     PROP_MANUAL_PAUSE,
+    PROP_DIRECTOR,
+    PROP_DIRECTOR_HOME_PRESET,
 };
-static_assert(kStatsProperty > PROP_MANUAL_PAUSE, "the stats property's id follows the settings'");
+static_assert(kStatsProperty > PROP_DIRECTOR_HOME_PRESET, "the stats property's id follows the settings'");
 
 #define GST_TYPE_HAND_TRACKER_OUTPUT (gst_hand_tracker_output_get_type())
 static GType gst_hand_tracker_output_get_type()
@@ -249,14 +251,16 @@ void install_detector_properties(GObjectClass* gobject_class)
         gobject_class, PROP_DWELL,
         g_param_spec_double("dwell", "Dwell",
                             "Seconds a pointing must be held steady before it picks what it points at "
-                            "(target-distance along the ray): output=attended frames it, steer=point looks at it; "
+                            "(target-distance along the ray): output=attended and the director frame it, steer=point "
+                            "looks at it; "
                             "lowering the hand for as long lets it go",
                             0.1, 60.0, kDefaultDwellS,
                             GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_PLAYING)));
     g_object_class_install_property(
         gobject_class, PROP_TARGET_REGION,
         g_param_spec_double("target-region", "Target region",
-                            "Width in millimetres of the region output=attended frames around a pointed-at target",
+                            "Width in millimetres of the region output=attended and the director frame around a "
+                            "pointed-at target",
                             50.0, 20000.0, kDefaultTargetRegionMm,
                             GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_PLAYING)));
     g_object_class_install_property(
@@ -275,6 +279,29 @@ void install_detector_properties(GObjectClass* gobject_class)
                            GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
 }
 
+// The director: a second PTZ camera framing what is pointed at.
+void install_director_properties(GObjectClass* gobject_class)
+{
+    g_object_class_install_property(
+        gobject_class, PROP_DIRECTOR,
+        g_param_spec_string("director", "Director URI",
+                            "A second PTZ camera that frames what a held pointing picks (target-region wide, "
+                            "zoomed in) while the head keeps the hand in view; any URI `head` takes. Where it "
+                            "stands comes from the calibration's director_* keys (without them: at the head's "
+                            "origin, facing ahead, 60 degrees across at its widest). Released targets send it "
+                            "home (or to director-home-preset). Connection changes are posted as head-connection "
+                            "messages with its URI",
+                            nullptr,
+                            GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
+    g_object_class_install_property(
+        gobject_class, PROP_DIRECTOR_HOME_PRESET,
+        g_param_spec_int("director-home-preset", "Director home preset",
+                         "The director's preset (e.g. a view of the whole room) it returns to when a target is "
+                         "released; -1: its home position",
+                         -1, gc::headctl::kMaxPreset, -1,
+                         GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
+}
+
 }  // namespace
 
 void install_tracker_properties(GObjectClass* gobject_class)
@@ -283,6 +310,7 @@ void install_tracker_properties(GObjectClass* gobject_class)
     install_report_properties(gobject_class);
     install_head_properties(gobject_class);
     install_detector_properties(gobject_class);
+    install_director_properties(gobject_class);
     g_object_class_install_property(
         gobject_class, kStatsProperty,
         g_param_spec_boxed("stats", "Statistics",
@@ -303,7 +331,7 @@ void mark_tracker_enums_as_plugin_api()
 
 namespace {
 
-// The properties of the head and its steering; false for another id.
+// The properties of the head, its steering and the director; false for another id.
 bool set_head_setting(TrackerSettings& s, guint prop_id, const GValue* value)
 {
     switch (prop_id) {
@@ -335,6 +363,12 @@ bool set_head_setting(TrackerSettings& s, guint prop_id, const GValue* value)
         break;
     case PROP_MANUAL_PAUSE:
         s.manual_pause_s = g_value_get_double(value);
+        break;
+    case PROP_DIRECTOR:
+        set_head_uri(s.director, value);
+        break;
+    case PROP_DIRECTOR_HOME_PRESET:
+        s.director_home_preset = g_value_get_int(value);
         break;
     default:
         return false;
@@ -411,6 +445,53 @@ bool set_tracker_setting(TrackerSettings& s, guint prop_id, const GValue* value,
     return true;
 }
 
+namespace {
+
+// The properties of the head, its steering and the director; false for another id.
+bool get_head_setting(const TrackerSettings& s, guint prop_id, GValue* value)
+{
+    switch (prop_id) {
+    case PROP_HEAD:
+        get_head_uri(s.head, value);
+        break;
+    case PROP_HEAD_TOKEN_FILE:
+        g_value_set_string(value, s.head_token_file.empty() ? nullptr : s.head_token_file.c_str());
+        break;
+    case PROP_STEER:
+        g_value_set_enum(value, int(s.steer));
+        break;
+    case PROP_TARGET_DISTANCE:
+        g_value_set_double(value, s.target_distance_mm);
+        break;
+    case PROP_HOME_PRESET:
+        g_value_set_int(value, s.home_preset);
+        break;
+    case PROP_WIDEN_AFTER:
+        g_value_set_double(value, s.widen_after_s);
+        break;
+    case PROP_HOME_AFTER:
+        g_value_set_double(value, s.home_after_s);
+        break;
+    case PROP_LOOK_TIME:
+        g_value_set_double(value, s.look_s);
+        break;
+    case PROP_MANUAL_PAUSE:
+        g_value_set_double(value, s.manual_pause_s);
+        break;
+    case PROP_DIRECTOR:
+        get_head_uri(s.director, value);
+        break;
+    case PROP_DIRECTOR_HOME_PRESET:
+        g_value_set_int(value, s.director_home_preset);
+        break;
+    default:
+        return false;
+    }
+    return true;
+}
+
+}  // namespace
+
 bool get_tracker_setting(const TrackerSettings& s, guint prop_id, GValue* value)
 {
     switch (prop_id) {
@@ -441,33 +522,6 @@ bool get_tracker_setting(const TrackerSettings& s, guint prop_id, GValue* value)
     case PROP_JSON_LOCATION:
         g_value_set_string(value, s.json_location.empty() ? nullptr : s.json_location.c_str());
         break;
-    case PROP_HEAD:
-        get_head_uri(s.head, value);
-        break;
-    case PROP_HEAD_TOKEN_FILE:
-        g_value_set_string(value, s.head_token_file.empty() ? nullptr : s.head_token_file.c_str());
-        break;
-    case PROP_STEER:
-        g_value_set_enum(value, int(s.steer));
-        break;
-    case PROP_TARGET_DISTANCE:
-        g_value_set_double(value, s.target_distance_mm);
-        break;
-    case PROP_HOME_PRESET:
-        g_value_set_int(value, s.home_preset);
-        break;
-    case PROP_WIDEN_AFTER:
-        g_value_set_double(value, s.widen_after_s);
-        break;
-    case PROP_HOME_AFTER:
-        g_value_set_double(value, s.home_after_s);
-        break;
-    case PROP_LOOK_TIME:
-        g_value_set_double(value, s.look_s);
-        break;
-    case PROP_MANUAL_PAUSE:
-        g_value_set_double(value, s.manual_pause_s);
-        break;
     case PROP_DETECTOR:
         g_value_set_enum(value, int(s.detector));
         break;
@@ -487,7 +541,7 @@ bool get_tracker_setting(const TrackerSettings& s, guint prop_id, GValue* value)
         g_value_set_flags(value, s.input_flags_override);
         break;
     default:
-        return false;
+        return get_head_setting(s, prop_id, value);
     }
     return true;
 }

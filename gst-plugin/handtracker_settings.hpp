@@ -45,11 +45,13 @@ struct TrackerSettings {
     double target_distance_mm = kDefaultTargetDistanceMm;
     double dwell_s = kDefaultDwellS;                   // a pointing held this long picks the attended target
     double target_region_mm = kDefaultTargetRegionMm;  // the width the attended view frames there
-    int home_preset = -1;        // the head's preset that steering returns to; -1: its home position
-    double widen_after_s = 0.0;  // lost this long, the head zooms out; 0: never
-    double home_after_s = 2.0;   // lost this long, the head goes home (or to home_preset)
-    double look_s = kDefaultLookS;                   // steer=point: how long the head looks at a target
-    double manual_pause_s = kDefaultManualPauseS;    // someone else moved the head: steering waits this long
+    int home_preset = -1;                          // the head's preset that steering returns to; -1: its home position
+    double widen_after_s = 0.0;                    // lost this long, the head zooms out; 0: never
+    double home_after_s = 2.0;                     // lost this long, the head goes home (or to home_preset)
+    double look_s = kDefaultLookS;                 // steer=point: how long the head looks at a target
+    double manual_pause_s = kDefaultManualPauseS;  // someone else moved the head: steering waits this long
+    std::string director;                          // a second PTZ camera's URI; empty: none
+    int director_home_preset = -1;                 // where it goes when a target is released; -1: its home position
     gc::HandDetector detector = gc::HandDetector::Learned;
     std::string model_dir;  // empty: the learned models are found without configuration
     // How `sink` frames hold both views when their caps do not say (or say wrongly).

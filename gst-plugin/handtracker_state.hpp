@@ -11,6 +11,7 @@
 #include "video_bgr.hpp"
 
 #include "common/line_output.hpp"
+#include "headctl/steering/director_camera.hpp"
 #include "headctl/steering/head_link.hpp"
 #include "stereo/calibration.hpp"
 #include "stereo/pointing_dwell.hpp"
@@ -59,10 +60,11 @@ struct TrackerState {
     std::string json_path;
     std::string json_line;
     std::unique_ptr<headctl::HeadLink> head;
-    std::string head_token;           // read from head-token-file at start
-    cv::Size head_view_size;          // the view size of the head link's calibration
-    bool warned_stale_views = false;  // the current run of too-old views was reported
-    guint64 failed_frames = 0;        // frames the tracker failed on and that were passed on untracked
+    std::unique_ptr<headctl::DirectorCamera> director;  // a second PTZ camera, built at the first frame
+    std::string head_token;                             // read from head-token-file at start
+    cv::Size head_view_size;                            // the view size of the head link's calibration
+    bool warned_stale_views = false;                    // the current run of too-old views was reported
+    guint64 failed_frames = 0;  // frames the tracker failed on and that were passed on untracked
     // What the debug log last said of each view: a line is written when either changes.
     std::array<TrackState, 2> logged_state = {TrackState::Acquiring, TrackState::Acquiring};
     std::array<Gesture, 2> logged_gesture = {Gesture::Unknown, Gesture::Unknown};

@@ -19,9 +19,14 @@
 # aim, default <900.0,-250.0,2600.0>: right, slightly up, away into the room); once held for
 # DWELL seconds (default 1) the attended view (out/demo.mp4) frames the point TARGET_DISTANCE
 # mm along the ray (default 2000), TARGET_REGION mm wide (default 500); the picks are printed.
+# STEER=director does the same with a second simulated head as the director camera: the hand
+# points to one side (AIM default <2000.0,-300.0,1800.0>), the head keeps it in view, and the
+# director turns and zooms to the target (handtracker `director`, standing at the head's
+# origin); the video is the left view, and the director's commands and its pose at the end
+# (headctl status) are printed.
 set -euo pipefail
 . "$(dirname "$0")/lib/plugin.sh"
-gesturecam_build_targets gstgesturecam headsim
+gesturecam_build_targets gstgesturecam headsim headctl
 gesturecam_use_plugin
 cd "$gesturecam_root"
 out=${OUT:-out}
@@ -30,32 +35,51 @@ frames=${FRAMES:-300}
 scene=${SCENE:-light}
 scene=${scene//_/-}
 steer=${STEER:-fixate}
-if [ "$steer" = frame ]; then motion=${MOTION:-static}; else motion=${MOTION:-translate}; fi
+if [ "$steer" = frame ] || [ "$steer" = director ]; then motion=${MOTION:-static}; else motion=${MOTION:-translate}; fi
 motion=${motion//_/-}
 seed=${SEED:-3}
 particles=${PARTICLES:-1000}
 point_options=""
 scene_options=""
 tracker_steer=$steer
+output=attended
 if [ "$steer" = point ]; then
   point_options="dwell=${DWELL:-1} target-distance=${TARGET_DISTANCE:-600} look-time=${LOOK_TIME:-3}"
 elif [ "$steer" = frame ]; then
   tracker_steer=fixate
   point_options="dwell=${DWELL:-1} target-distance=${TARGET_DISTANCE:-2000} target-region=${TARGET_REGION:-500}"
   scene_options="aim=\"${AIM:-<900.0,-250.0,2600.0>}\""
+elif [ "$steer" = director ]; then
+  tracker_steer=fixate
+  output=left
+  point_options="dwell=${DWELL:-1} target-distance=${TARGET_DISTANCE:-2000} target-region=${TARGET_REGION:-500}"
+  scene_options="aim=\"${AIM:-<2000.0,-300.0,1800.0>}\""
 fi
 mkdir -p "$out"
 rm -f "$out/demo.mp4" "$out/demo.jsonl" "$out/demo.bus.txt"
 
-# The simulated head on a free loopback port; stopped on exit.
-headsim_out=$(mktemp)
-"$gesturecam_build/gst-plugin/tools/headsim" --listen 127.0.0.1:0 --latency-ms 20 >"$headsim_out" &
-headsim_pid=$!
-trap 'kill "$headsim_pid" 2>/dev/null || true; wait "$headsim_pid" 2>/dev/null || true; rm -f "$headsim_out"' EXIT
-for _ in $(seq 100); do grep -q '^listening' "$headsim_out" && break; sleep 0.05; done
-address=$(sed -n 's/^listening //p' "$headsim_out")
-[ -n "$address" ] || { echo "headsim did not start" >&2; exit 1; }
+# Simulated heads on free loopback ports; stopped on exit.
+headsim_pids=()
+headsim_outs=()
+trap 'kill "${headsim_pids[@]}" 2>/dev/null || true; wait 2>/dev/null || true; rm -f "${headsim_outs[@]}"' EXIT
+start_headsim() {
+  local log
+  log=$(mktemp)
+  headsim_outs+=("$log")
+  "$gesturecam_build/gst-plugin/tools/headsim" --listen 127.0.0.1:0 --latency-ms 20 >"$log" &
+  headsim_pids+=($!)
+  for _ in $(seq 100); do grep -q '^listening' "$log" && break; sleep 0.05; done
+  address=$(sed -n 's/^listening //p' "$log")
+  [ -n "$address" ] || { echo "headsim did not start" >&2; exit 1; }
+}
+start_headsim
 head="tcp://$address"
+if [ "$steer" = director ]; then
+  start_headsim
+  director="tcp://$address"
+  point_options="$point_options director=$director"
+  echo "Director: headsim at $director."
+fi
 
 caps="video/x-raw,width=640,height=480,framerate=30/1"
 eye() {
@@ -71,7 +95,7 @@ start=$(date +%s.%N)
 gst-launch-1.0 -m -e \
   $(eye left true) ! t.sink_left \
   $(eye right false) ! t.sink_right \
-  handtracker name=t particles="$particles" head="$head" steer="$tracker_steer" $point_options draw=true output=attended \
+  handtracker name=t particles="$particles" head="$head" steer="$tracker_steer" $point_options draw=true output=$output \
     message-updates=on-change json-location="$out/demo.jsonl" \
   ! videoconvert ! x264enc tune=zerolatency speed-preset=veryfast ! mp4mux ! filesink location="$out/demo.mp4" \
   >"$out/demo.bus.txt"
@@ -122,6 +146,22 @@ if steer == "frame":
     print(f"attended targets: {len(picks)}" + ("" if picks else " (no pointing held for the dwell time)"))
     for event, frame in picks:
         print(f"  {event} at frame {frame}")
+if steer == "director":
+    picks = [field(line, "frame", "guint64") for line in open(f"{out}/demo.bus.txt")
+             if "attended-target" in line and "picked" in line]
+    print(f"targets picked: {len(picks)}" + ("" if picks else " (no pointing held for the dwell time)"))
+    sent = [line for line in open(f"{out}/demo.bus.txt") if re.search(r"\bdirector, event", line)]
+    for line in sent:
+        event = field(line, "event", "string")
+        if event == "frame":
+            print(f"  director sent at frame {field(line, 'frame', 'guint64')}: pan {float(field(line, 'pan-deg')):+.1f} "
+                  f"deg, tilt {float(field(line, 'tilt-deg')):+.1f} deg, zoom {float(field(line, 'zoom')):.2f}x")
+        else:
+            print(f"  director sent home at frame {field(line, 'frame', 'guint64')}")
 print(f"wall time: {end - start:.1f} s for {n / 30:.1f} s of video (live)")
 print(f"video: {out}/demo.mp4   JSON lines: {out}/demo.jsonl   bus messages: {out}/demo.bus.txt")
 PY
+if [ "$steer" = director ]; then
+  echo "director at the end (headctl status):"
+  "$gesturecam_build/gst-plugin/tools/headctl" --uri "$director" status
+fi

@@ -3,10 +3,12 @@
 // as cv::stereoCalibrate writes them; head geometry optional.
 #pragma once
 
+#include "stereo/director_mount.hpp"
 #include "stereo/head_geometry.hpp"
 
 #include <opencv2/core.hpp>
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -22,7 +24,8 @@ struct StereoCalibration {
     cv::Vec3d T{-120.0, 0.0, 0.0};
     bool has_head_geometry = false;
     HeadGeometry head;
-    std::string source = "default";  // the file it came from, for messages
+    std::optional<DirectorMount> director;  // a second PTZ camera framing picked targets
+    std::string source = "default";         // the file it came from, for messages
 };
 
 // Raised with a message that names the file and the key at fault.
@@ -39,14 +42,18 @@ public:
 // 10 mm to 10 m, distortion coefficients within +-100). The optional head
 // geometry keys are head_left_eye, head_right_eye, head_tilt_centre, head_nodal_offset
 // (3x1, millimetres, head frame); when absent, the geometry is derived from T (eyes at
-// -/+ |T| / 2 on the x axis). Throws CalibrationError naming the file and the key.
+// -/+ |T| / 2 on the x axis). The optional director keys (all or none) place a second PTZ
+// camera: director_image_width, director_image_height, director_M (its intrinsics at the
+// widest zoom, checked as M1 is), director_R and director_T (X_base = R X_head + T,
+// millimetres, R a rotation, |T| at most 100 m). Throws CalibrationError naming the file and
+// the key.
 StereoCalibration load_calibration(const std::string& path);
 
 // Throws CalibrationError naming both sizes when the stream size differs from the
 // calibrated one.
 void validate_calibration_size(const StereoCalibration& calibration, cv::Size stream);
 
-// Writes every field load_calibration reads (head geometry only when it is set); the
+// Writes every field load_calibration reads (head geometry and director only when set); the
 // format follows the extension (.yml/.yaml or .xml). Throws CalibrationError on failure.
 void save_calibration(const StereoCalibration& calibration, const std::string& path);
 

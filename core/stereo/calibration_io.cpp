@@ -155,16 +155,16 @@ cv::Mat read_distortion(const CalibrationEntries& entries, const char* key, cons
     return D.empty() ? D : D.reshape(1, 1);
 }
 
-void check_rotation(const cv::Matx33d& R, const std::string& source)
+void check_rotation(const cv::Matx33d& R, const std::string& source, const char* key = "R")
 {
     for (double v : R.val)
-        if (!std::isfinite(v)) fail(source, "R", "non-finite value");
+        if (!std::isfinite(v)) fail(source, key, "non-finite value");
     const double orthogonality = cv::norm(R.t() * R - cv::Matx33d::eye(), cv::NORM_INF);
     const double det = cv::determinant(R);
     if (orthogonality > kRotationTolerance || std::abs(det - 1.0) > kRotationTolerance) {
         std::ostringstream what;
         what << "not a rotation matrix (max |R^T R - I| = " << orthogonality << ", det = " << det << ")";
-        fail(source, "R", what.str());
+        fail(source, key, what.str());
     }
 }
 
@@ -177,6 +177,40 @@ void check_translation(const cv::Vec3d& T, const std::string& source)
 
 constexpr std::array<const char*, 4> kHeadKeys{"head_left_eye", "head_right_eye", "head_tilt_centre",
                                                "head_nodal_offset"};
+
+constexpr std::array<const char*, 5> kDirectorKeys{"director_image_width", "director_image_height", "director_M",
+                                                   "director_R", "director_T"};
+// A director camera further than this from the rig is a unit error (millimetres).
+constexpr double kMaxDirectorDistanceMm = 100000.0;
+
+void check_director(const DirectorMount& d, const std::string& source)
+{
+    check_intrinsics(d.K, "director_M", source, d.image_size);
+    check_rotation(d.head_to_base.R, source, "director_R");
+    for (double v : d.head_to_base.t.val)
+        if (!std::isfinite(v)) fail(source, "director_T", "non-finite value");
+    check_range(cv::norm(d.head_to_base.t), 0.0, kMaxDirectorDistanceMm, "director_T", "|director_T|", source,
+                "mm (director_T is in millimetres)");
+}
+
+std::optional<DirectorMount> read_director(const CalibrationEntries& root, const std::string& source)
+{
+    int present = 0;
+    for (const char* key : kDirectorKeys) present += root.contains(key);
+    if (present == 0) return std::nullopt;
+    for (const char* key : kDirectorKeys)
+        if (!root.contains(key)) fail(source, key, "missing (the director keys come all together or not at all)");
+    DirectorMount d;
+    d.image_size.width = read_positive_int(root, kDirectorKeys[0], source);
+    d.image_size.height = read_positive_int(root, kDirectorKeys[1], source);
+    d.K = cv::Matx33d(expect_shape(read_matrix(root, kDirectorKeys[2], source), kDirectorKeys[2], source, 3, 3));
+    d.head_to_base.R =
+        cv::Matx33d(expect_shape(read_matrix(root, kDirectorKeys[3], source), kDirectorKeys[3], source, 3, 3));
+    d.head_to_base.t =
+        cv::Vec3d(expect_shape(read_matrix(root, kDirectorKeys[4], source), kDirectorKeys[4], source, 3, 1));
+    check_director(d, source);
+    return d;
+}
 
 HeadGeometry geometry_from_baseline(const cv::Vec3d& T)
 {
@@ -203,6 +237,7 @@ StereoCalibration read_fields(const CalibrationEntries& root, const std::string&
     check_rotation(c.R, source);
     c.T = cv::Vec3d(expect_shape(read_matrix(root, "T", source), "T", source, 3, 1));
     check_translation(c.T, source);
+    c.director = read_director(root, source);
 
     int present = 0;
     for (const char* key : kHeadKeys) present += root.contains(key);
@@ -265,6 +300,7 @@ void validate_calibration(const StereoCalibration& c)
             for (double x : v[i].val)
                 if (!std::isfinite(x)) fail(source, kHeadKeys[i], "non-finite value");
     }
+    if (c.director) check_director(*c.director, source);
 }
 
 void validate_calibration_size(const StereoCalibration& c, cv::Size stream)
@@ -292,6 +328,11 @@ void save_calibration(const StereoCalibration& c, const std::string& path)
         if (c.has_head_geometry) {
             fs << kHeadKeys[0] << cv::Mat(c.head.left_eye_mm) << kHeadKeys[1] << cv::Mat(c.head.right_eye_mm);
             fs << kHeadKeys[2] << cv::Mat(c.head.tilt_centre_mm) << kHeadKeys[3] << cv::Mat(c.head.nodal_offset_mm);
+        }
+        if (const auto& d = c.director) {
+            fs << kDirectorKeys[0] << d->image_size.width << kDirectorKeys[1] << d->image_size.height;
+            fs << kDirectorKeys[2] << cv::Mat(d->K) << kDirectorKeys[3] << cv::Mat(d->head_to_base.R);
+            fs << kDirectorKeys[4] << cv::Mat(d->head_to_base.t);
         }
         fs.release();
     } catch (const cv::Exception& e) {

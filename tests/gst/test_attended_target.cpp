@@ -1,9 +1,14 @@
 // output=attended frames what a held pointing picked: within a second of the dwell's end,
 // the crop centres on the point target-distance along the rendered hand's true ray, as wide
 // as target-region, while the hand stays tracked, and an attended-target message announces
-// the pick. Lowering the hand is not needed here: the dwell's own rules are unit-tested
+// the pick. A director camera (a simulated head on loopback, placed by the calibration file)
+// turns and zooms to the same target. Lowering the hand is not needed here: the dwell's own rules are unit-tested
 // (tests/stereo/test_pointing_dwell.cpp).
 #include "gst_fixture.hpp"
+
+#include "running_head.hpp"
+#include "stereo/calibration_io.hpp"
+#include "stereo/director_mount.hpp"
 
 #include "sim/motion_script.hpp"
 #include "stereo/calibration.hpp"
@@ -12,6 +17,8 @@
 #include <gst/gesturecam/gsthandpointingmeta.h>
 
 #include <algorithm>
+#include <chrono>
+#include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
@@ -99,6 +106,70 @@ TEST(AttendedTarget, AHeldPointingIsFramedWithinASecondOfTheDwell)
     EXPECT_LE(framed_from, int(pick_frame) + int(1.0 * kFps)) << "picked at " << pick_frame;
     EXPECT_GE(framed_from, int(pick_frame)) << "framed before the dwell ended";
     EXPECT_NE(gst_structure_get_value(picks[0], "target-head-mm"), nullptr);
+}
+
+// The director stands 1 m to the right of the head and 300 mm above it, turned 20 degrees to
+// the left; the hand's pick, 300 mm along its ray, must end up in the middle third of its
+// picture with the 500 mm region 75-125 % of its width, as the scene's truth places it.
+TEST(AttendedTarget, AHeldPointingTurnsTheDirectorToItsTarget)
+{
+    gc::test::init_gstreamer();
+    gc::DirectorMount mount;
+    const cv::Matx33d turned = gc::rotation_about_y(-20.0).t();
+    mount.head_to_base = {turned, -(turned * cv::Vec3d(1000.0, -300.0, 0.0))};
+    gc::StereoCalibration cal = gc::default_calibration(cv::Size(640, 480));
+    cal.director = mount;
+    const std::string calibration =
+        (std::filesystem::path(::testing::TempDir()) / ("director_" + std::to_string(::getpid()) + ".yml")).string();
+    gc::save_calibration(cal, calibration);
+    gc::loopback::RunningHead director(gc::loopback::loopback_head());
+
+    const std::string eye = " motion=static num-buffers=" + std::to_string(kFrames) + " ";
+    gc::test::ElementPtr pipeline = gc::test::parse_pipeline(
+        "handscenesrc name=l eye=left" + eye + "truth-messages=true ! t.sink_left handscenesrc eye=right" + eye +
+        "! t.sink_right handtracker name=t dwell=1.0 target-distance=300 target-region=500 calibration=" + calibration +
+        " director=" + director.uri() + " ! fakesink sync=false");
+    ASSERT_TRUE(pipeline);
+    const gc::test::RunResult r = gc::test::run_pipeline(pipeline.get(), 120 * GST_SECOND);
+    std::filesystem::remove(calibration);
+    ASSERT_TRUE(r.eos) << r.error;
+    const auto picks = r.named("attended-target", "t");
+    ASSERT_EQ(picks.size(), 1u);
+    const auto truths = r.named("hand-truth", "l");
+    ASSERT_FALSE(truths.empty());
+    const cv::Vec3d target = vec3(truths.back(), "fingertip-head-mm") + 300.0 * vec3(truths.back(), "direction-head");
+
+    // The head moves in real time: wait until it stands still, then look through it.
+    std::optional<gc::DirectorPlacement> placed;
+    gc::HeadPose pose;
+    EXPECT_TRUE(gc::loopback::eventually(
+        [&] {
+            bool moving = true;
+            director.server().with_model([&](gc::headctl::HeadModel& model, double now_s) {
+                const gc::headctl::HeadState state = model.state(now_s);
+                pose = state.pose;
+                moving = std::any_of(state.moving.begin(), state.moving.end(), [](bool m) { return m; });
+            });
+            return !moving && pose.zoom > 1.0;
+        },
+        std::chrono::milliseconds(5000)));
+    // The element said where it sent the director.
+    const auto sent = r.named("director", "t");
+    ASSERT_EQ(sent.size(), 1u);
+    EXPECT_STREQ(gst_structure_get_string(sent[0], "event"), "frame");
+    double pan = 0.0, zoom = 0.0;
+    EXPECT_TRUE(gst_structure_get_double(sent[0], "pan-deg", &pan));
+    EXPECT_TRUE(gst_structure_get_double(sent[0], "zoom", &zoom));
+    EXPECT_NEAR(pose.pan_deg, pan, 0.1);
+    EXPECT_NEAR(pose.zoom, zoom, 0.01);
+    placed = gc::place_in_director(mount, pose, target, 500.0);
+    ASSERT_TRUE(placed);
+    EXPECT_GT(placed->centre.x, 1.0 / 3) << "pan " << pose.pan_deg;
+    EXPECT_LT(placed->centre.x, 2.0 / 3) << "pan " << pose.pan_deg;
+    EXPECT_GT(placed->centre.y, 1.0 / 3) << "tilt " << pose.tilt_deg;
+    EXPECT_LT(placed->centre.y, 2.0 / 3) << "tilt " << pose.tilt_deg;
+    EXPECT_GE(placed->fill, 0.75) << "zoom " << pose.zoom;
+    EXPECT_LE(placed->fill, 1.25) << "zoom " << pose.zoom;
 }
 
 }  // namespace

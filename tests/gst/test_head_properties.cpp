@@ -95,6 +95,16 @@ TEST(HeadProperties, ABadUriFailsTheStartAndSaysWhy)
     }
 }
 
+TEST(HeadProperties, ABadDirectorUriFailsTheStartAndSaysWhy)
+{
+    gc::test::init_gstreamer();
+    const gc::test::RunResult r = gc::test::run_pipeline(
+        "handscenesrc num-buffers=3 ! handtracker director=visca-udp://127.0.0.1?zoom_max=lots ! fakesink",
+        10 * GST_SECOND);
+    EXPECT_FALSE(r.eos);
+    EXPECT_NE(r.error.find("Invalid director URI"), std::string::npos) << r.error;
+}
+
 TEST(HeadProperties, HeadsThatDoNotAnswerChangeNothing)
 {
     gc::test::init_gstreamer();

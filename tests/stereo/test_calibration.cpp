@@ -167,6 +167,50 @@ TEST_P(CalibrationFile, PartialHeadGeometryIsNamed)
     expect_error(e, "head_nodal_offset", "missing");
 }
 
+Entries with_director(Entries e)
+{
+    e["director_image_width"] = {0, 0, "1920"};
+    e["director_image_height"] = {0, 0, "1080"};
+    e["director_M"] = {3, 3, "1662.8 0 959.5 0 1662.8 539.5 0 0 1"};
+    // Turned 30 degrees to the left, 1.5 m to the right of the head.
+    e["director_R"] = {3, 3, "0.8660254 0 0.5 0 1 0 -0.5 0 0.8660254"};
+    e["director_T"] = {3, 1, "-1299 0 -750"};
+    return e;
+}
+
+TEST_P(CalibrationFile, ReadsTheDirectorCamera)
+{
+    EXPECT_FALSE(gc::load_calibration(write(valid_entries())).director);
+    const gc::StereoCalibration c = gc::load_calibration(write(with_director(valid_entries())));
+    ASSERT_TRUE(c.director);
+    EXPECT_EQ(c.director->image_size, cv::Size(1920, 1080));
+    EXPECT_DOUBLE_EQ(c.director->K(0, 0), 1662.8);
+    EXPECT_DOUBLE_EQ(c.director->head_to_base.R(0, 2), 0.5);
+    EXPECT_EQ(c.director->head_to_base.t, cv::Vec3d(-1299, 0, -750));
+}
+
+TEST_P(CalibrationFile, BadDirectorKeysAreNamed)
+{
+    for (const char* key :
+         {"director_image_width", "director_image_height", "director_M", "director_R", "director_T"}) {
+        Entries e = with_director(valid_entries());
+        e.erase(key);
+        expect_error(e, key, "missing (the director keys come all together or not at all)");
+    }
+    Entries e = with_director(valid_entries());
+    e["director_R"] = {3, 3, "1 0 0 0 1 0 0 0 2"};
+    expect_error(e, "director_R", "not a rotation matrix");
+    e = with_director(valid_entries());
+    e["director_M"] = {3, 3, "1662.8 0 2500 0 1662.8 539.5 0 0 1"};
+    expect_error(e, "director_M", "principal point cx");
+    e = with_director(valid_entries());
+    e["director_T"] = {3, 1, "-1299 0 1e9"};
+    expect_error(e, "director_T", "|director_T|");
+    e = with_director(valid_entries());
+    e["director_T"] = {3, 1, "-1299 .nan 0"};
+    expect_error(e, "director_T");
+}
+
 TEST_P(CalibrationFile, WrongShapesAreNamed)
 {
     const std::map<std::string, Entry> bad{
@@ -329,6 +373,18 @@ TEST_P(CalibrationFile, SaveThenLoadRoundTrips)
     EXPECT_EQ(back.head.tilt_centre_mm, c.head.tilt_centre_mm);
     EXPECT_EQ(back.head.nodal_offset_mm, c.head.nodal_offset_mm);
     EXPECT_EQ(back.head.right_eye_mm, c.head.right_eye_mm);
+    EXPECT_FALSE(back.director);
+
+    gc::DirectorMount director;
+    director.head_to_base = {gc::rotation_about_y(-25.0), {800.0, -300.0, 100.0}};
+    c.director = director;
+    gc::save_calibration(c, path);
+    const gc::StereoCalibration with = gc::load_calibration(path);
+    ASSERT_TRUE(with.director);
+    EXPECT_EQ(with.director->image_size, director.image_size);
+    EXPECT_LT(cv::norm(with.director->K, director.K, cv::NORM_INF), 1e-12);
+    EXPECT_LT(cv::norm(with.director->head_to_base.R, director.head_to_base.R, cv::NORM_INF), 1e-15);
+    EXPECT_LT(cv::norm(with.director->head_to_base.t, director.head_to_base.t, cv::NORM_INF), 1e-12);
 }
 
 INSTANTIATE_TEST_SUITE_P(Formats, CalibrationFile, ::testing::Values(false, true),

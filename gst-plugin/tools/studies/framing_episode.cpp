@@ -3,6 +3,7 @@
 #include "running_head.hpp"
 #include "sim/scene.hpp"
 #include "stereo/calibration.hpp"
+#include "stereo/director_mount.hpp"
 #include "stereo/head_geometry.hpp"
 #include "stereo/pointing_dwell.hpp"
 
@@ -10,10 +11,15 @@
 #include <gst/gst.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <map>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace gc::study {
@@ -26,8 +32,22 @@ constexpr int kWidth = 640, kHeight = 480;
 // the hand (degrees: right, up): both sides, above and below, inside the 60 x 47 deg view.
 constexpr double kDirections[][2] = {{22, 6}, {-22, 6}, {20, -5}, {-20, -5}, {24, 0}, {-24, 0}};
 
+// With a director: where the finger points from the palm (degrees right of straight ahead,
+// up), across the views to either side, so that the target lies outside them.
+constexpr double kSideDirections[][2] = {{55, 8}, {-55, 8}, {45, -8}, {-45, -8}, {65, 0}, {-65, 0}};
+
+// The director of the study: 300 mm above the head's neck axis and 200 mm behind it, facing
+// ahead, a 1920x1080 picture 60 deg across at its widest.
+DirectorMount study_director()
+{
+    DirectorMount d;
+    d.head_to_base.t = {0.0, 300.0, 200.0};
+    return d;
+}
+
 // The point the hand aims at: the target-distance point of a ray from the palm that shows
-// at the episode's direction from the palm's line of sight.
+// at the episode's direction from the palm's line of sight (with a director: in the
+// direction of kSideDirections).
 cv::Vec3d aim_for(const Episode& e)
 {
     sim::SceneConfig c;
@@ -35,6 +55,10 @@ cv::Vec3d aim_for(const Episode& e)
     c.motion = sim::Motion::Static;
     c.seed = e.seed;
     const cv::Vec3d palm = sim::Scene(c).hand_pose(int(2.0 * kFps)).palm_mm;
+    if (e.director) {
+        const auto& d = kSideDirections[std::size_t(e.direction) % std::size(kSideDirections)];
+        return palm + e.target_distance_mm * (rotation_about_y(d[0]) * rotation_about_x(d[1]) * cv::Vec3d(0, 0, 1));
+    }
     const auto& d = kDirections[std::size_t(e.direction) % std::size(kDirections)];
     const cv::Vec3d w = rotation_about_y(d[0]) * rotation_about_x(d[1]) * (palm * (1.0 / cv::norm(palm)));
     // The point s w whose distance from the palm is target-distance.
@@ -43,7 +67,18 @@ cv::Vec3d aim_for(const Episode& e)
     return s * w;
 }
 
-std::string pipeline_for(const Episode& e, const std::string& head, const cv::Vec3d& aim)
+// The default rig with the study's director, written where handtracker can read it.
+std::string director_calibration()
+{
+    StereoCalibration cal = default_calibration(cv::Size(kWidth, kHeight));
+    cal.director = study_director();
+    const std::string path = (std::filesystem::temp_directory_path() / "framing_study_director.yml").string();
+    save_calibration(cal, path);
+    return path;
+}
+
+std::string pipeline_for(const Episode& e, const std::string& head, const cv::Vec3d& aim,
+                         const std::string& director = {})
 {
     char aim_text[96];
     std::snprintf(aim_text, sizeof aim_text, "\"<%.1f, %.1f, %.1f>\"", aim[0], aim[1], aim[2]);
@@ -51,18 +86,21 @@ std::string pipeline_for(const Episode& e, const std::string& head, const cv::Ve
     auto eye = [&](const char* name, bool truth) {
         return std::string("handscenesrc name=") + name + " eye=" + name + " is-live=true head=" + head +
                " scene=light motion=static seed=" + std::to_string(e.seed) + " aim=" + aim_text +
-               " num-buffers=" + std::to_string(int(e.seconds * kFps)) + " truth-messages=" +
-               (truth ? "true" : "false") + " ! " + caps;
+               " num-buffers=" + std::to_string(int(e.seconds * kFps)) +
+               " truth-messages=" + (truth ? "true" : "false") + " ! " + caps;
     };
+    const std::string framing = director.empty()
+                                    ? " output=attended"
+                                    : " output=left director=" + director + " calibration=" + director_calibration();
     return eye("left", true) + " ! t.sink_left " + eye("right", false) +
-           " ! t.sink_right handtracker name=t head=" + head +
-           " steer=fixate output=attended dwell=1 target-distance=" + std::to_string(e.target_distance_mm) +
+           " ! t.sink_right handtracker name=t head=" + head + " steer=fixate" + framing +
+           " dwell=1 target-distance=" + std::to_string(e.target_distance_mm) +
            " target-region=" + std::to_string(e.region_mm) + " ! " + caps + " ! fakesink sync=false";
 }
 
 struct OutputFrame {
     GstClockTime pts = GST_CLOCK_TIME_NONE;
-    guint64 frame = 0;  // the stereo pair's index: a frame output twice counts once
+    guint64 frame = 0;      // the stereo pair's index: a frame output twice counts once
     bool pointing = false;  // a 3D ray
     bool tracked = false;
     cv::Rect view;
@@ -111,10 +149,48 @@ Truth truth_of(const GstStructure* s)
 
 struct Collected {
     std::vector<OutputFrame> frames;
-    std::map<GstClockTime, Truth> truth;  // the left eye's, by timestamp
-    std::optional<GstClockTime> pick;     // the first pick's timestamp
-    cv::Vec3d picked;                     // ...and the target it picked (head frame, mm)
+    std::map<GstClockTime, Truth> truth;              // the left eye's, by timestamp
+    std::optional<GstClockTime> pick;                 // the first pick's timestamp
+    cv::Vec3d picked;                                 // ...and the target it picked (head frame, mm)
+    std::chrono::steady_clock::time_point pick_seen;  // when its message came off the bus
     std::string error;
+};
+
+// The director's pose as its simulated head reports it, sampled every 10 ms on a thread of its
+// own from construction to stop().
+class DirectorSamples {
+public:
+    using Clock = std::chrono::steady_clock;
+    explicit DirectorSamples(headctl::HeadServer& head) : thread_([this, &head] { run(head); }) {}
+    ~DirectorSamples() { stop(); }
+    void stop()
+    {
+        stopping_ = true;
+        if (thread_.joinable()) thread_.join();
+    }
+    std::vector<std::pair<Clock::time_point, HeadPose>> samples() const
+    {
+        std::lock_guard lock(mutex_);
+        return samples_;
+    }
+
+private:
+    void run(headctl::HeadServer& head)
+    {
+        while (!stopping_) {
+            head.with_model([this](headctl::HeadModel& model, double now_s) {
+                const HeadPose pose = model.state(now_s).pose;
+                std::lock_guard lock(mutex_);
+                samples_.emplace_back(Clock::now(), pose);
+            });
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+    }
+
+    mutable std::mutex mutex_;
+    std::vector<std::pair<Clock::time_point, HeadPose>> samples_;
+    std::atomic<bool> stopping_{false};
+    std::thread thread_;
 };
 
 // Runs the pipeline to its end, gathering the output frames, the truth and the first pick.
@@ -155,6 +231,7 @@ void run_pipeline(const std::string& description, double seconds, Collected& out
             gst_structure_get_uint64(s, "timestamp", &ts);
             out.pick = ts;
             out.picked = vec3(s, "target-head-mm");
+            out.pick_seen = std::chrono::steady_clock::now();
         }
         gst_message_unref(m);
         if (done) break;
@@ -166,8 +243,7 @@ void run_pipeline(const std::string& description, double seconds, Collected& out
 
 // Where the true target lies in the crop `view`: its centre as a fraction of the crop's width
 // and height, and the region's width as a fraction of the crop's.
-std::optional<cv::Vec3d> placement(const cv::Rect& view, const Truth& t, const Episode& e,
-                                   const StereoCalibration& cal)
+std::optional<cv::Vec3d> placement(const cv::Rect& view, const Truth& t, const Episode& e, const StereoCalibration& cal)
 {
     const cv::Vec3d target = t.fingertip + e.target_distance_mm * t.direction;
     const auto region = region_in_left_view(target, e.region_mm, cal, t.pose);
@@ -209,33 +285,9 @@ const Truth* truth_at(const std::map<GstClockTime, Truth>& truth, GstClockTime p
     return best;
 }
 
-}  // namespace
-
-EpisodeResult run_episode(const Episode& e)
+// The crop of each output frame from the pick on, against the truth of its frame.
+void score_crop(const Episode& e, const Collected& c, EpisodeResult& r)
 {
-    EpisodeResult r;
-    const cv::Vec3d aim = aim_for(e);
-    char text[96];
-    std::snprintf(text, sizeof text, "aim <%.0f, %.0f, %.0f>", aim[0], aim[1], aim[2]);
-    r.aim = text;
-    Collected c;
-    {
-        loopback::RunningHead head(loopback::loopback_head());
-        run_pipeline(pipeline_for(e, head.uri(), aim), e.seconds, c);
-    }
-    r.error = c.error;
-    std::map<guint64, std::pair<bool, bool>> pairs;  // tracked, a 3D ray: per stereo pair
-    for (const OutputFrame& f : c.frames) {
-        auto& [tracked, pointing] = pairs[f.frame];
-        tracked = tracked || f.tracked;
-        pointing = pointing || f.pointing;
-    }
-    r.frames = int(pairs.size());
-    for (const auto& [frame, seen] : pairs) r.tracked += seen.first, r.pointing += seen.second;
-    if (!c.pick || c.frames.empty()) return r;
-    r.picked = true;
-    const GstClockTime first = c.frames.front().pts;
-    r.pick_s = double(GstClockTimeDiff(*c.pick - first)) / GST_SECOND;
     const StereoCalibration cal = default_calibration(cv::Size(kWidth, kHeight));
     if (const Truth* t = truth_at(c.truth, *c.pick)) r.pick_error_deg = pick_error(c.picked, *t, e, cal);
     GstClockTime framed_from = GST_CLOCK_TIME_NONE;
@@ -251,6 +303,69 @@ EpisodeResult run_episode(const Episode& e)
             framed_from = f.pts;
     }
     if (framed_from != GST_CLOCK_TIME_NONE) r.framed_after_s = double(framed_from - *c.pick) / GST_SECOND;
+}
+
+// The director's picture at each sampled pose from the pick's message on (the hand is held
+// still, so the target is the one true at the pick).
+void score_director(const Episode& e, const Collected& c, const DirectorSamples& director, EpisodeResult& r)
+{
+    const Truth* t = truth_at(c.truth, *c.pick);
+    if (!t) return;
+    const DirectorMount mount = study_director();
+    const cv::Vec3d truth = t->fingertip + e.target_distance_mm * t->direction;
+    const HeadPose aimed = director_aim(mount, c.picked, e.region_mm, 1.0, 1.0);
+    const HeadPose true_aim = director_aim(mount, truth, e.region_mm, 1.0, 1.0);
+    r.pick_error_deg = {aimed.pan_deg - true_aim.pan_deg, true_aim.tilt_deg - aimed.tilt_deg};
+    std::optional<DirectorSamples::Clock::time_point> framed_from;
+    for (const auto& [time, pose] : director.samples()) {
+        if (time < c.pick_seen) continue;
+        const auto placed = place_in_director(mount, pose, truth, e.region_mm);
+        std::optional<cv::Vec3d> p;
+        if (placed) p = cv::Vec3d(placed->centre.x, placed->centre.y, placed->fill);
+        if (p) r.last_placement = *p;
+        if (!framed(p))
+            framed_from.reset();
+        else if (!framed_from)
+            framed_from = time;
+    }
+    if (framed_from) r.framed_after_s = std::chrono::duration<double>(*framed_from - c.pick_seen).count();
+}
+
+}  // namespace
+
+EpisodeResult run_episode(const Episode& e)
+{
+    EpisodeResult r;
+    const cv::Vec3d aim = aim_for(e);
+    char text[96];
+    std::snprintf(text, sizeof text, "aim <%.0f, %.0f, %.0f>", aim[0], aim[1], aim[2]);
+    r.aim = text;
+    Collected c;
+    loopback::RunningHead head(loopback::loopback_head());
+    std::optional<loopback::RunningHead> director;
+    std::optional<DirectorSamples> director_poses;
+    if (e.director) {
+        director.emplace(loopback::loopback_head());
+        director_poses.emplace(director->server());
+    }
+    run_pipeline(pipeline_for(e, head.uri(), aim, director ? director->uri() : std::string()), e.seconds, c);
+    if (director_poses) director_poses->stop();
+    r.error = c.error;
+    std::map<guint64, std::pair<bool, bool>> pairs;  // tracked, a 3D ray: per stereo pair
+    for (const OutputFrame& f : c.frames) {
+        auto& [tracked, pointing] = pairs[f.frame];
+        tracked = tracked || f.tracked;
+        pointing = pointing || f.pointing;
+    }
+    r.frames = int(pairs.size());
+    for (const auto& [frame, seen] : pairs) r.tracked += seen.first, r.pointing += seen.second;
+    if (!c.pick || c.frames.empty()) return r;
+    r.picked = true;
+    r.pick_s = double(GstClockTimeDiff(*c.pick - c.frames.front().pts)) / GST_SECOND;
+    if (director_poses)
+        score_director(e, c, *director_poses, r);
+    else
+        score_crop(e, c, r);
     return r;
 }
 

@@ -1,6 +1,8 @@
 // One episode of the framing study: a fresh simulated head, two live rendered eyes with the
-// hand held still and aimed so that its target lies in view, handtracker steer=fixate
-// output=attended, and the attended crop scored against the rendered truth.
+// hand held still, handtracker steer=fixate, and what frames the target scored against the
+// rendered truth: the attended crop (the hand aimed so that its target lies in the left view),
+// or a second simulated head as the director (the hand aimed to one side, its target out of
+// the stereo views).
 #pragma once
 
 #include <opencv2/core.hpp>
@@ -16,19 +18,21 @@ struct Episode {
     double region_mm = 500.0;
     int direction = 0;  // which of the study's pointing directions (any integer)
     double seconds = 6.0;
+    bool director = false;  // a director camera frames the target instead of the attended crop
 };
 
 struct EpisodeResult {
-    std::string aim;    // where the hand points, as handscenesrc's `aim`
-    std::string error;  // empty when the pipeline ran to its end
+    std::string aim;                            // where the hand points, as handscenesrc's `aim`
+    std::string error;                          // empty when the pipeline ran to its end
     int frames = 0, tracked = 0, pointing = 0;  // stereo pairs processed, tracked, with a 3D ray
     bool picked = false;
     double pick_s = 0.0;                   // the pick's time since the first frame
     std::optional<double> framed_after_s;  // from the pick to framed for good; nullopt: not framed
-    // On the last frame: the true target's centre in the crop (fractions of its width and
-    // height) and the region's width over the crop's.
+    // On the last frame: the true target's centre in the crop or the director's picture
+    // (fractions of its width and height) and the region's width over the picture's.
     cv::Vec3d last_placement{-1.0, -1.0, 0.0};
-    cv::Vec2d pick_error_deg;  // the picked target from the true one, seen from the left eye (right, down)
+    // The picked target from the true one (right, down), seen from the left eye or the director.
+    cv::Vec2d pick_error_deg;
 };
 
 EpisodeResult run_episode(const Episode& episode);

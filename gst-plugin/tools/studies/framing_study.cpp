@@ -5,7 +5,13 @@
 // fresh head and a rendered hand held still, aimed (handscenesrc `aim`) so that the point
 // target-distance along its ray lies in the left view once the hand is centred.
 //
-//   framing_study [EPISODES_PER_DISTANCE [FIRST_SEED [SECONDS]]]   (default 6, 1, 6 s)
+//   framing_study [director] [EPISODES_PER_DISTANCE [FIRST_SEED [SECONDS]]]   (default 6, 1, 6 s)
+//
+// With `director`, a second simulated head (handtracker `director`, placed by the calibration
+// file the study writes) frames the target instead of the crop, and the hand points to one
+// side, 45-65 deg from straight ahead, so that its target lies outside the stereo views; the
+// director's picture is judged from the pose its head reports every 10 ms, from the moment
+// the pick's message comes off the bus.
 //
 // Per episode: the time from the pick (the tracker's `attended-target` message) until the
 // crop holds the true target (the rendered ray's point at target-distance, projected with the
@@ -78,11 +84,13 @@ void print_row(const char* name, const Row& row)
 
 int main(int argc, char** argv)
 {
-    const int per_distance = argc > 1 ? std::atoi(argv[1]) : 6;
-    const unsigned first_seed = argc > 2 ? unsigned(std::atoi(argv[2])) : 1;
-    const double run_s = argc > 3 ? std::atof(argv[3]) : 6.0;
+    const bool director = argc > 1 && std::string(argv[1]) == "director";
+    const int arg = director ? 2 : 1;
+    const int per_distance = argc > arg ? std::atoi(argv[arg]) : 6;
+    const unsigned first_seed = argc > arg + 1 ? unsigned(std::atoi(argv[arg + 1])) : 1;
+    const double run_s = argc > arg + 2 ? std::atof(argv[arg + 2]) : 6.0;
     if (per_distance < 1 || run_s < 3.0) {
-        std::fprintf(stderr, "usage: framing_study [EPISODES_PER_DISTANCE [FIRST_SEED [SECONDS >= 3]]]\n");
+        std::fprintf(stderr, "usage: framing_study [director] [EPISODES_PER_DISTANCE [FIRST_SEED [SECONDS >= 3]]]\n");
         return 2;
     }
     g_setenv("GST_PLUGIN_PATH", GC_PLUGIN_DIR, FALSE);
@@ -97,9 +105,10 @@ int main(int argc, char** argv)
             e.target_distance_mm = distance;
             e.direction = k;
             e.seconds = run_s;
+            e.director = director;
             const EpisodeResult r = gc::study::run_episode(e);
             std::printf("  %d mm, seed %u, %s: %s; picked %s; framed %s after the pick (last frame: target at "
-                        "%.2f, %.2f of the crop, region %.2f of its width); picked %+.1f deg right, %+.1f deg "
+                        "%.2f, %.2f of the picture, region %.2f of its width); picked %+.1f deg right, %+.1f deg "
                         "down of the true target; tracked %d of %d pairs, a 3D ray on %d\n",
                         distance, e.seed, r.aim.c_str(), r.error.empty() ? "ran" : r.error.c_str(),
                         r.picked ? ("at " + std::to_string(r.pick_s).substr(0, 4) + " s").c_str() : "never",

@@ -1,0 +1,105 @@
+#include "headctl/steering/director_camera.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace gc::headctl {
+
+void DirectorCameraConfig::validate() const
+{
+    if (!std::isfinite(region_mm) || region_mm <= 0.0) throw std::invalid_argument("director: region_mm must be > 0");
+    if (home_preset && (*home_preset < 0 || *home_preset > kMaxPreset))
+        throw std::invalid_argument("director: home_preset must be 0.." + std::to_string(kMaxPreset));
+    if (mount.image_size.width <= 0 || mount.image_size.height <= 0 || !(mount.K(0, 0) > 0.0))
+        throw std::invalid_argument("director: the mount needs an image size and a focal length");
+}
+
+struct DirectorCamera::Impl {
+    DirectorCameraConfig config;
+    std::unique_ptr<HeadClient> client;
+    std::optional<cv::Vec3d> framed;  // the target last sent
+    std::optional<HeadPose> aim;
+    bool away_from_home = false;  // a target was framed since the camera was last sent home
+    // For cameras that do not report their range (VISCA, Pelco-D): the URI's zoom_max, as their
+    // backends read it.
+    HeadLimits unreported;
+
+    explicit Impl(DirectorCameraConfig c) : config(std::move(c))
+    {
+        config.validate();
+        unreported[Axis::Pan] = {-180.0, 180.0};
+        unreported[Axis::Tilt] = {-90.0, 90.0};
+        unreported[Axis::Zoom].max_deg = parse_head_uri(config.uri).number_param("zoom_max", 1.0, 1.0, 1000.0);
+        HeadClientConfig cc;
+        cc.uri = config.uri;
+        cc.token = config.token;
+        cc.clock = config.clock;
+        cc.on_state_change = config.on_state_change;
+        client = std::make_unique<HeadClient>(std::move(cc));
+    }
+
+    void submit(const HeadCommand& command)
+    {
+        client->submit(command);
+        if (config.on_command) config.on_command(command);
+    }
+
+    // Pan, tilt and, on a camera with a zoom lens, zoom; false until the camera has answered
+    // (a zoom beyond its range would be refused).
+    bool frame(const cv::Vec3d& target)
+    {
+        std::optional<HeadLimits> limits = client->limits();
+        if (!limits && client->state() == ConnectionState::Connected) limits = unreported;
+        if (!limits) return false;
+        const AxisLimits& zoom = (*limits)[Axis::Zoom];
+        const HeadPose pose = director_aim(config.mount, target, config.region_mm, zoom.min_deg, zoom.max_deg);
+        HeadCommand command{CommandKind::Absolute, {}, 0};
+        command.values.set(Axis::Pan,
+                           std::clamp(pose.pan_deg, (*limits)[Axis::Pan].min_deg, (*limits)[Axis::Pan].max_deg));
+        command.values.set(Axis::Tilt,
+                           std::clamp(pose.tilt_deg, (*limits)[Axis::Tilt].min_deg, (*limits)[Axis::Tilt].max_deg));
+        if (client->has_axis(Axis::Zoom)) command.values.set(Axis::Zoom, pose.zoom);
+        submit(command);
+        aim = pose;
+        return true;
+    }
+
+    void go_home()
+    {
+        submit(config.home_preset ? preset_command(CommandKind::RecallPreset, *config.home_preset)
+                                  : HeadCommand{CommandKind::Home, {}, 0});
+        aim.reset();
+    }
+};
+
+DirectorCamera::DirectorCamera(DirectorCameraConfig config) : impl_(std::make_unique<Impl>(std::move(config))) {}
+DirectorCamera::~DirectorCamera() = default;
+
+bool DirectorCamera::show(const std::optional<cv::Vec3d>& target)
+{
+    Impl& s = *impl_;
+    if (target) {
+        const bool same = s.framed && cv::norm(*target - *s.framed) <= 1.0;
+        if (same || !s.frame(*target)) return false;
+        s.framed = target;
+        s.away_from_home = true;
+        return true;
+    }
+    s.framed.reset();
+    if (!s.away_from_home) return false;
+    s.go_home();
+    s.away_from_home = false;
+    return true;
+}
+
+void DirectorCamera::set_region(double region_mm)
+{
+    if (!std::isfinite(region_mm) || region_mm <= 0.0) throw std::invalid_argument("director: region_mm must be > 0");
+    impl_->config.region_mm = region_mm;
+}
+
+std::optional<HeadPose> DirectorCamera::aim() const { return impl_->aim; }
+const HeadClient& DirectorCamera::client() const { return *impl_->client; }
+
+}  // namespace gc::headctl
