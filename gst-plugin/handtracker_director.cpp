@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <exception>
 #include <memory>
+#include <string>
 
 #define GST_CAT_DEFAULT gst_hand_tracker_debug
 
@@ -22,6 +23,7 @@ bool ensure_director(GstHandTracker* self, const TrackerSettings& settings)
     config.uri = settings.director;
     if (e.calibration && e.calibration->director) config.mount = *e.calibration->director;
     config.region_mm = settings.target_region_mm;
+    config.manual_pause_s = settings.manual_pause_s;
     if (settings.director_home_preset >= 0) config.home_preset = settings.director_home_preset;
     config.clock = element_clock(GST_ELEMENT(self));
     config.on_state_change = connection_reporter(GST_ELEMENT(self), settings.director);
@@ -38,16 +40,18 @@ bool ensure_director(GstHandTracker* self, const TrackerSettings& settings)
     return true;
 }
 
-// A `director` element message: where the director was sent, so that an application (or the
-// demo) sees it frame a target and go home.
-void post_director(GstHandTracker* self, const FrameResult& r, const std::optional<HeadPose>& aim)
+// A `director` element message: what the director did, so that an application (or the demo)
+// sees it frame a target, go home, and pause after someone else moved it.
+void post_director(GstHandTracker* self, const FrameResult& r, gc::headctl::DirectorEvent event,
+                   const std::optional<HeadPose>& aim)
 {
-    GstStructure* s = gst_structure_new("director", "event", G_TYPE_STRING, aim ? "frame" : "home", "frame",
-                                        G_TYPE_UINT64, guint64(std::max<std::int64_t>(r.frame, 0)), nullptr);
-    if (aim)
+    const std::string name(gc::headctl::to_string(event));
+    GstStructure* s = gst_structure_new("director", "event", G_TYPE_STRING, name.c_str(), "frame", G_TYPE_UINT64,
+                                        guint64(std::max<std::int64_t>(r.frame, 0)), nullptr);
+    if (event == gc::headctl::DirectorEvent::Frame && aim)
         gst_structure_set(s, "pan-deg", G_TYPE_DOUBLE, aim->pan_deg, "tilt-deg", G_TYPE_DOUBLE, aim->tilt_deg, "zoom",
                           G_TYPE_DOUBLE, aim->zoom, nullptr);
-    GST_INFO_OBJECT(self, "frame %" G_GINT64_FORMAT ": director %s", r.frame, aim ? "frames the target" : "goes home");
+    GST_INFO_OBJECT(self, "frame %" G_GINT64_FORMAT ": director %s", r.frame, name.c_str());
     gst_element_post_message(GST_ELEMENT(self), gst_message_new_element(GST_OBJECT(self), s));
 }
 
@@ -74,7 +78,8 @@ void direct_camera(GstHandTracker* self, const TrackerSettings& settings, const 
     if (settings.director.empty() || !ensure_director(self, settings)) return;
     TrackerState& e = *self->state;
     e.director->set_region(settings.target_region_mm);
-    if (e.director->show(e.stream.target)) post_director(self, result, e.director->aim());
+    e.director->set_manual_pause(settings.manual_pause_s);
+    if (const auto event = e.director->show(e.stream.target)) post_director(self, result, *event, e.director->aim());
 }
 
 }  // namespace gc::gst

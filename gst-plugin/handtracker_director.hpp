@@ -13,7 +13,7 @@ bool prepare_director(GstHandTracker* self, const TrackerSettings& settings);
 
 // After a tracked frame: the director frames the picked target, or goes home once it is
 // released, and a `director` element message (event frame with pan-deg, tilt-deg and zoom,
-// or home) says so. Never waits on the network.
+// home, manual-pause or resume) says so. Never waits on the network.
 void direct_camera(GstHandTracker* self, const TrackerSettings& settings, const FrameResult& result);
 
 }  // namespace gc::gst

@@ -207,7 +207,8 @@ void install_head_properties(GObjectClass* gobject_class)
         g_param_spec_double("manual-pause", "Manual pause",
                             "steer=fixate or point: when the head moves without the element's command (someone "
                             "runs headctl move), steering leaves it alone for this many seconds after the move, "
-                            "then resumes from there (a head-steering message says when); 0: never pause",
+                            "then resumes from there (a head-steering message says when); the director likewise "
+                            "(director messages); 0: never pause",
                             0.0, 3600.0, kDefaultManualPauseS, kMutablePlaying));
 }
 

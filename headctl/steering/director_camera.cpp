@@ -1,10 +1,30 @@
 #include "headctl/steering/director_camera.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
 namespace gc::headctl {
+
+namespace {
+double seconds(Timestamp t) { return std::chrono::duration<double>(t).count(); }
+}  // namespace
+
+std::string_view to_string(DirectorEvent event)
+{
+    switch (event) {
+    case DirectorEvent::Frame:
+        return "frame";
+    case DirectorEvent::Home:
+        return "home";
+    case DirectorEvent::ManualPause:
+        return "manual-pause";
+    case DirectorEvent::Resume:
+        return "resume";
+    }
+    return "unknown";
+}
 
 void DirectorCameraConfig::validate() const
 {
@@ -13,6 +33,8 @@ void DirectorCameraConfig::validate() const
         throw std::invalid_argument("director: home_preset must be 0.." + std::to_string(kMaxPreset));
     if (mount.image_size.width <= 0 || mount.image_size.height <= 0 || !(mount.K(0, 0) > 0.0))
         throw std::invalid_argument("director: the mount needs an image size and a focal length");
+    if (!std::isfinite(manual_pause_s) || manual_pause_s < 0.0)
+        throw std::invalid_argument("director: manual_pause_s must be >= 0");
 }
 
 struct DirectorCamera::Impl {
@@ -24,8 +46,10 @@ struct DirectorCamera::Impl {
     // For cameras that do not report their range (VISCA, Pelco-D): the URI's zoom_max, as their
     // backends read it.
     HeadLimits unreported;
+    ManualMoveWatch watch;
+    std::optional<double> paused_until_s;
 
-    explicit Impl(DirectorCameraConfig c) : config(std::move(c))
+    explicit Impl(DirectorCameraConfig c) : config(std::move(c)), watch(config.manual)
     {
         config.validate();
         unreported[Axis::Pan] = {-180.0, 180.0};
@@ -42,7 +66,32 @@ struct DirectorCamera::Impl {
     void submit(const HeadCommand& command)
     {
         client->submit(command);
+        watch.commanded(command, seconds(client->now()));
         if (config.on_command) config.on_command(command);
+    }
+
+    // Starts, extends and ends the pause after someone else moved the camera.
+    std::optional<DirectorEvent> manual_pause()
+    {
+        const std::optional<StateSample> latest = client->latest();
+        const double now_s = seconds(client->now());
+        std::optional<DirectorEvent> event;
+        if (config.manual_pause_s > 0.0 && latest &&
+            watch.moved_by_someone_else(latest->state, seconds(latest->time))) {
+            if (!paused_until_s) event = DirectorEvent::ManualPause;
+            paused_until_s = now_s + config.manual_pause_s;  // from the last move seen
+            watch.reset();
+        }
+        if (paused_until_s && now_s >= *paused_until_s) {
+            // From where the person left it: a target still held is framed anew, a released
+            // one does not send it home.
+            paused_until_s.reset();
+            framed.reset();
+            aim.reset();
+            away_from_home = false;
+            event = DirectorEvent::Resume;
+        }
+        return event;
     }
 
     // Pan, tilt and, on a camera with a zoom lens, zoom; false until the camera has answered
@@ -76,21 +125,23 @@ struct DirectorCamera::Impl {
 DirectorCamera::DirectorCamera(DirectorCameraConfig config) : impl_(std::make_unique<Impl>(std::move(config))) {}
 DirectorCamera::~DirectorCamera() = default;
 
-bool DirectorCamera::show(const std::optional<cv::Vec3d>& target)
+std::optional<DirectorEvent> DirectorCamera::show(const std::optional<cv::Vec3d>& target)
 {
     Impl& s = *impl_;
+    const std::optional<DirectorEvent> pause = s.manual_pause();
+    if (s.paused_until_s || pause == DirectorEvent::Resume) return pause;
     if (target) {
         const bool same = s.framed && cv::norm(*target - *s.framed) <= 1.0;
-        if (same || !s.frame(*target)) return false;
+        if (same || !s.frame(*target)) return pause;
         s.framed = target;
         s.away_from_home = true;
-        return true;
+        return DirectorEvent::Frame;
     }
     s.framed.reset();
-    if (!s.away_from_home) return false;
+    if (!s.away_from_home) return pause;
     s.go_home();
     s.away_from_home = false;
-    return true;
+    return DirectorEvent::Home;
 }
 
 void DirectorCamera::set_region(double region_mm)
@@ -99,7 +150,14 @@ void DirectorCamera::set_region(double region_mm)
     impl_->config.region_mm = region_mm;
 }
 
+void DirectorCamera::set_manual_pause(double seconds)
+{
+    if (!std::isfinite(seconds) || seconds < 0.0) throw std::invalid_argument("director: manual_pause_s must be >= 0");
+    impl_->config.manual_pause_s = seconds;
+}
+
 std::optional<HeadPose> DirectorCamera::aim() const { return impl_->aim; }
+bool DirectorCamera::paused() const { return impl_->paused_until_s.has_value(); }
 const HeadClient& DirectorCamera::client() const { return *impl_->client; }
 
 }  // namespace gc::headctl

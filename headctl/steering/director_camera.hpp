@@ -6,6 +6,7 @@
 #pragma once
 
 #include "headctl/head_client.hpp"
+#include "headctl/steering/manual_move_watch.hpp"
 #include "stereo/director_mount.hpp"
 
 #include <opencv2/core.hpp>
@@ -14,8 +15,14 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 
 namespace gc::headctl {
+
+// What show() did: framed a target, sent the camera home (or to its preset), noticed that
+// someone else moved it (it is left alone for manual_pause_s) or ended that pause.
+enum class DirectorEvent { Frame, Home, ManualPause, Resume };
+std::string_view to_string(DirectorEvent event);
 
 struct DirectorCameraConfig {
     std::string uri;  // any head URI (headctl/uri.hpp)
@@ -24,6 +31,10 @@ struct DirectorCameraConfig {
     double region_mm = 500.0;  // the width framed around a target
     // Where it goes when the target is released: this preset, or home (pan 0, tilt 0, widest).
     std::optional<int> home_preset;
+    // After someone else moved it (headctl, its own remote), it is left alone this long
+    // (seconds); a target held when the pause ends is framed then. 0: never pause.
+    double manual_pause_s = 10.0;
+    ManualMoveConfig manual;
     std::function<Timestamp()> clock;  // steady_clock when empty
     // Called on the client's thread at each connection change; must not block.
     std::function<void(ConnectionState, const std::string& error)> on_state_change;
@@ -43,14 +54,17 @@ public:
 
     // Called every frame with the picked target (head frame, millimetres) or nullopt. A new
     // target is framed once the camera has answered (its zoom range known); a released one
-    // sends the camera home. The same target again sends nothing. True when a command was
-    // handed to the camera.
-    bool show(const std::optional<cv::Vec3d>& target);
+    // sends the camera home. The same target again sends nothing, and nothing is sent while
+    // the camera is paused after someone else moved it. Says what it did, if anything.
+    std::optional<DirectorEvent> show(const std::optional<cv::Vec3d>& target);
     // The width framed around a target from the next target on (std::invalid_argument if not > 0).
     void set_region(double region_mm);
+    // The pause after a manual move, from the next move on (std::invalid_argument if < 0).
+    void set_manual_pause(double seconds);
 
     // The pose the camera was last sent to frame a target; nullopt before or after.
     std::optional<HeadPose> aim() const;
+    bool paused() const;
     const HeadClient& client() const;
 
 private:

@@ -1,12 +1,14 @@
 // The director camera: a picked target turns and zooms headsim's head (over GCHP, VISCA and
 // ONVIF) so the target sits in the middle of its picture at the region's width; a release
-// sends it home or to its preset; the same target sends nothing new; a dead camera never
-// makes show() wait.
+// sends it home or to its preset; the same target sends nothing new; someone else moving it
+// pauses it; a dead camera never makes show() wait.
 #include "test_support.hpp"
 
 #include "headctl/steering/director_camera.hpp"
 
 #include <cmath>
+#include <thread>
+#include <vector>
 
 namespace gc::headctl::testing {
 namespace {
@@ -116,6 +118,52 @@ TEST(DirectorCamera, TheSameTargetSendsNothingAndAReleaseGoesToThePreset)
     EXPECT_TRUE(reaches(observer, overview, 0.001));
 }
 
+// Calls show(target) at 30 frames per second for `duration`, as the element does, and
+// returns the events it gave.
+std::vector<DirectorEvent> frames(DirectorCamera& director, const std::optional<cv::Vec3d>& target,
+                                  std::chrono::milliseconds duration)
+{
+    std::vector<DirectorEvent> events;
+    const auto end = std::chrono::steady_clock::now() + duration;
+    while (std::chrono::steady_clock::now() < end) {
+        if (const auto e = director.show(target)) events.push_back(*e);
+        std::this_thread::sleep_for(33ms);
+    }
+    return events;
+}
+
+TEST(DirectorCamera, SomeoneElseMovingItPausesItThenAHeldTargetIsFramedAgain)
+{
+    RunningServer server;
+    DirectorCameraConfig config = config_for(server.uri());
+    config.manual_pause_s = 1.0;
+    DirectorCamera director(config);
+    ASSERT_TRUE(eventually([&] { return director.client().state() == ConnectionState::Connected; }, 5000ms));
+    const cv::Vec3d target(800.0, 0.0, 3000.0);
+    EXPECT_EQ(frames(director, target, 1500ms), std::vector<DirectorEvent>{DirectorEvent::Frame});
+    const HeadPose aim = *director.aim();
+
+    // A person turns it 20 degrees further (headctl, its remote) while the target is held.
+    server.server().with_model([&](HeadModel& model, double now_s) {
+        AxisValues elsewhere;
+        elsewhere.set(Axis::Pan, aim.pan_deg + 20.0);
+        model.move_absolute(elsewhere, now_s);
+    });
+    EXPECT_EQ(frames(director, target, 600ms), std::vector<DirectorEvent>{DirectorEvent::ManualPause});
+    EXPECT_TRUE(director.paused());
+    // Released while paused: it stays where the person put it, and the pause runs a second
+    // from the last move seen.
+    EXPECT_EQ(frames(director, std::nullopt, 1800ms), std::vector<DirectorEvent>{DirectorEvent::Resume});
+    EXPECT_FALSE(director.paused());
+    HeadClient observer(observer_config(server.uri()));
+    HeadPose moved = aim;
+    moved.pan_deg += 20.0;
+    EXPECT_TRUE(reaches(observer, moved, 0.001));
+    // A target held after the pause is framed anew.
+    EXPECT_EQ(frames(director, target, 200ms), std::vector<DirectorEvent>{DirectorEvent::Frame});
+    EXPECT_TRUE(reaches(observer, aim, 0.001));
+}
+
 TEST(DirectorCamera, ADeadCameraNeverMakesTheCallerWait)
 {
     // Nothing listens there: the client keeps trying on its own thread.
@@ -135,10 +183,14 @@ TEST(DirectorCamera, RefusesABadConfiguration)
     c = config_for("tcp://127.0.0.1:5050");
     c.home_preset = kMaxPreset + 1;
     EXPECT_THROW(DirectorCamera{c}, std::invalid_argument);
+    c = config_for("tcp://127.0.0.1:5050");
+    c.manual_pause_s = -1.0;
+    EXPECT_THROW(DirectorCamera{c}, std::invalid_argument);
     c = config_for("ftp://camera");
     EXPECT_THROW(DirectorCamera{c}, std::invalid_argument);
     DirectorCamera director(config_for("tcp://127.0.0.1:1"));
     EXPECT_THROW(director.set_region(-1.0), std::invalid_argument);
+    EXPECT_THROW(director.set_manual_pause(std::nan("")), std::invalid_argument);
 }
 
 }  // namespace
