@@ -1,6 +1,7 @@
 #include "handtracker_director.hpp"
 
 #include "head_connection.hpp"
+#include "head_uri_property.hpp"
 
 #include "headctl/uri.hpp"
 
@@ -19,8 +20,10 @@ bool ensure_director(GstHandTracker* self, const TrackerSettings& settings)
 {
     TrackerState& e = *self->state;
     if (e.director) return true;
+    if (e.director_failed) return false;
     gc::headctl::DirectorCameraConfig config;
     config.uri = settings.director;
+    config.token = e.director_token;
     if (e.calibration && e.calibration->director) config.mount = *e.calibration->director;
     config.region_mm = settings.target_region_mm;
     config.manual_pause_s = settings.manual_pause_s;
@@ -59,11 +62,15 @@ void post_director(GstHandTracker* self, const FrameResult& r, gc::headctl::Dire
 
 bool prepare_director(GstHandTracker* self, const TrackerSettings& settings)
 {
-    self->state->director.reset();
+    TrackerState& e = *self->state;
+    e.director.reset();
+    e.director_failed = false;
+    e.director_token.clear();
     if (settings.director.empty()) return true;
+    if (!read_head_token(GST_ELEMENT(self), settings.director_token_file, e.director_token)) return false;
     try {
         // The backend reads its query parameters (zoom_max, speeds, ...) when it is made.
-        (void)gc::headctl::make_backend(gc::headctl::parse_head_uri(settings.director));
+        (void)gc::headctl::make_backend(gc::headctl::parse_head_uri(settings.director), e.director_token);
     } catch (const std::exception& err) {
         GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
                           ("Invalid director URI \"%s\".", gc::headctl::redact_uri(settings.director).c_str()),

@@ -36,8 +36,9 @@ enum {
     PROP_MANUAL_PAUSE,
     PROP_DIRECTOR,
     PROP_DIRECTOR_HOME_PRESET,
+    PROP_DIRECTOR_TOKEN_FILE,
 };
-static_assert(kStatsProperty > PROP_DIRECTOR_HOME_PRESET, "the stats property's id follows the settings'");
+static_assert(kStatsProperty > PROP_DIRECTOR_TOKEN_FILE, "the stats property's id follows the settings'");
 
 #define GST_TYPE_HAND_TRACKER_OUTPUT (gst_hand_tracker_output_get_type())
 static GType gst_hand_tracker_output_get_type()
@@ -295,6 +296,13 @@ void install_director_properties(GObjectClass* gobject_class)
                             nullptr,
                             GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
     g_object_class_install_property(
+        gobject_class, PROP_DIRECTOR_TOKEN_FILE,
+        g_param_spec_string("director-token-file", "Director token file",
+                            "A file whose first line is the director's token (GCHP), read at start; it replaces a "
+                            "token in the director URI. Unset: the URI's token, if any",
+                            nullptr,
+                            GParamFlags(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS | GST_PARAM_MUTABLE_READY)));
+    g_object_class_install_property(
         gobject_class, PROP_DIRECTOR_HOME_PRESET,
         g_param_spec_int("director-home-preset", "Director home preset",
                          "The director's preset (e.g. a view of the whole room) it returns to when a target is "
@@ -371,6 +379,11 @@ bool set_head_setting(TrackerSettings& s, guint prop_id, const GValue* value)
     case PROP_DIRECTOR_HOME_PRESET:
         s.director_home_preset = g_value_get_int(value);
         break;
+    case PROP_DIRECTOR_TOKEN_FILE: {
+        const gchar* path = g_value_get_string(value);
+        s.director_token_file = path ? path : "";
+        break;
+    }
     default:
         return false;
     }
@@ -484,6 +497,9 @@ bool get_head_setting(const TrackerSettings& s, guint prop_id, GValue* value)
         break;
     case PROP_DIRECTOR_HOME_PRESET:
         g_value_set_int(value, s.director_home_preset);
+        break;
+    case PROP_DIRECTOR_TOKEN_FILE:
+        g_value_set_string(value, s.director_token_file.empty() ? nullptr : s.director_token_file.c_str());
         break;
     default:
         return false;

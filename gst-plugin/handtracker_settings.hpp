@@ -52,6 +52,7 @@ struct TrackerSettings {
     double manual_pause_s = kDefaultManualPauseS;  // someone else moved the head: steering waits this long
     std::string director;                          // a second PTZ camera's URI; empty: none
     int director_home_preset = -1;                 // where it goes when a target is released; -1: its home position
+    std::string director_token_file;               // empty: the director URI's token, if any
     gc::HandDetector detector = gc::HandDetector::Learned;
     std::string model_dir;  // empty: the learned models are found without configuration
     // How `sink` frames hold both views when their caps do not say (or say wrongly).

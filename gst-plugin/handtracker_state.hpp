@@ -61,6 +61,8 @@ struct TrackerState {
     std::string json_line;
     std::unique_ptr<headctl::HeadLink> head;
     std::unique_ptr<headctl::DirectorCamera> director;  // a second PTZ camera, built at the first frame
+    std::string director_token;                         // read from director-token-file at start
+    bool director_failed = false;                       // it could not be made: reported once, not tried again
     std::string head_token;                             // read from head-token-file at start
     cv::Size head_view_size;                            // the view size of the head link's calibration
     bool warned_stale_views = false;                    // the current run of too-old views was reported

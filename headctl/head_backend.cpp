@@ -9,6 +9,22 @@
 
 namespace gc::headctl {
 
+HeadLimits HeadBackend::assumed_limits() const
+{
+    HeadLimits l;
+    l[Axis::Pan].min_deg = -180.0;
+    l[Axis::Pan].max_deg = 180.0;
+    return l;
+}
+
+// For backends that know only their lens: the default range with zoom up to `zoom_max`.
+HeadLimits limits_with_zoom(const HeadBackend& backend, double zoom_max, double zoom_speed)
+{
+    HeadLimits l = backend.HeadBackend::assumed_limits();
+    l[Axis::Zoom] = AxisLimits{1.0, zoom_max, zoom_speed, 4.0 * zoom_speed};  // full speed within 0.25 s
+    return l;
+}
+
 std::string describe(const HeadCommand& c)
 {
     std::string out;

@@ -50,10 +50,18 @@ public:
     virtual void send(const HeadCommand& command, Deadline deadline) = 0;
     // nullopt when the head cannot tell.
     virtual std::optional<HeadLimits> query_limits(Deadline deadline) = 0;
+    // The limits the backend itself works within, without asking the head (its URI's
+    // parameters: an ONVIF range, a lens's zoom_max): what a caller may use for a head that
+    // does not report its own. Unbounded pan and tilt, no zoom, unless a backend knows better.
+    virtual HeadLimits assumed_limits() const;
     // The axes the head has; commands naming others are rejected before they are sent.
     virtual std::array<bool, kAxisCount> axes() const = 0;
     virtual std::string name() const = 0;
 };
+
+// HeadBackend::assumed_limits() with the zoom running from 1 to `zoom_max` at up to
+// `zoom_speed` magnification per second.
+HeadLimits limits_with_zoom(const HeadBackend& backend, double zoom_max, double zoom_speed);
 
 // For heads that report positions only (VISCA, Pelco-D): marks the axes whose position
 // changed since `last` as moving, then remembers this state's pose in `last`.

@@ -59,6 +59,14 @@ OnvifSettings OnvifSettings::from_uri(const HeadUri& uri)
     return s;
 }
 
+HeadLimits OnvifBackend::assumed_limits() const
+{
+    HeadLimits l = limits_with_zoom(*this, settings_.zoom_max, settings_.zoom_max_speed);
+    l[Axis::Pan] = AxisLimits{settings_.pan_min_deg, settings_.pan_max_deg, settings_.pan_max_speed_dps};
+    l[Axis::Tilt] = AxisLimits{settings_.tilt_min_deg, settings_.tilt_max_deg, settings_.tilt_max_speed_dps};
+    return l;
+}
+
 OnvifBackend::OnvifBackend(std::string host, std::uint16_t port, std::string path, OnvifSettings settings,
                            std::string password)
     : host_(std::move(host)), port_(port), path_(path.empty() ? "/onvif/ptz_service" : std::move(path)),

@@ -40,6 +40,7 @@ public:
     HeadState query_state(Deadline deadline) override;
     void send(const HeadCommand& command, Deadline deadline) override;
     std::optional<HeadLimits> query_limits(Deadline) override { return std::nullopt; }
+    HeadLimits assumed_limits() const override;
     std::array<bool, kAxisCount> axes() const override { return {true, true, false, false, has_zoom()}; }
     std::string name() const override;
 

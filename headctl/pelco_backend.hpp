@@ -31,6 +31,7 @@ public:
     HeadState query_state(Deadline deadline) override;
     void send(const HeadCommand& command, Deadline deadline) override;
     std::optional<HeadLimits> query_limits(Deadline) override { return std::nullopt; }
+    HeadLimits assumed_limits() const override { return limits_with_zoom(*this, settings_.zoom_max, 8.0); }
     std::array<bool, kAxisCount> axes() const override { return {true, true, false, false, has_zoom()}; }
     std::string name() const override { return "pelco-d://" + path_; }
 

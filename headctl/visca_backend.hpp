@@ -40,6 +40,10 @@ public:
     HeadState query_state(Deadline deadline) override;
     void send(const HeadCommand& command, Deadline deadline) override;
     std::optional<HeadLimits> query_limits(Deadline) override { return std::nullopt; }
+    HeadLimits assumed_limits() const override
+    {
+        return limits_with_zoom(*this, settings_.zoom_max, settings_.zoom_max_speed);
+    }
     std::array<bool, kAxisCount> axes() const override { return {true, true, false, false, has_zoom()}; }
     std::string name() const override;
 

@@ -157,7 +157,7 @@ if steer == "director":
             print(f"  director sent at frame {field(line, 'frame', 'guint64')}: pan {float(field(line, 'pan-deg')):+.1f} "
                   f"deg, tilt {float(field(line, 'tilt-deg')):+.1f} deg, zoom {float(field(line, 'zoom')):.2f}x")
         else:
-            print(f"  director sent home at frame {field(line, 'frame', 'guint64')}")
+            print(f"  director {event} at frame {field(line, 'frame', 'guint64')}")
 print(f"wall time: {end - start:.1f} s for {n / 30:.1f} s of video (live)")
 print(f"video: {out}/demo.mp4   JSON lines: {out}/demo.jsonl   bus messages: {out}/demo.bus.txt")
 PY

@@ -195,6 +195,32 @@ TEST(HeadToken, AFileAuthenticatesAndACopyOfThePropertiesStillDoes)
     EXPECT_EQ(refused.connection_states, std::vector<std::string>{"disconnected"}) << refused.text;
 }
 
+// The director's token file authenticates it as head-token-file does the head; without it
+// the director is refused (a warning), and the tracking goes on.
+TEST(HeadToken, AFileAuthenticatesTheDirector)
+{
+    gc::test::init_gstreamer();
+    gc::loopback::RunningHead director(head_with_token());
+    const TokenFile file(kSecret);
+    ElementPtr with_file = tracker_pipeline();
+    ASSERT_TRUE(with_file);
+    g_object_set(tracker_of(with_file.get()).get(), "director", director.uri().c_str(), "director-token-file",
+                 file.path.c_str(), nullptr);
+    EXPECT_EQ(string_property(tracker_of(with_file.get()).get(), "director-token-file"), file.path);
+    const BusText authenticated = play(with_file.get());
+    EXPECT_TRUE(authenticated.eos);
+    EXPECT_EQ(authenticated.connection_states, std::vector<std::string>{"connected"}) << authenticated.text;
+    EXPECT_EQ(authenticated.warnings, 0) << authenticated.text;
+
+    ElementPtr without = tracker_pipeline();
+    ASSERT_TRUE(without);
+    g_object_set(tracker_of(without.get()).get(), "director", director.uri().c_str(), nullptr);
+    const BusText refused = play(without.get());
+    EXPECT_TRUE(refused.eos);
+    EXPECT_GE(refused.warnings, 1);
+    EXPECT_EQ(refused.connection_states, std::vector<std::string>{"disconnected"}) << refused.text;
+}
+
 // Sets `element`'s head to `uri` with the token, checks that it reads back hidden, and sets
 // back what was read.
 void set_head_with_token_and_read_back(GstElement* element, const std::string& uri)

@@ -218,17 +218,9 @@ TEST(HeadClient, AuthenticatesWithItsToken)
 
 TEST(HeadClient, CallerNeverWaitsOnAStuckHead)
 {
-    // Listens but never accepts: connecting succeeds, the greeting never comes.
-    net::Fd stuck(::socket(AF_INET, SOCK_STREAM, 0));
-    sockaddr_in a{};
-    a.sin_family = AF_INET;
-    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    ASSERT_EQ(::bind(stuck.get(), reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
-    ::listen(stuck.get(), 4);
-    socklen_t len = sizeof a;
-    ::getsockname(stuck.get(), reinterpret_cast<sockaddr*>(&a), &len);
+    const StuckListener stuck;
     HeadClientConfig config;
-    config.uri = "tcp://127.0.0.1:" + std::to_string(ntohs(a.sin_port));
+    config.uri = stuck.uri();
     config.connect_timeout = 2000ms;
     HeadClient client(config);
     std::this_thread::sleep_for(50ms);

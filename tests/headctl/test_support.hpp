@@ -24,6 +24,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -97,6 +98,28 @@ private:
     OnvifResponder onvif_;
     ViscaResponder visca_;
     std::thread thread_;
+};
+
+// A TCP port on 127.0.0.1 that listens but never accepts: connecting succeeds, the greeting
+// never comes (a stuck head), for the lifetime of the object.
+class StuckListener {
+public:
+    StuckListener() : fd_(::socket(AF_INET, SOCK_STREAM, 0))
+    {
+        sockaddr_in a{};
+        a.sin_family = AF_INET;
+        a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+        if (::bind(fd_.get(), reinterpret_cast<sockaddr*>(&a), sizeof a) != 0 || ::listen(fd_.get(), 4) != 0)
+            throw std::runtime_error("cannot listen on loopback");
+        socklen_t len = sizeof a;
+        ::getsockname(fd_.get(), reinterpret_cast<sockaddr*>(&a), &len);
+        port_ = ntohs(a.sin_port);
+    }
+    std::string uri() const { return "tcp://127.0.0.1:" + std::to_string(port_); }
+
+private:
+    net::Fd fd_;
+    std::uint16_t port_ = 0;
 };
 
 // The longest of `count` calls of `call(i)`, in microseconds: what a caller that must never

@@ -172,7 +172,7 @@ Entries with_director(Entries e)
     e["director_image_width"] = {0, 0, "1920"};
     e["director_image_height"] = {0, 0, "1080"};
     e["director_M"] = {3, 3, "1662.8 0 959.5 0 1662.8 539.5 0 0 1"};
-    // Turned 30 degrees to the left, 1.5 m to the right of the head.
+    // Turned 30 degrees to the left, standing 750 mm to the right of the head and 1.3 m ahead.
     e["director_R"] = {3, 3, "0.8660254 0 0.5 0 1 0 -0.5 0 0.8660254"};
     e["director_T"] = {3, 1, "-1299 0 -750"};
     return e;
