@@ -9,13 +9,6 @@ namespace gc::headctl {
 
 namespace {
 double seconds(Timestamp t) { return std::chrono::duration<double>(t).count(); }
-
-// A camera within this of where it was sent, and still, has arrived.
-constexpr double kArrivedDeg = 0.5;
-// The longest a move (or a preset recall, whose pose is unknown) is given to arrive before
-// the camera is watched again wherever it is.
-constexpr double kArrivalTimeoutS = 10.0;
-constexpr double kPresetArrivalS = 3.0;
 }  // namespace
 
 std::string_view to_string(DirectorEvent event)
@@ -55,15 +48,6 @@ struct DirectorCamera::Impl {
     HeadLimits unreported;
     ManualMoveWatch watch;
     std::optional<double> paused_until_s;
-    // Where the last command sends pan and tilt (nullopt: a preset, whose pose is unknown here)
-    // and until when the camera is given to get there. Until then the watch looks away: over a
-    // slow link (ONVIF over HTTP, Pelco-D at 2400 baud) the camera still reports its old pose
-    // for a while, and that is not someone else holding it there.
-    struct Arrival {
-        std::optional<cv::Vec2d> pan_tilt;
-        double until_s = 0.0;
-    };
-    std::optional<Arrival> arrival;
 
     explicit Impl(DirectorCameraConfig c) : config(std::move(c)), watch(config.manual)
     {
@@ -80,30 +64,8 @@ struct DirectorCamera::Impl {
     void submit(const HeadCommand& command)
     {
         client->submit(command);
-        const double now_s = seconds(client->now());
-        watch.commanded(command, now_s);
-        Arrival a;
-        if (command.kind == CommandKind::Absolute)
-            a.pan_tilt = cv::Vec2d(command.values.get(Axis::Pan), command.values.get(Axis::Tilt));
-        else if (command.kind == CommandKind::Home)
-            a.pan_tilt = cv::Vec2d(0.0, 0.0);
-        a.until_s = now_s + (a.pan_tilt ? kArrivalTimeoutS : kPresetArrivalS);
-        arrival = a;
+        watch.commanded(command, seconds(client->now()));
         if (config.on_command) config.on_command(command);
-    }
-
-    // Whether the camera is still on its way to where the last command sent it.
-    bool on_its_way(const StateSample& latest, double now_s)
-    {
-        if (!arrival) return false;
-        const HeadState& s = latest.state;
-        const bool there = arrival->pan_tilt && std::abs(s.pose.pan_deg - (*arrival->pan_tilt)[0]) <= kArrivedDeg &&
-                           std::abs(s.pose.tilt_deg - (*arrival->pan_tilt)[1]) <= kArrivedDeg &&
-                           !s.moving_axis(Axis::Pan) && !s.moving_axis(Axis::Tilt);
-        if (!there && now_s < arrival->until_s) return true;
-        arrival.reset();
-        watch.reset();  // held again from where it now rests
-        return false;
     }
 
     // Starts, extends and ends the pause after someone else moved the camera.
@@ -112,7 +74,7 @@ struct DirectorCamera::Impl {
         const std::optional<StateSample> latest = client->latest();
         const double now_s = seconds(client->now());
         std::optional<DirectorEvent> event;
-        if (config.manual_pause_s > 0.0 && latest && !on_its_way(*latest, now_s) &&
+        if (config.manual_pause_s > 0.0 && latest &&
             watch.moved_by_someone_else(latest->state, seconds(latest->time))) {
             if (!paused_until_s) event = DirectorEvent::ManualPause;
             paused_until_s = now_s + config.manual_pause_s;  // from the last move seen

@@ -10,11 +10,20 @@ double axis_angle(const HeadPose& pose, Axis axis) { return axis == Axis::Pan ? 
 
 }  // namespace
 
-void ManualMoveWatch::release(AxisWatch& axis, double t_s, bool driven)
+void ManualMoveWatch::release(AxisWatch& axis, double t_s, bool driven, std::optional<double> destination)
 {
     axis.held = false;
     axis.driven = driven;
     axis.commanded_s = t_s;
+    axis.destination_deg = destination;
+}
+
+// Whether a released axis has come to rest where the link's commands leave it.
+bool ManualMoveWatch::may_hold(const AxisWatch& axis, double angle_deg, bool moving, double t_s) const
+{
+    if (axis.driven || moving || t_s - axis.commanded_s < config_.settle_s) return false;
+    return !axis.destination_deg || std::abs(angle_deg - *axis.destination_deg) <= config_.arrival_tolerance_deg ||
+           t_s - axis.commanded_s >= config_.arrival_timeout_s;
 }
 
 void ManualMoveWatch::commanded(const HeadCommand& command, double t_s)
@@ -31,11 +40,15 @@ void ManualMoveWatch::commanded(const HeadCommand& command, double t_s)
                 release(axis, t_s, false);
             break;
         case CommandKind::Absolute:
+            if (command.values.has(kAxes[i])) release(axis, t_s, false, command.values.get(kAxes[i]));
+            break;
         case CommandKind::Relative:
             if (command.values.has(kAxes[i])) release(axis, t_s, false);
             break;
-        case CommandKind::Stop:
         case CommandKind::Home:
+            release(axis, t_s, false, home_value(kAxes[i]));
+            break;
+        case CommandKind::Stop:
         case CommandKind::RecallPreset:
             release(axis, t_s, false);
             break;
@@ -53,7 +66,7 @@ bool ManualMoveWatch::moved_by_someone_else(const HeadState& state, double t_s)
         const double angle = axis_angle(state.pose, kAxes[i]);
         if (axis.held) {
             moved = moved || std::abs(angle - axis.rest_deg) > config_.tolerance_deg;
-        } else if (!axis.driven && !state.moving_axis(kAxes[i]) && t_s - axis.commanded_s >= config_.settle_s) {
+        } else if (may_hold(axis, angle, state.moving_axis(kAxes[i]), t_s)) {
             axis.held = true;
             axis.rest_deg = angle;
         }

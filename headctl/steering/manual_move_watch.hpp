@@ -7,12 +7,19 @@
 
 #include <array>
 #include <limits>
+#include <optional>
 
 namespace gc::headctl {
 
 struct ManualMoveConfig {
     double tolerance_deg = 0.3;  // pose readings wander this much at rest without anyone moving the head
     double settle_s = 0.25;      // after a command, the head is let come to rest this long before it is held
+    // After a command that names where an axis goes (absolute, home), the axis is held only
+    // once it rests within arrival_tolerance_deg of there, or arrival_timeout_s after the
+    // command: over a slow link (ONVIF over HTTP, Pelco-D at 2400 baud, VISCA's inferred
+    // motion) the head still reports its old pose, at rest, for a while after the command.
+    double arrival_tolerance_deg = 1.0;
+    double arrival_timeout_s = 5.0;
 };
 
 class ManualMoveWatch {
@@ -35,10 +42,12 @@ private:
         bool driven = false;  // a velocity other than 0 is in force
         double rest_deg = 0.0;
         double commanded_s = -std::numeric_limits<double>::infinity();
+        std::optional<double> destination_deg;  // where the last command sends it, when it says
     };
     static constexpr std::array<Axis, 2> kAxes{Axis::Pan, Axis::Tilt};
 
-    void release(AxisWatch& axis, double t_s, bool driven);
+    void release(AxisWatch& axis, double t_s, bool driven, std::optional<double> destination = std::nullopt);
+    bool may_hold(const AxisWatch& axis, double angle_deg, bool moving, double t_s) const;
 
     ManualMoveConfig config_;
     std::array<AxisWatch, 2> axes_{};
