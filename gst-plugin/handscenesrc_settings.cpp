@@ -1,6 +1,7 @@
 #include "handscenesrc_settings.hpp"
 
 #include "head_uri_property.hpp"
+#include "string_property.hpp"
 
 #include <gst/gst.h>
 
@@ -278,11 +279,9 @@ bool set_scene_setting(SceneSettings& s, guint prop_id, const GValue* value)
     case PROP_HEAD:
         set_head_uri(s.head, value);
         break;
-    case PROP_HEAD_TOKEN_FILE: {
-        const gchar* path = g_value_get_string(value);
-        s.head_token_file = path ? path : "";
+    case PROP_HEAD_TOKEN_FILE:
+        s.head_token_file = string_value(value);
         break;
-    }
     case PROP_HEAD_PAN:
         s.rig.pan_deg = g_value_get_double(value);
         break;
@@ -335,7 +334,7 @@ bool get_scene_setting(const SceneSettings& s, guint prop_id, GValue* value)
         get_head_uri(s.head, value);
         break;
     case PROP_HEAD_TOKEN_FILE:
-        g_value_set_string(value, s.head_token_file.empty() ? nullptr : s.head_token_file.c_str());
+        set_string_value(value, s.head_token_file);
         break;
     case PROP_HEAD_PAN:
         g_value_set_double(value, s.rig.pan_deg);

@@ -1,6 +1,7 @@
 #include "handtracker_settings.hpp"
 
 #include "head_uri_property.hpp"
+#include "string_property.hpp"
 #include "headctl/head_backend.hpp"
 #include "headctl/token.hpp"
 
@@ -347,11 +348,9 @@ bool set_head_setting(TrackerSettings& s, guint prop_id, const GValue* value)
     case PROP_HEAD:
         set_head_uri(s.head, value);
         break;
-    case PROP_HEAD_TOKEN_FILE: {
-        const gchar* path = g_value_get_string(value);
-        s.head_token_file = path ? path : "";
+    case PROP_HEAD_TOKEN_FILE:
+        s.head_token_file = string_value(value);
         break;
-    }
     case PROP_STEER:
         s.steer = gc::headctl::SteerMode(g_value_get_enum(value));
         break;
@@ -379,11 +378,9 @@ bool set_head_setting(TrackerSettings& s, guint prop_id, const GValue* value)
     case PROP_DIRECTOR_HOME_PRESET:
         s.director_home_preset = g_value_get_int(value);
         break;
-    case PROP_DIRECTOR_TOKEN_FILE: {
-        const gchar* path = g_value_get_string(value);
-        s.director_token_file = path ? path : "";
+    case PROP_DIRECTOR_TOKEN_FILE:
+        s.director_token_file = string_value(value);
         break;
-    }
     default:
         return false;
     }
@@ -403,12 +400,10 @@ bool set_tracker_setting(TrackerSettings& s, guint prop_id, const GValue* value,
         s.seed = g_value_get_uint64(value);
         rebuild = true;
         break;
-    case PROP_CALIBRATION: {
-        const gchar* path = g_value_get_string(value);
-        s.calibration = path ? path : "";
+    case PROP_CALIBRATION:
+        s.calibration = string_value(value);
         rebuild = true;
         break;
-    }
     case PROP_OUTPUT:
         s.output = GstHandTrackerOutput(g_value_get_enum(value));
         break;
@@ -426,21 +421,17 @@ bool set_tracker_setting(TrackerSettings& s, guint prop_id, const GValue* value,
     case PROP_MESSAGE_UPDATES:
         s.message_updates = GstHandTrackerMessageUpdates(g_value_get_enum(value));
         break;
-    case PROP_JSON_LOCATION: {
-        const gchar* path = g_value_get_string(value);
-        s.json_location = path ? path : "";
+    case PROP_JSON_LOCATION:
+        s.json_location = string_value(value);
         break;
-    }
     case PROP_DETECTOR:
         s.detector = gc::HandDetector(g_value_get_enum(value));
         rebuild = true;
         break;
-    case PROP_MODEL_DIR: {
-        const gchar* dir = g_value_get_string(value);
-        s.model_dir = dir ? dir : "";
+    case PROP_MODEL_DIR:
+        s.model_dir = string_value(value);
         rebuild = true;
         break;
-    }
     case PROP_DWELL:
         s.dwell_s = g_value_get_double(value);
         break;
@@ -469,7 +460,7 @@ bool get_head_setting(const TrackerSettings& s, guint prop_id, GValue* value)
         get_head_uri(s.head, value);
         break;
     case PROP_HEAD_TOKEN_FILE:
-        g_value_set_string(value, s.head_token_file.empty() ? nullptr : s.head_token_file.c_str());
+        set_string_value(value, s.head_token_file);
         break;
     case PROP_STEER:
         g_value_set_enum(value, int(s.steer));
@@ -499,7 +490,7 @@ bool get_head_setting(const TrackerSettings& s, guint prop_id, GValue* value)
         g_value_set_int(value, s.director_home_preset);
         break;
     case PROP_DIRECTOR_TOKEN_FILE:
-        g_value_set_string(value, s.director_token_file.empty() ? nullptr : s.director_token_file.c_str());
+        set_string_value(value, s.director_token_file);
         break;
     default:
         return false;
@@ -519,7 +510,7 @@ bool get_tracker_setting(const TrackerSettings& s, guint prop_id, GValue* value)
         g_value_set_uint64(value, s.seed);
         break;
     case PROP_CALIBRATION:
-        g_value_set_string(value, s.calibration.empty() ? nullptr : s.calibration.c_str());
+        set_string_value(value, s.calibration);
         break;
     case PROP_OUTPUT:
         g_value_set_enum(value, s.output);
@@ -537,13 +528,13 @@ bool get_tracker_setting(const TrackerSettings& s, guint prop_id, GValue* value)
         g_value_set_enum(value, s.message_updates);
         break;
     case PROP_JSON_LOCATION:
-        g_value_set_string(value, s.json_location.empty() ? nullptr : s.json_location.c_str());
+        set_string_value(value, s.json_location);
         break;
     case PROP_DETECTOR:
         g_value_set_enum(value, int(s.detector));
         break;
     case PROP_MODEL_DIR:
-        g_value_set_string(value, s.model_dir.empty() ? nullptr : s.model_dir.c_str());
+        set_string_value(value, s.model_dir);
         break;
     case PROP_DWELL:
         g_value_set_double(value, s.dwell_s);

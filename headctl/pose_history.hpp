@@ -12,6 +12,9 @@ namespace gc::headctl {
 // A time on the caller's clock (e.g. steady_clock's, or a pipeline's running time).
 using Timestamp = std::chrono::nanoseconds;
 
+// A timestamp in seconds, the unit the steering laws reckon in.
+inline double to_seconds(Timestamp t) { return std::chrono::duration<double>(t).count(); }
+
 struct StateSample {
     Timestamp time{0};
     HeadState state;

@@ -7,10 +7,6 @@
 
 namespace gc::headctl {
 
-namespace {
-double seconds(Timestamp t) { return std::chrono::duration<double>(t).count(); }
-}  // namespace
-
 std::string_view to_string(DirectorEvent event)
 {
     switch (event) {
@@ -26,15 +22,28 @@ std::string_view to_string(DirectorEvent event)
     return "unknown";
 }
 
-void DirectorCameraConfig::validate() const
+namespace {
+
+void check_region(double region_mm)
 {
     if (!std::isfinite(region_mm) || region_mm <= 0.0) throw std::invalid_argument("director: region_mm must be > 0");
+}
+
+void check_manual_pause(double seconds)
+{
+    if (!std::isfinite(seconds) || seconds < 0.0) throw std::invalid_argument("director: manual_pause_s must be >= 0");
+}
+
+}  // namespace
+
+void DirectorCameraConfig::validate() const
+{
+    check_region(region_mm);
     if (home_preset && (*home_preset < 0 || *home_preset > kMaxPreset))
         throw std::invalid_argument("director: home_preset must be 0.." + std::to_string(kMaxPreset));
     if (mount.image_size.width <= 0 || mount.image_size.height <= 0 || !(mount.K(0, 0) > 0.0))
         throw std::invalid_argument("director: the mount needs an image size and a focal length");
-    if (!std::isfinite(manual_pause_s) || manual_pause_s < 0.0)
-        throw std::invalid_argument("director: manual_pause_s must be >= 0");
+    check_manual_pause(manual_pause_s);
 }
 
 struct DirectorCamera::Impl {
@@ -64,7 +73,7 @@ struct DirectorCamera::Impl {
     void submit(const HeadCommand& command)
     {
         client->submit(command);
-        watch.commanded(command, seconds(client->now()));
+        watch.commanded(command, to_seconds(client->now()));
         if (config.on_command) config.on_command(command);
     }
 
@@ -72,10 +81,10 @@ struct DirectorCamera::Impl {
     std::optional<DirectorEvent> manual_pause()
     {
         const std::optional<StateSample> latest = client->latest();
-        const double now_s = seconds(client->now());
+        const double now_s = to_seconds(client->now());
         std::optional<DirectorEvent> event;
         if (config.manual_pause_s > 0.0 && latest &&
-            watch.moved_by_someone_else(latest->state, seconds(latest->time))) {
+            watch.moved_by_someone_else(latest->state, to_seconds(latest->time))) {
             if (!paused_until_s) event = DirectorEvent::ManualPause;
             paused_until_s = now_s + config.manual_pause_s;  // from the last move seen
             watch.reset();
@@ -144,13 +153,13 @@ std::optional<DirectorEvent> DirectorCamera::show(const std::optional<cv::Vec3d>
 
 void DirectorCamera::set_region(double region_mm)
 {
-    if (!std::isfinite(region_mm) || region_mm <= 0.0) throw std::invalid_argument("director: region_mm must be > 0");
+    check_region(region_mm);
     impl_->config.region_mm = region_mm;
 }
 
 void DirectorCamera::set_manual_pause(double seconds)
 {
-    if (!std::isfinite(seconds) || seconds < 0.0) throw std::invalid_argument("director: manual_pause_s must be >= 0");
+    check_manual_pause(seconds);
     impl_->config.manual_pause_s = seconds;
     if (seconds == 0.0 && impl_->paused_until_s) impl_->paused_until_s = -1.0;  // ends at the next show()
 }

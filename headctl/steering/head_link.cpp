@@ -20,8 +20,6 @@ constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 // Smoothing of the hand's angular velocity (feed-forward); per frame, 1 = no smoothing.
 constexpr double kRateSmoothing = 0.3;
 
-double seconds(headctl::Timestamp t) { return std::chrono::duration<double>(t).count(); }
-
 double clamp_to(const headctl::AxisLimits& l, double deg, double margin)
 {
     return std::clamp(deg, l.min_deg + margin, l.max_deg - margin);
@@ -267,7 +265,7 @@ struct HeadLink::Impl {
         try {
             client->submit(command);
             remember_still(command);
-            watch.commanded(command, seconds(client->now()));
+            watch.commanded(command, to_seconds(client->now()));
             if (config.on_command) config.on_command(command);
         } catch (const std::invalid_argument&) {
             if (!head_has_vergence) throw;
@@ -417,7 +415,7 @@ struct HeadLink::Impl {
     {
         const std::optional<headctl::StateSample> latest = client->latest();
         if (config.times.manual_pause_s > 0.0 && latest &&
-            watch.moved_by_someone_else(latest->state, seconds(latest->time))) {
+            watch.moved_by_someone_else(latest->state, to_seconds(latest->time))) {
             if (!paused_until_s) {
                 char detail[120];
                 std::snprintf(detail, sizeof detail, "the head was moved by someone else: steering pauses for %.1f s",
@@ -450,7 +448,7 @@ struct HeadLink::Impl {
             return;  // a command would only wait in the slot and be stale when it is sent
         }
         refresh_limits();
-        const double t_s = seconds(*capture_time);
+        const double t_s = to_seconds(*capture_time);
         if (manual_pause(t_s)) return;
         static const FrameResult kNothingSeen{};
         const FrameResult& seen = view_stale ? kNothingSeen : r;
@@ -458,7 +456,7 @@ struct HeadLink::Impl {
         const HeadPose head = latest ? latest->state.pose : *capture_pose;
         if (config.steer == SteerMode::Point && !steer_point(seen, t_s, head)) return;
         if (!previous) return;
-        const double dt = seconds(*capture_time - *previous);
+        const double dt = to_seconds(*capture_time - *previous);
         if (!(dt > 0.0) || dt > 10.0) {
             hand_direction.reset();
             return;
