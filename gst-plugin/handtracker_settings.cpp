@@ -2,6 +2,7 @@
 
 #include "head_uri_property.hpp"
 #include "string_property.hpp"
+#include "target_plane_property.hpp"
 #include "headctl/head_backend.hpp"
 #include "headctl/token.hpp"
 
@@ -38,8 +39,9 @@ enum {
     PROP_DIRECTOR,
     PROP_DIRECTOR_HOME_PRESET,
     PROP_DIRECTOR_TOKEN_FILE,
+    PROP_TARGET_PLANE,
 };
-static_assert(kStatsProperty > PROP_DIRECTOR_TOKEN_FILE, "the stats property's id follows the settings'");
+static_assert(kStatsProperty > PROP_TARGET_PLANE, "the stats property's id follows the settings'");
 
 #define GST_TYPE_HAND_TRACKER_OUTPUT (gst_hand_tracker_output_get_type())
 static GType gst_hand_tracker_output_get_type()
@@ -196,8 +198,10 @@ void install_head_properties(GObjectClass* gobject_class)
         gobject_class, PROP_TARGET_DISTANCE,
         g_param_spec_double("target-distance", "Target distance",
                             "How far along a held pointing's ray, from the fingertip, its target lies (mm): where "
-                            "steer=point looks and what output=attended frames",
+                            "steer=point looks and what output=attended and the director frame, unless the ray "
+                            "meets target-plane",
                             1.0, 1.0e6, kDefaultTargetDistanceMm, kMutablePlaying));
+    g_object_class_install_property(gobject_class, PROP_TARGET_PLANE, target_plane_param_spec(kMutablePlaying));
     g_object_class_install_property(
         gobject_class, PROP_LOOK_TIME,
         g_param_spec_double("look-time", "Look time",
@@ -254,7 +258,8 @@ void install_detector_properties(GObjectClass* gobject_class)
         gobject_class, PROP_DWELL,
         g_param_spec_double("dwell", "Dwell",
                             "Seconds a pointing must be held steady before it picks what it points at "
-                            "(target-distance along the ray): output=attended and the director frame it, steer=point "
+                            "(on target-plane, else target-distance along the ray): output=attended and the director "
+                            "frame it, steer=point "
                             "looks at it; "
                             "lowering the hand for as long lets it go",
                             0.1, 60.0, kDefaultDwellS,
@@ -356,6 +361,9 @@ bool set_head_setting(TrackerSettings& s, guint prop_id, const GValue* value)
         break;
     case PROP_TARGET_DISTANCE:
         s.target_distance_mm = g_value_get_double(value);
+        break;
+    case PROP_TARGET_PLANE:
+        set_target_plane(s.target_plane, value);
         break;
     case PROP_HOME_PRESET:
         s.home_preset = g_value_get_int(value);
@@ -467,6 +475,9 @@ bool get_head_setting(const TrackerSettings& s, guint prop_id, GValue* value)
         break;
     case PROP_TARGET_DISTANCE:
         g_value_set_double(value, s.target_distance_mm);
+        break;
+    case PROP_TARGET_PLANE:
+        get_target_plane(s.target_plane, value);
         break;
     case PROP_HOME_PRESET:
         g_value_set_int(value, s.home_preset);

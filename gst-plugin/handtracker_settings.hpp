@@ -10,6 +10,7 @@
 #include <glib-object.h>
 #include <gst/video/video.h>
 
+#include <optional>
 #include <string>
 
 namespace gc::gst {
@@ -43,6 +44,7 @@ struct TrackerSettings {
     std::string head_token_file;  // empty: the URI's token, if any
     gc::headctl::SteerMode steer = kDefaultSteer;
     double target_distance_mm = kDefaultTargetDistanceMm;
+    std::optional<gc::Plane> target_plane;             // where a held pointing's ray meets it is its target
     double dwell_s = kDefaultDwellS;                   // a pointing held this long picks the attended target
     double target_region_mm = kDefaultTargetRegionMm;  // the width the attended view frames there
     int home_preset = -1;                          // the head's preset that steering returns to; -1: its home position

@@ -9,6 +9,10 @@
 namespace gc {
 namespace {
 
+// A ray that meets the target plane farther than this runs nearly along it (a grazing
+// pointing at a wall): the fixed distance is the better guess.
+constexpr double kFarthestPlaneTargetMm = 100000.0;
+
 double angle_deg(const cv::Vec3d& a, const cv::Vec3d& b)
 {
     const double c = a.dot(b) / std::max(cv::norm(a) * cv::norm(b), 1e-12);
@@ -16,6 +20,19 @@ double angle_deg(const cv::Vec3d& a, const cv::Vec3d& b)
 }
 
 }  // namespace
+
+cv::Vec3d pointed_target(const Pointing3D& pointing, const DwellParams& params)
+{
+    const cv::Vec3d& o = pointing.fingertip_head_mm;
+    const cv::Vec3d& d = pointing.direction_head;
+    if (params.target_plane) {
+        const std::optional<Eigen::Vector3d> hit =
+            intersect(Eigen::Vector3d(o[0], o[1], o[2]), Eigen::Vector3d(d[0], d[1], d[2]), *params.target_plane);
+        const cv::Vec3d on_plane = hit ? cv::Vec3d(hit->x(), hit->y(), hit->z()) : o;
+        if (hit && cv::norm(on_plane - o) <= kFarthestPlaneTargetMm) return on_plane;
+    }
+    return o + params.target_distance_mm * d;
+}
 
 void PointingDwell::start_dwell(double t_s, const Pointing3D& pointing, const cv::Vec3d& target)
 {
@@ -33,7 +50,7 @@ std::optional<cv::Vec3d> PointingDwell::update(double t_s, const Pointing3D& poi
         return held_;
     }
     last_pointing_s_ = t_s;
-    const cv::Vec3d target = pointing.fingertip_head_mm + params.target_distance_mm * pointing.direction_head;
+    const cv::Vec3d target = pointed_target(pointing, params);
     // Still aiming where the held target was picked: nothing to decide.
     if (held_ && angle_deg(pointing.direction_head, held_direction_) <= params.steady_deg) {
         dwell_start_s_.reset();

@@ -1,5 +1,6 @@
 // What a held pointing picks for the attended view: a pointing whose direction stays steady
-// for a dwell time picks the point a set distance along its ray; a pointing that is not held
+// for a dwell time picks where its ray meets a configured plane (a wall, a table), or else the
+// point a set distance along it; a pointing that is not held
 // picks nothing, and the target is let go once no pointing has been seen for a while. The
 // target lives in the head frame, which stays put while the head turns, so the view can
 // keep the speaker's hand in sight and still frame what was pointed at.
@@ -8,6 +9,7 @@
 #include "common/types.hpp"
 #include "stereo/calibration.hpp"
 #include "stereo/pointing.hpp"
+#include "stereo/ray_geometry.hpp"
 
 #include <opencv2/core.hpp>
 
@@ -20,8 +22,14 @@ struct DwellParams {
     double steady_deg = 6.0;             // ...while its direction stays this close to its start
     double release_s = 1.0;              // no pointing for this long lets the target go
     double gap_s = 0.3;                  // a dwell survives the tracker missing the ray this long
-    double target_distance_mm = 2000.0;  // how far along the ray the target lies
+    double target_distance_mm = 2000.0;  // how far along the ray the target lies...
+    std::optional<Plane> target_plane;   // ...unless it meets this plane (head frame, mm) ahead of the fingertip
 };
+
+// The point a pointing designates under `params`: where its ray meets the target plane ahead of
+// the fingertip; target_distance_mm along the ray when there is no plane, or the ray runs
+// away from it or meets it more than 100 m away.
+cv::Vec3d pointed_target(const Pointing3D& pointing, const DwellParams& params);
 
 class PointingDwell {
 public:

@@ -51,6 +51,15 @@ std::optional<Eigen::Vector3d> triangulate_midpoint(const Eigen::Vector3d& o1, c
     return 0.5 * ((o1 + s * d1) + (o2 + t * d2));
 }
 
+std::optional<Plane> plane_from_coefficients(double a, double b, double c, double d)
+{
+    if (!(std::isfinite(a) && std::isfinite(b) && std::isfinite(c) && std::isfinite(d))) return std::nullopt;
+    const Eigen::Vector3d n(a, b, c);
+    const double length = n.norm();
+    if (!(length > 1e-9)) return std::nullopt;
+    return Plane{n / length, d / length};
+}
+
 std::optional<Eigen::Vector3d> intersect(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Plane& plane)
 {
     const double denom = plane.normal.dot(d);

@@ -17,6 +17,10 @@ struct Plane {
     double distance(const Eigen::Vector3d& x) const { return std::abs(normal.dot(x) + d); }
 };
 
+// The plane a x + b y + c z + d = 0 with its normal made unit; nullopt when a coefficient is
+// not finite or (a, b, c) is (nearly) zero.
+std::optional<Plane> plane_from_coefficients(double a, double b, double c, double d);
+
 // The midpoint of the shortest segment between the rays o1 + s d1 and o2 + t d2 (s, t > 0).
 // Nullopt for (nearly) parallel rays or a point behind either origin.
 std::optional<Eigen::Vector3d> triangulate_midpoint(const Eigen::Vector3d& o1, const Eigen::Vector3d& d1,

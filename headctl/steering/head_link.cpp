@@ -376,6 +376,7 @@ struct HeadLink::Impl {
         params.dwell_s = config.times.dwell_s;
         params.release_s = config.times.dwell_s;
         params.target_distance_mm = config.target_distance_mm;
+        params.target_plane = config.target_plane;
         const std::optional<cv::Vec3d> target = dwell.update(t_s, r.pointing, params);
         std::optional<headctl::PointAim> pick;
         if (target && dwell.picks() != dwell_picks) pick = aim_for(*target);
@@ -489,16 +490,15 @@ HeadAtCapture HeadLink::begin_frame(headctl::Timestamp capture_time)
 
 void HeadLink::end_frame(const FrameResult& result) { impl_->end_frame(result); }
 
-void HeadLink::set_steering(SteerMode mode, double target_distance_mm)
+void HeadLink::set_steering(SteerMode mode, double target_distance_mm, const std::optional<Plane>& target_plane)
 {
     Impl& s = *impl_;
     if (!(std::isfinite(target_distance_mm) && target_distance_mm > 0.0))
         throw std::invalid_argument("head link: target distance must be finite and > 0 mm");
-    if (mode == s.config.steer && target_distance_mm == s.config.target_distance_mm) return;
-    const bool new_mode = mode != s.config.steer;
-    s.config.steer = mode;
     s.config.target_distance_mm = target_distance_mm;
-    if (!new_mode) return;
+    s.config.target_plane = target_plane;
+    if (mode == s.config.steer) return;
+    s.config.steer = mode;
     s.steer_time.reset();
     s.paused_until_s.reset();
     s.refresh_limits();

@@ -9,6 +9,7 @@
 #include "headctl/steering/manual_move_watch.hpp"
 #include "headctl/steering/point_director.hpp"
 #include "stereo/calibration.hpp"
+#include "stereo/ray_geometry.hpp"
 #include "tracker/pointing_tracker.hpp"
 
 #include <chrono>
@@ -51,7 +52,8 @@ struct HeadLinkConfig {
     std::string uri;  // e.g. tcp://127.0.0.1:5050 (headctl/uri.hpp)
     std::string token;
     SteerMode steer = SteerMode::Fixate;
-    double target_distance_mm = 2000.0;  // point mode: how far along the ray to look
+    double target_distance_mm = 2000.0;  // point mode: how far along the ray to look...
+    std::optional<Plane> target_plane;   // ...unless the ray meets this plane (head frame, mm) ahead
     double nominal_depth_mm = 1000.0;    // C_t's depth while the 3D position is unknown
     // Fixate-mode pan/tilt law; its limits are replaced by the head's once it reports them.
     headctl::FixateConfig fixate;
@@ -101,10 +103,10 @@ public:
     HeadAtCapture begin_frame(headctl::Timestamp capture_time);
     // After tracking that frame: remembers where the hand is and submits the steering command.
     void end_frame(const FrameResult& result);
-    // Changes the steering mode and the point-mode target distance while running (the
-    // connection stays); a new mode starts from rest: the fixate law's memory and the
+    // Changes the steering mode and the point-mode target distance and plane while running
+    // (the connection stays); a new mode starts from rest: the fixate law's memory and the
     // last aim are forgotten. Throws std::invalid_argument for a distance that is not > 0.
-    void set_steering(SteerMode mode, double target_distance_mm);
+    void set_steering(SteerMode mode, double target_distance_mm, const std::optional<Plane>& target_plane);
     // Changes the dwell, look and manual-pause times while running (std::invalid_argument for
     // bad ones); a look under way keeps the time it started with.
     void set_times(const SteeringTimes& times);

@@ -305,6 +305,24 @@ TEST(HeadLink, PointLooksAtAHeldPointingForTheLookTimeAndComesBack)
     EXPECT_EQ(recorded.count(headctl::SteeringEvent::Follow), 1);
 }
 
+// A side wall 500 mm to the right (set while running, as the element does): the head looks
+// where the ray meets it, not target-distance along the ray (which would be 19 deg farther).
+TEST(HeadLink, PointLooksWhereTheRayMeetsTheTargetPlane)
+{
+    RunningHead head(loopback_head());
+    HeadLinkConfig config = link_config(head.uri(), SteerMode::Point);
+    config.times.dwell_s = 1.0;
+    HeadLink link(config, calibration());
+    link.set_steering(SteerMode::Point, 1000.0, plane_from_coefficients(1.0, 0.0, 0.0, -500.0));
+    ASSERT_TRUE(eventually([&] { return link.client().latest().has_value(); }, 2000ms));
+    const cv::Vec3d direction = cv::normalize(cv::Vec3d(1.0, -0.2, 0.0));
+    const auto held = [&](const HeadAtCapture& at) { return pointing_along(at, direction); };
+    run_frames(link, 1800ms, held);
+    const double on_wall_pan = std::atan2(500.0, 800.0) * 180.0 / std::numbers::pi;
+    EXPECT_NEAR(latest_pose(link).pan_deg, on_wall_pan, 0.5);
+    EXPECT_EQ(link.point_phase(), headctl::PointPhase::Looking);
+}
+
 TEST(HeadLink, PointMovesNothingForATalkingHand)
 {
     RunningHead head(loopback_head());

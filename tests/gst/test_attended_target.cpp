@@ -108,6 +108,32 @@ TEST(AttendedTarget, AHeldPointingIsFramedWithinASecondOfTheDwell)
     EXPECT_NE(gst_structure_get_value(picks[0], "target-head-mm"), nullptr);
 }
 
+// With target-plane set, the pick is where the hand's ray meets that plane: here a ceiling
+// 600 mm above the head (y = -600 mm), some 590 mm along the rendered hand's upward ray, where
+// target-distance (left at 2 m) would have put it 1.4 m farther.
+TEST(AttendedTarget, ATargetPlaneHoldsThePickWhereTheRayMeetsIt)
+{
+    gc::test::init_gstreamer();
+    const std::string eye = " motion=static num-buffers=90 ";
+    const gc::test::RunResult r = gc::test::run_pipeline(
+        "handscenesrc name=l eye=left" + eye + "! t.sink_left handscenesrc eye=right" + eye +
+            "! t.sink_right handtracker name=t dwell=1.0 target-plane=\"<0, 1, 0, 600>\" ! fakesink sync=false",
+        120 * GST_SECOND);
+    ASSERT_TRUE(r.eos) << r.error;
+    const auto picks = r.named("attended-target", "t");
+    ASSERT_EQ(picks.size(), 1u);
+    const auto truths = r.named("hand-truth", "l");
+    ASSERT_FALSE(truths.empty());
+    const cv::Vec3d tip = vec3(truths.back(), "fingertip-head-mm");
+    const cv::Vec3d direction = vec3(truths.back(), "direction-head");
+    ASSERT_LT(direction[1], -0.5) << "the scene's hand no longer points up";
+    const cv::Vec3d on_ceiling = tip + ((-600.0 - tip[1]) / direction[1]) * direction;
+    const cv::Vec3d picked = vec3(picks[0], "target-head-mm");
+    EXPECT_NEAR(picked[1], -600.0, 1.0);
+    // 3 deg of ray error at ~590 mm moves the point ~30 mm.
+    EXPECT_LT(cv::norm(picked - on_ceiling), 60.0) << picked << " against " << on_ceiling;
+}
+
 // The director stands 1 m to the right of the head and 300 mm above it, turned 20 degrees to
 // the left; the hand's pick, 300 mm along its ray, must end up in the middle third of its
 // picture with the 500 mm region 75-125 % of its width, as the scene's truth places it.

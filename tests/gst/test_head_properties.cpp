@@ -82,6 +82,43 @@ TEST(HeadProperties, Defaults)
     EXPECT_EQ(head, nullptr);
 }
 
+// The plane's coefficients as the property reads them back.
+std::vector<double> target_plane(GstElement* tracker)
+{
+    GValue value = G_VALUE_INIT;
+    g_value_init(&value, GST_TYPE_ARRAY);
+    g_object_get_property(G_OBJECT(tracker), "target-plane", &value);
+    std::vector<double> c;
+    for (guint i = 0; i < gst_value_array_get_size(&value); ++i)
+        c.push_back(g_value_get_double(gst_value_array_get_value(&value, i)));
+    g_value_unset(&value);
+    return c;
+}
+
+void count_warning(const gchar*, GLogLevelFlags, const gchar*, gpointer count) { ++*static_cast<int*>(count); }
+
+// target-plane is unset by default, reads back with a unit normal, and a value that is no
+// plane is refused with a warning and changes nothing.
+TEST(HeadProperties, TargetPlaneReadsBackUnitAndRefusesWhatIsNoPlane)
+{
+    gc::test::init_gstreamer();
+    ElementPtr tracker(gst_element_factory_make("handtracker", nullptr));
+    ASSERT_TRUE(tracker);
+    EXPECT_TRUE(target_plane(tracker.get()).empty());
+    gst_util_set_object_arg(G_OBJECT(tracker.get()), "target-plane", "<0, 0, 2, -6000>");
+    EXPECT_EQ(target_plane(tracker.get()), (std::vector<double>{0.0, 0.0, 1.0, -3000.0}));
+    int warnings = 0;
+    const guint handler = g_log_set_handler(nullptr, G_LOG_LEVEL_WARNING, count_warning, &warnings);
+    for (const char* bad : {"<0, 0, 0, -3000>", "<0, 0, 1>", "<0, 0, 1, -3000, 7>"}) {
+        gst_util_set_object_arg(G_OBJECT(tracker.get()), "target-plane", bad);
+        EXPECT_EQ(target_plane(tracker.get()), (std::vector<double>{0.0, 0.0, 1.0, -3000.0})) << bad;
+    }
+    g_log_remove_handler(nullptr, handler);
+    EXPECT_EQ(warnings, 3);
+    gst_util_set_object_arg(G_OBJECT(tracker.get()), "target-plane", "<>");
+    EXPECT_TRUE(target_plane(tracker.get()).empty());
+}
+
 TEST(HeadProperties, ABadUriFailsTheStartAndSaysWhy)
 {
     gc::test::init_gstreamer();

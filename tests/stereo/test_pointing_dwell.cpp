@@ -38,6 +38,45 @@ TEST(PointingDwell, AHeldPointingPicksThePointAlongItsRayAfterTheDwell)
     EXPECT_LT(cv::norm(*target - expected), 1e-6);
 }
 
+// A wall 3 m ahead (z = 3000 mm in the head frame): the target is where the ray meets it; a
+// ray that runs along the wall, away from it, or meets it kilometres off keeps the fixed distance.
+TEST(PointingDwell, ATargetPlaneHoldsTheTargetWhereTheRayMeetsIt)
+{
+    gc::DwellParams params;
+    params.target_plane = gc::plane_from_coefficients(0.0, 0.0, 2.0, -6000.0);  // scaled: made unit
+    ASSERT_TRUE(params.target_plane);
+    const cv::Vec3d on_wall = gc::pointed_target(pointing_at(20.0), params);
+    EXPECT_NEAR(on_wall[0], 2400.0 * std::tan(20.0 * std::numbers::pi / 180.0), 1e-6);
+    EXPECT_NEAR(on_wall[1], 100.0, 1e-9);
+    EXPECT_NEAR(on_wall[2], 3000.0, 1e-9);
+
+    const auto along = [](const gc::Pointing3D& p) { return p.fingertip_head_mm + 2000.0 * p.direction_head; };
+    params.target_plane = gc::plane_from_coefficients(1.0, 0.0, 0.0, -5000.0);  // a side wall 5 m to the right
+    EXPECT_LT(cv::norm(gc::pointed_target(pointing_at(0.0), params) - along(pointing_at(0.0))), 1e-9);
+    EXPECT_LT(cv::norm(gc::pointed_target(pointing_at(-30.0), params) - along(pointing_at(-30.0))), 1e-9);
+    EXPECT_LT(cv::norm(gc::pointed_target(pointing_at(0.001), params) - along(pointing_at(0.001))), 1e-9);
+    EXPECT_NEAR(gc::pointed_target(pointing_at(30.0), params)[0], 5000.0, 1e-9);
+
+    // The dwell picks the wall point.
+    params.target_plane = gc::plane_from_coefficients(0.0, 0.0, 1.0, -3000.0);
+    gc::PointingDwell dwell;
+    std::optional<cv::Vec3d> target;
+    for (int i = 0; i < 40; ++i) target = dwell.update(i / kFps, pointing_at(20.0), params);
+    ASSERT_TRUE(target);
+    EXPECT_LT(cv::norm(*target - on_wall), 1e-6);
+}
+
+TEST(PlaneFromCoefficients, RefusesNoNormalAndNonFiniteValues)
+{
+    EXPECT_FALSE(gc::plane_from_coefficients(0.0, 0.0, 0.0, -3000.0));
+    EXPECT_FALSE(gc::plane_from_coefficients(0.0, std::nan(""), 1.0, 0.0));
+    EXPECT_FALSE(gc::plane_from_coefficients(0.0, 0.0, 1.0, INFINITY));
+    const auto plane = gc::plane_from_coefficients(0.0, -3.0, 4.0, 10.0);
+    ASSERT_TRUE(plane);
+    EXPECT_NEAR(plane->normal.norm(), 1.0, 1e-12);
+    EXPECT_NEAR(plane->d, 2.0, 1e-12);
+}
+
 TEST(PointingDwell, AWanderingOrBriefPointingPicksNothing)
 {
     gc::PointingDwell dwell;
