@@ -6,19 +6,25 @@
 // A waving hand is an open hand moving the same way; a held pointing keeps one direction
 // while the hand drifts the same way.
 //
-//   point_steering_study talk|wave|held [SECONDS [SEED [tracker|learned|truth]]]   (default 300 s, seed 3)
+//   point_steering_study talk|wave|held [SECONDS [SEED [tracker|learned|truth [point|fixate]]]]
+//   (default 300 s, seed 3, point)
 //
 // `tracker` tracks with the motion detector (as the closed-loop tests), `learned` with the
 // learned detector (the element's default); `truth` hands the link the rendered hand itself (its palm where each view shows it, its
 // true 3D pointing) instead of the tracker's estimate: the steering on a perfect tracker.
 //
-// Prints the looks (commands that turn the head to a target), the returns, the frames the
+// With `fixate` the head only keeps the hand in view, and the tracker's pointing goes to the
+// dwell as the element's output=attended and director take it: each pick is a target they
+// would frame (the director moves once per pick).
+//
+// Prints the looks (commands that turn the head to a target), the returns, the picks, the frames the
 // hand was tracked, the longest stretch over which the tracker's ray stayed within the
 // dwell's 6 deg, and for each look how far the true target was from the left eye's axis.
 #include "headctl/steering/head_link.hpp"
 #include "running_head.hpp"
 #include "sim/scene.hpp"
 #include "stereo/head_geometry.hpp"
+#include "stereo/pointing_dwell.hpp"
 #include "tracker/pointing_tracker.hpp"
 
 #include <algorithm>
@@ -47,6 +53,7 @@ struct Figures {
     std::vector<int> pointing_per_minute;
     int first_tracked = -1;
     int looks = 0, returns = 0, follows = 0, pauses = 0;
+    int picks = 0;                       // targets the dwell picked (the attended crop's and the director's)
     double longest_steady_s = 0.0;       // the tracker's ray within kSteadyDeg of where the stretch began
     std::vector<double> look_error_deg;  // per look: the true target off the left eye's axis, mid-look
     std::vector<double> back_after_s;    // per return: from the return command to the hand tracked again
@@ -119,6 +126,7 @@ struct Run {
     bool talking;
     double look_s;
     Figures f;
+    PointingDwell dwell;                   // as handtracker's pick_target, with its default properties
     std::optional<cv::Vec3d> steady_from;  // the ray's direction where the current steady stretch began
     double steady_start_s = 0.0;
     std::optional<double> returned_at_s;
@@ -155,6 +163,10 @@ struct Run {
             f.look_error_deg.push_back(angle_deg(q, {0.0, 0.0, 1.0}));
             look_middle_s.reset();
         }
+        DwellParams params;
+        params.target_distance_mm = kTargetDistanceMm;
+        dwell.update(t_s, r.pointing, params);
+        f.picks = dwell.picks();
         if (!r.pointing.valid) return;
         ++f.pointing;
         ++f.pointing_per_minute[minute];
@@ -166,7 +178,8 @@ struct Run {
     }
 };
 
-Figures run(bool talking, Gesture gesture, double seconds, std::uint64_t seed, const std::string& source)
+Figures run(bool talking, Gesture gesture, double seconds, std::uint64_t seed, const std::string& source,
+            headctl::SteerMode steer)
 {
     sim::SceneConfig sc;
     sc.preset = sim::Preset::Light;
@@ -177,7 +190,7 @@ Figures run(bool talking, Gesture gesture, double seconds, std::uint64_t seed, c
     loopback::RunningHead head(loopback::loopback_head());
     headctl::HeadLinkConfig lc;
     lc.uri = head.uri();
-    lc.steer = headctl::SteerMode::Point;
+    lc.steer = steer;
     lc.target_distance_mm = kTargetDistanceMm;
     Run* state = nullptr;  // set before the first frame; events come from end_frame
     int frame = 0;
@@ -202,16 +215,16 @@ Figures run(bool talking, Gesture gesture, double seconds, std::uint64_t seed, c
     sim::EyeTruth truth[2];
     const int last = static_cast<int>(seconds * sc.fps);
     for (frame = 0; frame < last;) {
-        std::this_thread::sleep_until(start + std::chrono::duration_cast<Clock::duration>(
-                                                  std::chrono::duration<double>(frame / sc.fps)));
+        std::this_thread::sleep_until(
+            start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(frame / sc.fps)));
         const headctl::HeadAtCapture at = link.begin_frame(link.now());
         const HeadPose pose = at.pose.value_or(HeadPose{});
         const sim::HandPose hand = speaker(scene, frame, talking);
         view(scene, hand, frame, Eye::Left, pose, left, truth[0]);
         view(scene, hand, frame, Eye::Right, pose, right, truth[1]);
-        const FrameResult& r = truth_only ? perfect_tracker(scene, hand, truth, pose)
-                                          : tracker.process_stereo(left, right, -1, at.pose, at.left_motion,
-                                                                   at.right_motion);
+        const FrameResult& r = truth_only
+                                   ? perfect_tracker(scene, hand, truth, pose)
+                                   : tracker.process_stereo(left, right, -1, at.pose, at.left_motion, at.right_motion);
         link.end_frame(r);
         run_state.score(r, frame / sc.fps, frame, pose);
         // Frames the machine could not keep up with are skipped, so the hand keeps its speed.
@@ -234,6 +247,7 @@ void print(const Figures& f, const char* mode, double seconds)
     std::printf("looks (commands turning the head to a target): %d, returns: %d, back to following: %d, manual "
                 "pauses: %d\n",
                 f.looks, f.returns, f.follows, f.pauses);
+    std::printf("picks (targets output=attended and the director would frame): %d\n", f.picks);
     for (std::size_t k = 0; k < f.look_error_deg.size(); ++k)
         std::printf("  look %zu: the true target %.1f deg off the left eye's axis mid-look\n", k + 1,
                     f.look_error_deg[k]);
@@ -247,19 +261,26 @@ int main(int argc, char** argv)
 {
     const std::string mode = argc > 1 ? argv[1] : "";
     if (mode != "talk" && mode != "wave" && mode != "held") {
-        std::fprintf(stderr, "usage: point_steering_study talk|wave|held [SECONDS [SEED [tracker|learned|truth]]]\n");
+        std::fprintf(stderr, "usage: point_steering_study talk|wave|held [SECONDS [SEED [tracker|learned|truth "
+                             "[point|fixate]]]]\n");
         return 2;
     }
     const double seconds = argc > 2 ? std::atof(argv[2]) : 300.0;
     const std::uint64_t seed = argc > 3 ? std::strtoull(argv[3], nullptr, 10) : 3;
     const std::string source = argc > 4 ? argv[4] : "tracker";
+    const std::string steer = argc > 5 ? argv[5] : "point";
+    if (steer != "point" && steer != "fixate") {
+        std::fprintf(stderr, "the head steers point or fixate\n");
+        return 2;
+    }
     if (source != "tracker" && source != "learned" && source != "truth") {
         std::fprintf(stderr, "the hand's source is tracker, learned or truth\n");
         return 2;
     }
     std::printf("%s hand, %s\n", mode.c_str(),
                 source == "truth" ? "the rendered truth" : ("the tracker's output, detector " + source).c_str());
-    print(run(mode != "held", mode == "wave" ? Gesture::Open : Gesture::Pointing, seconds, seed, source), mode.c_str(),
-          seconds);
+    const headctl::SteerMode steer_mode = steer == "point" ? headctl::SteerMode::Point : headctl::SteerMode::Fixate;
+    print(run(mode != "held", mode == "wave" ? Gesture::Open : Gesture::Pointing, seconds, seed, source, steer_mode),
+          mode.c_str(), seconds);
     return 0;
 }
