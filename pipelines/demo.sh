@@ -24,6 +24,9 @@
 # director turns and zooms to the target (handtracker `director`, standing at the head's
 # origin); the video is the left view, and the director's commands and its pose at the end
 # (headctl status) are printed.
+# With STEER=point, frame or director, TARGET_PLANE (handtracker's target-plane, e.g.
+# "<0,0,1,-3000>" for the rendered room's wall 3 m ahead) puts the target where the ray meets
+# that plane instead of TARGET_DISTANCE along it.
 set -euo pipefail
 . "$(dirname "$0")/lib/plugin.sh"
 gesturecam_build_targets gstgesturecam headsim headctl
@@ -54,6 +57,9 @@ elif [ "$steer" = director ]; then
   output=left
   point_options="dwell=${DWELL:-1} target-distance=${TARGET_DISTANCE:-2000} target-region=${TARGET_REGION:-500}"
   scene_options="aim=\"${AIM:-<2000.0,-300.0,1800.0>}\""
+fi
+if [ -n "${TARGET_PLANE:-}" ] && [ -n "$point_options" ]; then
+  point_options="$point_options target-plane=\"${TARGET_PLANE// /}\""
 fi
 mkdir -p "$out"
 rm -f "$out/demo.mp4" "$out/demo.jsonl" "$out/demo.bus.txt"
