@@ -1,4 +1,5 @@
 #include "headctl/head_client.hpp"
+#include "headctl/command_merge.hpp"
 
 #include "common/enum_names.hpp"
 
@@ -79,7 +80,7 @@ void HeadClient::submit(const HeadCommand& command)
         std::lock_guard lock(mutex_);
         ++stats_.commands_submitted;
         if (pending_) ++stats_.commands_superseded;
-        pending_ = command;
+        pending_ = pending_ ? merge_commands(*pending_, command, axes_) : command;
     }
     wake_.notify_all();
 }

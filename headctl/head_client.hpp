@@ -62,7 +62,8 @@ public:
     HeadClient(const HeadClient&) = delete;
     HeadClient& operator=(const HeadClient&) = delete;
 
-    // Latest command wins: replaces any command not yet sent. Throws std::invalid_argument
+    // Latest command wins: it takes the place of any command not yet sent, keeping what that
+    // one asked of the axes it leaves alone (merge_commands). Throws std::invalid_argument
     // for a value that is not finite or an axis the head does not have.
     void submit(const HeadCommand& command);
 

@@ -3,6 +3,7 @@
 #include "shared_log.hpp"
 #include "test_support.hpp"
 
+#include "headctl/command_merge.hpp"
 #include "headctl/gchp_backend.hpp"
 #include "headctl/head_client.hpp"
 
@@ -114,6 +115,74 @@ TEST(HeadClient, LatestCommandWins)
     EXPECT_EQ(stats.commands_submitted, 50u);
     EXPECT_LE(stats.commands_sent, 2u);  // the first, perhaps, then the last
     EXPECT_EQ(stats.commands_sent + stats.commands_superseded, 50u);
+}
+
+HeadCommand velocity(std::initializer_list<std::pair<Axis, double>> values)
+{
+    HeadCommand c{CommandKind::Velocity, {}};
+    for (const auto& [axis, v] : values) c.values.set(axis, v);
+    return c;
+}
+
+TEST(MergeCommands, KeepWhatTheOlderCommandAskedOfAxesTheNewerLeavesAlone)
+{
+    const std::array<bool, kAxisCount> all{true, true, true, true, true};
+    // The vergence stopped, then a command for pan and tilt only: the stop stays.
+    const HeadCommand stop_verge =
+        velocity({{Axis::Pan, 10.7}, {Axis::Tilt, -6.3}, {Axis::VergeLeft, 0.0}, {Axis::VergeRight, 0.0}});
+    const HeadCommand merged = merge_commands(stop_verge, velocity({{Axis::Pan, 10.5}, {Axis::Tilt, -6.4}}), all);
+    EXPECT_EQ(merged,
+              velocity({{Axis::Pan, 10.5}, {Axis::Tilt, -6.4}, {Axis::VergeLeft, 0.0}, {Axis::VergeRight, 0.0}}));
+    // Absolute after absolute: the same.
+    HeadCommand tilt_to = absolute_pan(5.0);
+    tilt_to.values = {};
+    tilt_to.values.set(Axis::Tilt, -3.0);
+    HeadCommand both = absolute_pan(5.0);
+    both.values.set(Axis::Tilt, -3.0);
+    EXPECT_EQ(merge_commands(absolute_pan(5.0), tilt_to, all), both);
+    // Relative after relative: both moves.
+    HeadCommand rel{CommandKind::Relative, {}};
+    rel.values.set(Axis::Pan, 2.0);
+    HeadCommand rel2{CommandKind::Relative, {}};
+    rel2.values.set(Axis::Pan, 3.0);
+    rel2.values.set(Axis::Zoom, 1.0);
+    const HeadCommand summed = merge_commands(rel, rel2, all);
+    EXPECT_DOUBLE_EQ(summed.values.get(Axis::Pan), 5.0);
+    EXPECT_DOUBLE_EQ(summed.values.get(Axis::Zoom), 1.0);
+    EXPECT_FALSE(summed.values.has(Axis::Tilt));
+    // Velocity after a stop: the axes it does not name stay stopped, on the axes the head has.
+    const HeadCommand stop{CommandKind::Stop, {}};
+    const std::array<bool, kAxisCount> no_zoom{true, true, true, true, false};
+    EXPECT_EQ(merge_commands(stop, velocity({{Axis::Pan, 4.0}}), no_zoom),
+              velocity({{Axis::Pan, 4.0}, {Axis::Tilt, 0.0}, {Axis::VergeLeft, 0.0}, {Axis::VergeRight, 0.0}}));
+    // A stop, a home or a preset decides alone; so does a command of another kind.
+    EXPECT_EQ(merge_commands(stop_verge, stop, all), stop);
+    EXPECT_EQ(merge_commands(stop_verge, absolute_pan(1.0), all), absolute_pan(1.0));
+    EXPECT_EQ(merge_commands(absolute_pan(1.0), preset_command(CommandKind::RecallPreset, 3), all),
+              preset_command(CommandKind::RecallPreset, 3));
+}
+
+// The head link's sequence after a stall: the eyes verge (sent), their stop waits behind the
+// rate limit, and a pan/tilt command arrives before it goes out. The vergence must stop.
+TEST(HeadClient, AVergenceStopIsNotLostToTheNextCommand)
+{
+    RunningServer server;
+    HeadClient client(config_for(server, 200ms));
+    ASSERT_TRUE(eventually([&] { return client.state() == ConnectionState::Connected; }));
+    client.submit(velocity({{Axis::Pan, 2.0}, {Axis::VergeLeft, 20.0}, {Axis::VergeRight, -20.0}}));
+    ASSERT_TRUE(eventually([&] { return client.stats().commands_sent == 1; }));
+    client.submit(velocity({{Axis::Pan, 2.0}, {Axis::VergeLeft, 0.0}, {Axis::VergeRight, 0.0}}));
+    client.submit(velocity({{Axis::Pan, 1.0}}));
+    ASSERT_TRUE(eventually([&] { return client.stats().commands_sent == 2; }));
+    EXPECT_EQ(client.stats().commands_superseded, 1u);
+    // Once that command is in, the vergence rests (it moved for the 200 ms between the two).
+    std::this_thread::sleep_for(150ms);
+    const auto s = client.latest();
+    ASSERT_TRUE(s);
+    EXPECT_FALSE(s->state.moving[static_cast<std::size_t>(Axis::VergeLeft)]);
+    EXPECT_FALSE(s->state.moving[static_cast<std::size_t>(Axis::VergeRight)]);
+    EXPECT_LT(s->state.pose.verge_left_deg, 8.0);
+    EXPECT_TRUE(s->state.moving[static_cast<std::size_t>(Axis::Pan)]);
 }
 
 TEST(HeadClient, RateLimitsCommands)
