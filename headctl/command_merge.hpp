@@ -1,22 +1,28 @@
-// The head client keeps one command not yet sent; a newer one takes its place. Taking its
-// place must not lose what the older one asked of axes the newer one leaves alone: a
-// vergence stopped by one velocity command and left out of the next would keep turning.
+// The head client holds the commands not yet sent while the rate limit keeps them back. A
+// newer command takes an older one's place only where the head ends the same as after both
+// in turn: a vergence stop left out of the next pan/tilt command must still go out.
 #pragma once
 
 #include "headctl/head_backend.hpp"
 
-#include <array>
+#include <deque>
+#include <optional>
 
 namespace gc::headctl {
 
-// The one command that leaves the head as `pending` then `next`, sent in turn, would:
-// - velocity after velocity, or absolute after absolute: `next`'s values, and `pending`'s
-//   for the axes `next` does not name;
-// - relative after relative: the sum of both moves on each axis;
-// - velocity after a stop: `next`, and velocity 0 for every other axis in `axes`;
-// - anything else: `next` (a stop, a home or a preset decides for every axis, and commands
-//   of different kinds cannot be made one).
-HeadCommand merge_commands(const HeadCommand& pending, const HeadCommand& next,
-                           const std::array<bool, kAxisCount>& axes);
+// One command doing what `earlier` then `next` do, when there is one: velocity after
+// velocity, or absolute after absolute, with `next`'s values and `earlier`'s for the axes
+// `next` does not name. Nullopt for any other pair.
+std::optional<HeadCommand> merge_commands(const HeadCommand& earlier, const HeadCommand& next);
+
+// Whether `next`, sent after `earlier`, leaves nothing of it: a stop, home or preset recall
+// after any motion; a move that names every axis `earlier` names, unless `next` is relative
+// (it starts from where `earlier` leaves the head). A saved preset is never undone.
+bool undoes(const HeadCommand& next, const HeadCommand& earlier);
+
+// Adds `next` to the commands waiting to be sent, oldest first: merged into the newest when
+// they merge, else after dropping those it undoes. At most `max_waiting` wait; beyond that
+// the oldest goes. Returns how many commands were merged away or dropped.
+int queue_command(std::deque<HeadCommand>& waiting, const HeadCommand& next, std::size_t max_waiting);
 
 }  // namespace gc::headctl

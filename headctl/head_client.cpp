@@ -79,8 +79,7 @@ void HeadClient::submit(const HeadCommand& command)
     {
         std::lock_guard lock(mutex_);
         ++stats_.commands_submitted;
-        if (pending_) ++stats_.commands_superseded;
-        pending_ = pending_ ? merge_commands(*pending_, command, axes_) : command;
+        stats_.commands_superseded += std::uint64_t(queue_command(waiting_, command, kMaxWaitingCommands));
     }
     wake_.notify_all();
 }
@@ -194,13 +193,13 @@ void HeadClient::serve(HeadBackend& backend)
         std::optional<HeadCommand> command;
         {
             std::unique_lock lock(mutex_);
-            const auto wake_at = pending_ ? std::min(next_status, next_command) : next_status;
+            const auto wake_at = waiting_.empty() ? next_status : std::min(next_status, next_command);
             wake_.wait_until(lock, wake_at,
-                             [&] { return stopping_ || (pending_ && SteadyClock::now() >= next_command); });
+                             [&] { return stopping_ || (!waiting_.empty() && SteadyClock::now() >= next_command); });
             if (stopping_) return;
-            if (pending_ && SteadyClock::now() >= next_command) {
-                command = std::move(pending_);
-                pending_.reset();
+            if (!waiting_.empty() && SteadyClock::now() >= next_command) {
+                command = std::move(waiting_.front());
+                waiting_.pop_front();
             }
         }
         if (command) {

@@ -8,6 +8,7 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <deque>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -16,6 +17,10 @@
 #include <thread>
 
 namespace gc::headctl {
+
+// Commands held back by the rate limit; only commands a later one can neither merge with nor
+// undo stay apart, so more than a few is a caller far ahead of the head.
+inline constexpr std::size_t kMaxWaitingCommands = 4;
 
 // Connected: the head has answered a STATUS on the current connection.
 enum class ConnectionState { Connecting, Connected, Disconnected, Stopped };
@@ -49,7 +54,7 @@ struct HeadClientStats {
     std::uint64_t connections = 0;
     std::uint64_t commands_submitted = 0;
     std::uint64_t commands_sent = 0;
-    std::uint64_t commands_superseded = 0;  // replaced in the slot before being sent
+    std::uint64_t commands_superseded = 0;  // merged into or undone by a later one before being sent
     std::uint64_t commands_rejected = 0;    // refused by the head
     std::uint64_t state_samples = 0;
 };
@@ -62,9 +67,10 @@ public:
     HeadClient(const HeadClient&) = delete;
     HeadClient& operator=(const HeadClient&) = delete;
 
-    // Latest command wins: it takes the place of any command not yet sent, keeping what that
-    // one asked of the axes it leaves alone (merge_commands). Throws std::invalid_argument
-    // for a value that is not finite or an axis the head does not have.
+    // Latest command wins: it takes the place of the commands not yet sent where the head ends
+    // the same (queue_command); a command it cannot replace, such as a stop of the axes it
+    // does not name, still goes out first. Throws std::invalid_argument for a value that is
+    // not finite or an axis the head does not have.
     void submit(const HeadCommand& command);
 
     ConnectionState state() const;
@@ -91,7 +97,7 @@ private:
     std::condition_variable wake_;
     bool stopping_ = false;
     std::atomic<bool> cancel_{false};  // stopping_, readable by the network waits without the mutex
-    std::optional<HeadCommand> pending_;
+    std::deque<HeadCommand> waiting_;  // not yet sent, oldest first (queue_command)
     ConnectionState state_ = ConnectionState::Connecting;
     std::string last_error_;
     HeadClientStats stats_;

@@ -440,7 +440,7 @@ const SceneConfig& Scene::config() const { return checked(impl_).config; }
 HandPose Scene::hand_pose(int frame) const
 {
     const Impl& s = checked(impl_);
-    require(frame >= 0, "Scene::hand_pose: negative frame index " + std::to_string(frame));
+    require_valid(frame >= 0, "Scene::hand_pose: negative frame index " + std::to_string(frame));
     const double t = frame / s.config.fps;
     HandPose pose = s.script->at(t);
     pose.gesture = gesture_at(s.config.gesture, s.config.gesture_cycle_s, t);
@@ -463,7 +463,7 @@ void Scene::render(int frame, Eye eye, const HeadPose& head, cv::Mat& bgr, EyeTr
     const HandPose pose = hand_pose(frame);
     validate(head);
     const Impl& s = checked(impl_);
-    require(eye == Eye::Left || eye == Eye::Right, "Scene::render: unknown eye");
+    require_valid(eye == Eye::Left || eye == Eye::Right, "Scene::render: unknown eye");
     const cv::Point2d smear = s.hand_smear(eye_camera(s.K, s.geometry, head, eye), frame);
     s.render(pose, smear, frame, eye, head, bgr, truth);
 }
@@ -488,8 +488,8 @@ void Scene::Impl::draw_wall(const cv::Matx33d& H, Eye eye, cv::Mat& bgr) const
 void Scene::Impl::render(const HandPose& pose, cv::Point2d smear, int frame, Eye eye, const HeadPose& head,
                          cv::Mat& bgr, EyeTruth* truth) const
 {
-    require(frame >= 0, "Scene::render: negative frame index " + std::to_string(frame));
-    require(eye == Eye::Left || eye == Eye::Right, "Scene::render: unknown eye");
+    require_valid(frame >= 0, "Scene::render: negative frame index " + std::to_string(frame));
+    require_valid(eye == Eye::Left || eye == Eye::Right, "Scene::render: unknown eye");
     validate(head);
     validate(pose);
     const EyeCamera cam = eye_camera(K, geometry, head, eye);
@@ -499,8 +499,9 @@ void Scene::Impl::render(const HandPose& pose, cv::Point2d smear, int frame, Eye
     for (const cv::Point2d corner : {cv::Point2d(0, 0), cv::Point2d(size.width - 1, 0), cv::Point2d(0, size.height - 1),
                                      cv::Point2d(size.width - 1, size.height - 1)}) {
         const cv::Vec3d ray = cam.ray_in_head(corner.x, corner.y);
-        require(ray[2] > 0.1 * cv::norm(ray), "Scene::render: head pose (pan " + fmt(head.pan_deg) + ", tilt " +
-                                                  fmt(head.tilt_deg) + ") looks past the simulated room's wall");
+        require_valid(ray[2] > 0.1 * cv::norm(ray), "Scene::render: head pose (pan " + number_text(head.pan_deg) +
+                                                        ", tilt " + number_text(head.tilt_deg) +
+                                                        ") looks past the simulated room's wall");
     }
 
     bgr.create(size, CV_8UC3);

@@ -9,9 +9,9 @@
 namespace gc::sim {
 
 // Throws std::invalid_argument(message) unless `ok`.
-void require(bool ok, const std::string& message);
+void require_valid(bool ok, const std::string& message);
 // A number as the messages show it.
-std::string fmt(double v);
+std::string number_text(double v);
 
 void validate(const SceneConfig& c);
 void validate(const HeadPose& h);

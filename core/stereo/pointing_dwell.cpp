@@ -34,12 +34,13 @@ cv::Vec3d pointed_target(const Pointing3D& pointing, const DwellParams& params)
     return o + params.target_distance_mm * d;
 }
 
-void PointingDwell::start_dwell(double t_s, const Pointing3D& pointing, const cv::Vec3d& target)
+void PointingDwell::start_dwell(double t_s, const Pointing3D& pointing)
 {
     dwell_start_s_ = t_s;
     dwell_direction_ = pointing.direction_head;
-    target_sum_ = target;
-    target_count_ = 1;
+    fingertip_sum_ = pointing.fingertip_head_mm;
+    direction_sum_ = pointing.direction_head;
+    ray_count_ = 1;
 }
 
 std::optional<cv::Vec3d> PointingDwell::update(double t_s, const Pointing3D& pointing, const DwellParams& params)
@@ -50,21 +51,26 @@ std::optional<cv::Vec3d> PointingDwell::update(double t_s, const Pointing3D& poi
         return held_;
     }
     last_pointing_s_ = t_s;
-    const cv::Vec3d target = pointed_target(pointing, params);
     // Still aiming where the held target was picked: nothing to decide.
     if (held_ && angle_deg(pointing.direction_head, held_direction_) <= params.steady_deg) {
         dwell_start_s_.reset();
         return held_;
     }
     if (!dwell_start_s_ || angle_deg(pointing.direction_head, dwell_direction_) > params.steady_deg) {
-        start_dwell(t_s, pointing, target);
+        start_dwell(t_s, pointing);
     } else {
-        target_sum_ += target;
-        ++target_count_;
+        fingertip_sum_ += pointing.fingertip_head_mm;
+        direction_sum_ += pointing.direction_head;
+        ++ray_count_;
     }
     if (t_s - *dwell_start_s_ >= params.dwell_s) {
-        // The mean of the dwell's targets: the tracker's jitter averages out.
-        held_ = target_sum_ * (1.0 / target_count_);
+        // The target of the dwell's mean ray: the tracker's jitter averages out, and a ray
+        // grazing the target plane gives one point on it or one at the fixed distance, not a
+        // mean of both.
+        Pointing3D mean = pointing;
+        mean.fingertip_head_mm = fingertip_sum_ * (1.0 / ray_count_);
+        mean.direction_head = cv::normalize(direction_sum_);
+        held_ = pointed_target(mean, params);
         held_direction_ = dwell_direction_;
         dwell_start_s_.reset();
         ++picks_;

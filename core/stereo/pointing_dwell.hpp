@@ -41,12 +41,12 @@ public:
     int picks() const { return picks_; }
 
 private:
-    void start_dwell(double t_s, const Pointing3D& pointing, const cv::Vec3d& target);
+    void start_dwell(double t_s, const Pointing3D& pointing);
 
     std::optional<double> dwell_start_s_;
     cv::Vec3d dwell_direction_;
-    cv::Vec3d target_sum_;
-    int target_count_ = 0;
+    cv::Vec3d fingertip_sum_, direction_sum_;  // of the dwell's rays so far
+    int ray_count_ = 0;
     std::optional<cv::Vec3d> held_;
     cv::Vec3d held_direction_;
     double last_pointing_s_ = 0.0;

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <deque>
 #include <cstdio>
 #include <functional>
 #include <vector>
@@ -124,42 +125,60 @@ HeadCommand velocity(std::initializer_list<std::pair<Axis, double>> values)
     return c;
 }
 
-TEST(MergeCommands, KeepWhatTheOlderCommandAskedOfAxesTheNewerLeavesAlone)
+HeadCommand of_kind(CommandKind kind, std::initializer_list<std::pair<Axis, double>> values)
 {
-    const std::array<bool, kAxisCount> all{true, true, true, true, true};
-    // The vergence stopped, then a command for pan and tilt only: the stop stays.
+    HeadCommand c{kind, {}};
+    for (const auto& [axis, v] : values) c.values.set(axis, v);
+    return c;
+}
+
+// What waits to be sent after `commands` are submitted in turn, and how many went.
+std::pair<std::deque<HeadCommand>, int> queued(std::initializer_list<HeadCommand> commands)
+{
+    std::deque<HeadCommand> waiting;
+    int gone = 0;
+    for (const HeadCommand& c : commands) gone += queue_command(waiting, c, kMaxWaitingCommands);
+    return {waiting, gone};
+}
+
+TEST(QueueCommand, ALaterCommandTakesAnEarliersPlaceOnlyWhereTheHeadEndsTheSame)
+{
+    // The vergence stopped, then a command for pan and tilt only: one command, the stop kept.
     const HeadCommand stop_verge =
         velocity({{Axis::Pan, 10.7}, {Axis::Tilt, -6.3}, {Axis::VergeLeft, 0.0}, {Axis::VergeRight, 0.0}});
-    const HeadCommand merged = merge_commands(stop_verge, velocity({{Axis::Pan, 10.5}, {Axis::Tilt, -6.4}}), all);
-    EXPECT_EQ(merged,
-              velocity({{Axis::Pan, 10.5}, {Axis::Tilt, -6.4}, {Axis::VergeLeft, 0.0}, {Axis::VergeRight, 0.0}}));
-    // Absolute after absolute: the same.
-    HeadCommand tilt_to = absolute_pan(5.0);
-    tilt_to.values = {};
-    tilt_to.values.set(Axis::Tilt, -3.0);
-    HeadCommand both = absolute_pan(5.0);
-    both.values.set(Axis::Tilt, -3.0);
-    EXPECT_EQ(merge_commands(absolute_pan(5.0), tilt_to, all), both);
-    // Relative after relative: both moves.
-    HeadCommand rel{CommandKind::Relative, {}};
-    rel.values.set(Axis::Pan, 2.0);
-    HeadCommand rel2{CommandKind::Relative, {}};
-    rel2.values.set(Axis::Pan, 3.0);
-    rel2.values.set(Axis::Zoom, 1.0);
-    const HeadCommand summed = merge_commands(rel, rel2, all);
-    EXPECT_DOUBLE_EQ(summed.values.get(Axis::Pan), 5.0);
-    EXPECT_DOUBLE_EQ(summed.values.get(Axis::Zoom), 1.0);
-    EXPECT_FALSE(summed.values.has(Axis::Tilt));
-    // Velocity after a stop: the axes it does not name stay stopped, on the axes the head has.
+    auto [waiting, gone] = queued({stop_verge, velocity({{Axis::Pan, 10.5}, {Axis::Tilt, -6.4}})});
+    EXPECT_EQ(waiting, (std::deque<HeadCommand>{velocity(
+                           {{Axis::Pan, 10.5}, {Axis::Tilt, -6.4}, {Axis::VergeLeft, 0.0}, {Axis::VergeRight, 0.0}})}));
+    EXPECT_EQ(gone, 1);
+    // Absolute after absolute merges the same way.
+    const HeadCommand pan_to = of_kind(CommandKind::Absolute, {{Axis::Pan, 5.0}});
+    const HeadCommand tilt_to = of_kind(CommandKind::Absolute, {{Axis::Tilt, -3.0}});
+    EXPECT_EQ(queued({pan_to, tilt_to}).first,
+              (std::deque<HeadCommand>{of_kind(CommandKind::Absolute, {{Axis::Pan, 5.0}, {Axis::Tilt, -3.0}})}));
+    // A look naming fewer axes than the vergence stop before it: both go, in turn.
+    EXPECT_EQ(queued({stop_verge, pan_to}).first, (std::deque<HeadCommand>{stop_verge, pan_to}));
+    // A move naming every axis of the earlier one replaces it, of whatever kind.
+    const HeadCommand look =
+        of_kind(CommandKind::Absolute,
+                {{Axis::Pan, 20.0}, {Axis::Tilt, 4.0}, {Axis::VergeLeft, 2.0}, {Axis::VergeRight, -2.0}});
+    EXPECT_EQ(queued({stop_verge, look}).first, (std::deque<HeadCommand>{look}));
+    // A velocity after a stop does not undo it: the stop goes first.
     const HeadCommand stop{CommandKind::Stop, {}};
-    const std::array<bool, kAxisCount> no_zoom{true, true, true, true, false};
-    EXPECT_EQ(merge_commands(stop, velocity({{Axis::Pan, 4.0}}), no_zoom),
-              velocity({{Axis::Pan, 4.0}, {Axis::Tilt, 0.0}, {Axis::VergeLeft, 0.0}, {Axis::VergeRight, 0.0}}));
-    // A stop, a home or a preset decides alone; so does a command of another kind.
-    EXPECT_EQ(merge_commands(stop_verge, stop, all), stop);
-    EXPECT_EQ(merge_commands(stop_verge, absolute_pan(1.0), all), absolute_pan(1.0));
-    EXPECT_EQ(merge_commands(absolute_pan(1.0), preset_command(CommandKind::RecallPreset, 3), all),
-              preset_command(CommandKind::RecallPreset, 3));
+    const HeadCommand pan_velocity = velocity({{Axis::Pan, 4.0}});
+    EXPECT_EQ(queued({stop, pan_velocity}).first, (std::deque<HeadCommand>{stop, pan_velocity}));
+    // Relative moves are not added up (the sum may pass a limit the first alone would not).
+    const HeadCommand nudge = of_kind(CommandKind::Relative, {{Axis::Pan, 2.0}});
+    EXPECT_EQ(queued({nudge, nudge}).first, (std::deque<HeadCommand>{nudge, nudge}));
+    // A stop, home or recall undoes every motion before it, never a saved preset.
+    const HeadCommand save = preset_command(CommandKind::SavePreset, 3);
+    const HeadCommand recall = preset_command(CommandKind::RecallPreset, 3);
+    EXPECT_EQ(queued({stop_verge, save, nudge, pan_to, recall}).first, (std::deque<HeadCommand>{save, recall}));
+    EXPECT_EQ(queued({save, stop}).first, (std::deque<HeadCommand>{save, stop}));
+    // A caller far ahead of the head: the oldest goes beyond four.
+    const auto [many, dropped] = queued({save, nudge, nudge, nudge, nudge});
+    EXPECT_EQ(many.size(), kMaxWaitingCommands);
+    EXPECT_EQ(many.front(), nudge);
+    EXPECT_EQ(dropped, 1);
 }
 
 // The head link's sequence after a stall: the eyes verge (sent), their stop waits behind the
@@ -167,21 +186,23 @@ TEST(MergeCommands, KeepWhatTheOlderCommandAskedOfAxesTheNewerLeavesAlone)
 TEST(HeadClient, AVergenceStopIsNotLostToTheNextCommand)
 {
     RunningServer server;
-    HeadClient client(config_for(server, 200ms));
+    // 600 ms between commands: the two submits land well within it, and the vergence would
+    // still turn when looked at, short of headsim's 1 s velocity timeout.
+    HeadClient client(config_for(server, 600ms));
     ASSERT_TRUE(eventually([&] { return client.state() == ConnectionState::Connected; }));
-    client.submit(velocity({{Axis::Pan, 2.0}, {Axis::VergeLeft, 20.0}, {Axis::VergeRight, -20.0}}));
+    client.submit(velocity({{Axis::Pan, 2.0}, {Axis::VergeLeft, 10.0}, {Axis::VergeRight, -10.0}}));
     ASSERT_TRUE(eventually([&] { return client.stats().commands_sent == 1; }));
     client.submit(velocity({{Axis::Pan, 2.0}, {Axis::VergeLeft, 0.0}, {Axis::VergeRight, 0.0}}));
     client.submit(velocity({{Axis::Pan, 1.0}}));
     ASSERT_TRUE(eventually([&] { return client.stats().commands_sent == 2; }));
     EXPECT_EQ(client.stats().commands_superseded, 1u);
-    // Once that command is in, the vergence rests (it moved for the 200 ms between the two).
+    // Once that command is in, the vergence rests (it moved for the 600 ms between the two).
     std::this_thread::sleep_for(150ms);
     const auto s = client.latest();
     ASSERT_TRUE(s);
     EXPECT_FALSE(s->state.moving[static_cast<std::size_t>(Axis::VergeLeft)]);
     EXPECT_FALSE(s->state.moving[static_cast<std::size_t>(Axis::VergeRight)]);
-    EXPECT_LT(s->state.pose.verge_left_deg, 8.0);
+    EXPECT_LT(s->state.pose.verge_left_deg, 8.0);  // 10 deg/s for 0.6 s
     EXPECT_TRUE(s->state.moving[static_cast<std::size_t>(Axis::Pan)]);
 }
 
