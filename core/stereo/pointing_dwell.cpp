@@ -25,12 +25,11 @@ cv::Vec3d pointed_target(const Pointing3D& pointing, const DwellParams& params)
 {
     const cv::Vec3d& o = pointing.fingertip_head_mm;
     const cv::Vec3d& d = pointing.direction_head;
-    if (params.target_plane) {
-        const std::optional<Eigen::Vector3d> hit =
-            intersect(Eigen::Vector3d(o[0], o[1], o[2]), Eigen::Vector3d(d[0], d[1], d[2]), *params.target_plane);
-        const cv::Vec3d on_plane = hit ? cv::Vec3d(hit->x(), hit->y(), hit->z()) : o;
-        if (hit && cv::norm(on_plane - o) <= kFarthestPlaneTargetMm) return on_plane;
-    }
+    const Eigen::Vector3d origin(o[0], o[1], o[2]);
+    if (params.target_plane)
+        if (const auto hit = intersect(origin, Eigen::Vector3d(d[0], d[1], d[2]), *params.target_plane);
+            hit && (*hit - origin).norm() <= kFarthestPlaneTargetMm)
+            return {hit->x(), hit->y(), hit->z()};
     return o + params.target_distance_mm * d;
 }
 
