@@ -425,12 +425,20 @@ std::optional<Detection> MotionDetector::process(const cv::Mat& bgr, const SkinM
     check_frame(bgr);
     if (!static_scene.empty() && static_scene.size() != bgr.size())
         throw std::invalid_argument("MotionDetector: the static-scene mask must have the frame's size");
+    if (!difference(bgr) || !segment) return std::nullopt;
+    return segment_last(bgr, prior, static_scene);
+}
+
+bool MotionDetector::difference(const cv::Mat& bgr)
+{
+    check_frame(bgr);
     cv::cvtColor(bgr, grey_, cv::COLOR_BGR2GRAY);
     if (previous_.empty() || previous_.size() != grey_.size()) {
         grey_.copyTo(previous_);
         history_ = cv::Mat1b(grey_.size(), uchar(0));
+        changed_ = cv::Mat1b(grey_.size(), uchar(0));
         motion_frames_ = 0;
-        return std::nullopt;
+        return false;
     }
     cv::absdiff(grey_, previous_, changed_);
     grey_.copyTo(previous_);
@@ -442,10 +450,16 @@ std::optional<Detection> MotionDetector::process(const cv::Mat& bgr, const SkinM
     history_.setTo(p_.history_frames, changed_);
     if (cv::countNonZero(changed_) < p_.min_changed_pixels) {
         motion_frames_ = 0;
-        return std::nullopt;
+        return false;
     }
     ++motion_frames_;
-    if (!segment) return std::nullopt;
+    return true;
+}
+
+std::optional<Detection> MotionDetector::segment_last(const cv::Mat& bgr, const SkinModel& prior,
+                                                      const cv::Mat1b& static_scene) const
+{
+    if (motion_frames_ == 0 || changed_.size() != bgr.size()) return std::nullopt;
     cv::Rect box = cv::boundingRect(changed_);
     box.x -= p_.box_margin;
     box.y -= p_.box_margin;
@@ -453,6 +467,13 @@ std::optional<Detection> MotionDetector::process(const cv::Mat& bgr, const SkinM
     box.height += 2 * p_.box_margin;
     box &= cv::Rect(0, 0, bgr.cols, bgr.rows);
     return segment_hand(bgr, changed_, box, prior, p_, history_, motion_frames_ >= p_.history_frames, static_scene);
+}
+
+int MotionDetector::changed_outside(const cv::Rect& box) const
+{
+    const cv::Rect inside = box & cv::Rect(0, 0, changed_.cols, changed_.rows);
+    const int all = changed_.empty() ? 0 : cv::countNonZero(changed_);
+    return inside.empty() ? all : all - cv::countNonZero(changed_(inside));
 }
 
 }  // namespace gc

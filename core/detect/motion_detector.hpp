@@ -67,6 +67,15 @@ public:
     std::optional<Detection> process(const cv::Mat& bgr, const SkinModel& prior = SkinModel::generic(),
                                      bool segment = true, const cv::Mat1b& static_scene = {});
 
+    // process() in two steps: the frame difference and motion history (true when the frame
+    // changed enough to look for a hand in), then the segmentation of that frame.
+    bool difference(const cv::Mat& bgr);
+    std::optional<Detection> segment_last(const cv::Mat& bgr, const SkinModel& prior = SkinModel::generic(),
+                                          const cv::Mat1b& static_scene = {}) const;
+    // Pixels of the last difference that changed outside `box`.
+    int changed_outside(const cv::Rect& box) const;
+    // The least change process() looks for a hand in.
+    int min_changed_pixels() const { return p_.min_changed_pixels; }
     void reset();
 
     // Non-zero where the image changed in the last history_frames frames (the frames'

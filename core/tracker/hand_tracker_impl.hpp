@@ -96,6 +96,7 @@ struct TrackerSession {
     int still_frames = 0;                // tracked frames the contour has stayed with the room
     int unsettled_frames = 0;            // consecutive tracked frames the landmark model disagreed
     int view_still_frames = 0;           // consecutive tracked frames the view did not move
+    bool watch_fed = false;              // the watch's motion detector saw the last tracked frame
 };
 
 struct HandTracker::Impl : TrackerSession {

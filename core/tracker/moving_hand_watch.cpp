@@ -26,6 +26,13 @@ constexpr int kProposeEvery = 3;
 // Frames the view must hold still before the motion detector's blobs are trusted: its
 // motion history (DetectionParams::history_frames).
 constexpr int kQuietViewFrames = DetectionParams{}.history_frames;
+// The motion detector needs this many frames before the watch's first look to give the
+// maps it would give had it seen every frame: its history, plus the frame it differences
+// the first one with.
+constexpr int kWarmUpFrames = DetectionParams{}.history_frames + 1;
+// How far around the tracked box a change is still the tracked hand's own (its motion
+// since the last frame), in sides of the box (the larger).
+constexpr double kOwnMotionReach = 0.25;
 // The share of the tracked box a moving blob covers from which it is that hand moving.
 constexpr double kSameHandCover = 0.25;
 
@@ -36,6 +43,7 @@ void HandTracker::Impl::watch_for_moving_hand(const cv::Mat& bgr, bool view_move
     const double size = std::max(estimate.bbox.width, estimate.bbox.height);
     if (estimate.state != TrackState::Tracking || !has_key_points || size <= 0.0) {
         still_frames = unsettled_frames = 0;
+        watch_fed = false;
         return;
     }
     // A turn of the view moves the room by the head's motion, which only says where a point
@@ -54,10 +62,24 @@ void HandTracker::Impl::watch_for_moving_hand(const cv::Mat& bgr, bool view_move
     }
     unsettled_frames = check_interval == 1 ? unsettled_frames + 1 : 0;
     const int doubt = std::max(still_frames - kStillFrames, unsettled_frames - kUnsettledFrames);
+    // Doubt grows by at most one a frame: far from a look, the motion detector is spared
+    // (most tracked frames), and it starts afresh kWarmUpFrames before one could come.
+    if (doubt < -kWarmUpFrames) {
+        if (watch_fed) detector.reset();
+        watch_fed = false;
+        return;
+    }
+    watch_fed = true;
     const bool look = doubt >= 0 && doubt % kProposeEvery == 0 && view_still_frames > kQuietViewFrames;
-    // The motion detector differences consecutive frames: it sees every tracked frame, and
-    // segments only when the models will look.
-    const auto found = detector.process(bgr, SkinModel::generic(), look, look ? static_scene(bgr, true, {}) : no_map);
+    // The motion detector differences consecutive frames: it sees every frame from then on,
+    // and segments only when the models will look and something changed away from the
+    // tracked hand: change only on and around it is that hand's own, not another hand.
+    const bool changed = detector.difference(bgr);
+    const int reach = cvRound(kOwnMotionReach * size);
+    const cv::Rect own(estimate.bbox.x - reach, estimate.bbox.y - reach, estimate.bbox.width + 2 * reach,
+                       estimate.bbox.height + 2 * reach);
+    if (!look || !changed || detector.changed_outside(own) < detector.min_changed_pixels()) return;
+    const auto found = detector.segment_last(bgr, SkinModel::generic(), static_scene(bgr, true, {}));
     if (!found || moves_inside(*found, estimate.bbox)) return;
     const std::optional<FoundHand> moving = confirm_detection(bgr, *found);
     if (!moving || estimate.bbox.contains(cv::Point(palm_centre(moving->points)))) return;

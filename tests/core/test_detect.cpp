@@ -116,6 +116,63 @@ TEST(MotionDetector, FindsAWavingHand)
     EXPECT_NEAR(found->skin.mean()[1], 140 / sum, 0.01);
 }
 
+// The tracker's watch for a moving hand feeds the detector only from history_frames + 1
+// frames before it may look, and segments in a second step: the detection must be the one
+// a detector that saw every frame gives. A hand waving over the clutter on some frames and holding still on others, so that
+// the motion history and the count of frames with motion both matter.
+TEST(MotionDetector, PrimedJustBeforeALookFindsWhatAWholeRunFinds)
+{
+    cv::setRNGSeed(4);
+    DrawnScene scene(9);
+    const int warm_up = gc::DetectionParams{}.history_frames + 1;
+    constexpr int kFrames = 40;
+    std::vector<cv::Mat3b> frames(kFrames);
+    cv::Mat1b truth;
+    for (int i = 0; i < kFrames; ++i) {
+        const double step = (i / 5) % 3 == 2 ? 0.0 : 7.0 * (i % 2 ? 1 : -1);  // still for 5 of every 15
+        scene.render({120.0 + 2.0 * i + step, 120.0}, 35.0, frames[i], truth);
+    }
+    int compared_with_a_hand = 0;
+    for (int look = warm_up; look < kFrames; ++look) {
+        gc::MotionDetector whole, primed;
+        std::optional<gc::Detection> from_whole, from_primed;
+        for (int i = 0; i <= look; ++i) from_whole = whole.process(frames[i], gc::SkinModel::generic(), i == look);
+        // The watch's way: the difference on every frame, the segmentation on the last.
+        for (int i = look - warm_up; i <= look; ++i)
+            if (primed.difference(frames[i]) && i == look) from_primed = primed.segment_last(frames[i]);
+        ASSERT_EQ(from_whole.has_value(), from_primed.has_value()) << look;
+        ASSERT_EQ(cv::norm(whole.recent_motion(), primed.recent_motion(), cv::NORM_INF), 0.0) << look;
+        if (!from_whole) continue;
+        ++compared_with_a_hand;
+        EXPECT_EQ(from_whole->box, from_primed->box) << look;
+        EXPECT_EQ(cv::countNonZero(from_whole->mask != from_primed->mask), 0) << look;
+        EXPECT_EQ(from_whole->motion_support, from_primed->motion_support) << look;
+        EXPECT_EQ(from_whole->cut, from_primed->cut) << look;
+    }
+    EXPECT_GT(compared_with_a_hand, 10);
+}
+
+// What changed beyond a box: all of the change without one, none when the box holds it.
+TEST(MotionDetector, CountsTheChangeOutsideABox)
+{
+    DrawnScene scene(9);
+    cv::Mat3b a, b;
+    cv::Mat1b truth;
+    scene.render({120.0, 120.0}, 35.0, a, truth);
+    scene.render({132.0, 120.0}, 35.0, b, truth);
+    gc::MotionDetector det;
+    EXPECT_FALSE(det.difference(a));  // the first frame primes it
+    ASSERT_TRUE(det.difference(b));
+    const int all = det.changed_outside(cv::Rect());
+    EXPECT_GE(all, det.min_changed_pixels());
+    EXPECT_EQ(det.changed_outside(cv::Rect(0, 0, a.cols, a.rows)), 0);
+    const cv::Rect hand = cv::boundingRect(det.recent_motion());
+    EXPECT_EQ(det.changed_outside(hand), 0);
+    EXPECT_EQ(det.changed_outside(cv::Rect(hand.x, hand.y, hand.width / 2, hand.height)) +
+                  cv::countNonZero(det.recent_motion()(cv::Rect(hand.x, hand.y, hand.width / 2, hand.height))),
+              all);
+}
+
 TEST(MotionDetector, LeavesOutAStaticSkinObjectTheHandTouches)
 {
     cv::setRNGSeed(5);

@@ -6,10 +6,11 @@
 // `lost` were reported lost (the rest tracked something else), and `entry` is the IoU on the
 // first crossing frame: low when the tracker was already wrong before the face.
 //
-//   tracking_study PRESET FIRST_SEED LAST_SEED [PARTICLES [left|right [trace] [jpeg=Q]]]
+//   tracking_study PRESET FIRST_SEED LAST_SEED [PARTICLES [left|right [trace] [learned] [jpeg=Q]]]
 //
 // `trace` also prints one line per frame: state, confidence, IoU with the hand, scale, and
-// whether the hand crosses the face. `jpeg=Q` passes every frame through JPEG at quality
+// whether the hand crosses the face. `learned` tracks with the palm and landmark models
+// instead of the thesis's motion detector. `jpeg=Q` passes every frame through JPEG at quality
 // Q (1-100, 4:2:0 chroma) before tracking: what a camera's MJPEG or a lossy recording does.
 #include "face_crossing.hpp"
 #include "metrics/metrics.hpp"
@@ -34,6 +35,7 @@ struct StudyOptions {
     int particles = 1000;
     gc::Eye eye = gc::Eye::Left;
     bool trace = false;
+    bool learned = false;  // the learned detector instead of the thesis's motion detector
     int jpeg_quality = 0;  // 0: frames as rendered
 };
 
@@ -51,6 +53,8 @@ std::optional<StudyOptions> parse_options(int argc, char** argv)
         const std::string option = argv[i];
         if (option == "trace") {
             o.trace = true;
+        } else if (option == "learned") {
+            o.learned = true;
         } else if (option.rfind("jpeg=", 0) == 0) {
             o.jpeg_quality = std::atoi(option.c_str() + 5);
             options_ok = options_ok && o.jpeg_quality >= 1 && o.jpeg_quality <= 100;
@@ -81,7 +85,7 @@ SeedFigures track_seed(const StudyOptions& o, int seed)
     cfg.seed = static_cast<std::uint64_t>(seed);
     const gc::sim::Scene scene(cfg);
     gc::TrackerParams params;
-    params.detector = gc::HandDetector::Motion;  // the contour-based path
+    params.detector = o.learned ? gc::HandDetector::Learned : gc::HandDetector::Motion;
     params.particles = o.particles;
     params.seed = cfg.seed;
     gc::HandTracker tracker(params);
@@ -119,7 +123,8 @@ SeedFigures track_seed(const StudyOptions& o, int seed)
 int main(int argc, char** argv)
 {
     if (argc < 4) {
-        std::fprintf(stderr, "usage: %s PRESET FIRST_SEED LAST_SEED [PARTICLES [left|right [trace] [jpeg=Q]]]\n",
+        std::fprintf(stderr,
+                     "usage: %s PRESET FIRST_SEED LAST_SEED [PARTICLES [left|right [trace] [learned] [jpeg=Q]]]\n",
                      argv[0]);
         return 2;
     }
