@@ -51,8 +51,7 @@ bool ensure_head_link(GstHandTracker* self, const Settings& settings, cv::Size s
     config.uri = settings.head;
     config.token = e.head_token;
     config.steer = settings.steer;
-    config.target_distance_mm = settings.target_distance_mm;
-    config.target_plane = settings.target_plane;
+    config.target = settings.target;
     if (settings.home_preset >= 0) config.fixate.home_preset = settings.home_preset;
     config.fixate.widen_after_s = settings.widen_after_s;
     config.fixate.hold_s = settings.home_after_s;
@@ -104,7 +103,7 @@ GstFlowReturn head_at_capture(GstHandTracker* self, const Settings& settings, cv
     TrackerState& e = *self->state;
     if (settings.head.empty()) return GST_FLOW_OK;
     if (!ensure_head_link(self, settings, size)) return GST_FLOW_ERROR;
-    e.head->set_steering(settings.steer, settings.target_distance_mm, settings.target_plane);
+    e.head->set_steering(settings.steer, settings.target);
     e.head->set_times(steering_times(settings));
     // The views' own running time, not the output slot's: a live source that started
     // late, or a pad that is behind, gives the slot older views, and the pose must be

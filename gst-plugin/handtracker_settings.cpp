@@ -360,10 +360,10 @@ bool set_head_setting(TrackerSettings& s, guint prop_id, const GValue* value)
         s.steer = gc::headctl::SteerMode(g_value_get_enum(value));
         break;
     case PROP_TARGET_DISTANCE:
-        s.target_distance_mm = g_value_get_double(value);
+        s.target.distance_mm = g_value_get_double(value);
         break;
     case PROP_TARGET_PLANE:
-        set_target_plane(s.target_plane, value);
+        set_target_plane(s.target.plane, value);
         break;
     case PROP_HOME_PRESET:
         s.home_preset = g_value_get_int(value);
@@ -474,10 +474,10 @@ bool get_head_setting(const TrackerSettings& s, guint prop_id, GValue* value)
         g_value_set_enum(value, int(s.steer));
         break;
     case PROP_TARGET_DISTANCE:
-        g_value_set_double(value, s.target_distance_mm);
+        g_value_set_double(value, s.target.distance_mm);
         break;
     case PROP_TARGET_PLANE:
-        get_target_plane(s.target_plane, value);
+        get_target_plane(s.target.plane, value);
         break;
     case PROP_HOME_PRESET:
         g_value_set_int(value, s.home_preset);

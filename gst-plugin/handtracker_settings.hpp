@@ -43,10 +43,9 @@ struct TrackerSettings {
     std::string head;             // the head's URI; empty: no head
     std::string head_token_file;  // empty: the URI's token, if any
     gc::headctl::SteerMode steer = kDefaultSteer;
-    double target_distance_mm = kDefaultTargetDistanceMm;
-    std::optional<gc::Plane> target_plane;             // where a held pointing's ray meets it is its target
-    double dwell_s = kDefaultDwellS;                   // a pointing held this long picks the attended target
-    double target_region_mm = kDefaultTargetRegionMm;  // the width the attended view frames there
+    gc::TargetPlacement target{kDefaultTargetDistanceMm, {}};  // where a held pointing's target lies
+    double dwell_s = kDefaultDwellS;                           // a pointing held this long picks the attended target
+    double target_region_mm = kDefaultTargetRegionMm;          // the width the attended view frames there
     int home_preset = -1;                          // the head's preset that steering returns to; -1: its home position
     double widen_after_s = 0.0;                    // lost this long, the head zooms out; 0: never
     double home_after_s = 2.0;                     // lost this long, the head goes home (or to home_preset)

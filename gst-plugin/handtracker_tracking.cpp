@@ -157,8 +157,7 @@ void pick_target(GstHandTracker* self, const TrackerSettings& settings, const Fr
     DwellParams params;
     params.dwell_s = settings.dwell_s;
     params.release_s = settings.dwell_s;
-    params.target_distance_mm = settings.target_distance_mm;
-    params.target_plane = settings.target_plane;
+    params.target = settings.target;
     const double t_s = r.pts_ns >= 0 ? double(r.pts_ns) * 1e-9 : double(r.frame) / 30.0;
     const std::optional<cv::Vec3d> target = e.stream.dwell.update(t_s, r.pointing, params);
     const bool moved = target && e.stream.target && cv::norm(*target - *e.stream.target) > 1.0;

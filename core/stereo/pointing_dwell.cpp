@@ -21,16 +21,16 @@ double angle_deg(const cv::Vec3d& a, const cv::Vec3d& b)
 
 }  // namespace
 
-cv::Vec3d pointed_target(const Pointing3D& pointing, const DwellParams& params)
+cv::Vec3d pointed_target(const Pointing3D& pointing, const TargetPlacement& placement)
 {
     const cv::Vec3d& o = pointing.fingertip_head_mm;
     const cv::Vec3d& d = pointing.direction_head;
     const Eigen::Vector3d origin(o[0], o[1], o[2]);
-    if (params.target_plane)
-        if (const auto hit = intersect(origin, Eigen::Vector3d(d[0], d[1], d[2]), *params.target_plane);
+    if (placement.plane)
+        if (const auto hit = intersect(origin, Eigen::Vector3d(d[0], d[1], d[2]), *placement.plane);
             hit && (*hit - origin).norm() <= kFarthestPlaneTargetMm)
             return {hit->x(), hit->y(), hit->z()};
-    return o + params.target_distance_mm * d;
+    return o + placement.distance_mm * d;
 }
 
 void PointingDwell::start_dwell(double t_s, const Pointing3D& pointing)
@@ -69,7 +69,7 @@ std::optional<cv::Vec3d> PointingDwell::update(double t_s, const Pointing3D& poi
         Pointing3D mean = pointing;
         mean.fingertip_head_mm = fingertip_sum_ * (1.0 / ray_count_);
         mean.direction_head = cv::normalize(direction_sum_);
-        held_ = pointed_target(mean, params);
+        held_ = pointed_target(mean, params.target);
         held_direction_ = dwell_direction_;
         dwell_start_s_.reset();
         ++picks_;

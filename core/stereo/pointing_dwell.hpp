@@ -17,19 +17,24 @@
 
 namespace gc {
 
-struct DwellParams {
-    double dwell_s = 1.0;                // a pointing held this long picks its target
-    double steady_deg = 6.0;             // ...while its direction stays this close to its start
-    double release_s = 1.0;              // no pointing for this long lets the target go
-    double gap_s = 0.3;                  // a dwell survives the tracker missing the ray this long
-    double target_distance_mm = 2000.0;  // how far along the ray the target lies...
-    std::optional<Plane> target_plane;   // ...unless it meets this plane (head frame, mm) ahead of the fingertip
+// Where a pointing's target lies: where its ray meets `plane` ahead of the fingertip (a wall,
+// a table); `distance_mm` along the ray when there is no plane, or the ray runs away from it
+// or meets it more than 100 m away.
+struct TargetPlacement {
+    double distance_mm = 2000.0;
+    std::optional<Plane> plane;  // head frame, mm
 };
 
-// The point a pointing designates under `params`: where its ray meets the target plane ahead of
-// the fingertip; target_distance_mm along the ray when there is no plane, or the ray runs
-// away from it or meets it more than 100 m away.
-cv::Vec3d pointed_target(const Pointing3D& pointing, const DwellParams& params);
+struct DwellParams {
+    double dwell_s = 1.0;     // a pointing held this long picks its target
+    double steady_deg = 6.0;  // ...while its direction stays this close to its start
+    double release_s = 1.0;   // no pointing for this long lets the target go
+    double gap_s = 0.3;       // a dwell survives the tracker missing the ray this long
+    TargetPlacement target;   // where the picked target lies along the ray
+};
+
+// The point a pointing designates under `placement`.
+cv::Vec3d pointed_target(const Pointing3D& pointing, const TargetPlacement& placement);
 
 class PointingDwell {
 public:

@@ -97,7 +97,7 @@ void HeadLinkConfig::validate() const
 {
     auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
     if (uri.empty()) throw std::invalid_argument("head link: the head URI is empty");
-    if (!positive(target_distance_mm))
+    if (!positive(target.distance_mm))
         throw std::invalid_argument("head link: target distance must be finite and > 0 mm");
     if (!positive(nominal_depth_mm)) throw std::invalid_argument("head link: nominal depth must be finite and > 0 mm");
     if (!positive(vergence_gain_per_s)) throw std::invalid_argument("head link: vergence gain must be finite and > 0");
@@ -375,8 +375,7 @@ struct HeadLink::Impl {
         DwellParams params;
         params.dwell_s = config.times.dwell_s;
         params.release_s = config.times.dwell_s;
-        params.target_distance_mm = config.target_distance_mm;
-        params.target_plane = config.target_plane;
+        params.target = config.target;
         const std::optional<cv::Vec3d> target = dwell.update(t_s, r.pointing, params);
         std::optional<headctl::PointAim> pick;
         if (target && dwell.picks() != dwell_picks) pick = aim_for(*target);
@@ -490,13 +489,12 @@ HeadAtCapture HeadLink::begin_frame(headctl::Timestamp capture_time)
 
 void HeadLink::end_frame(const FrameResult& result) { impl_->end_frame(result); }
 
-void HeadLink::set_steering(SteerMode mode, double target_distance_mm, const std::optional<Plane>& target_plane)
+void HeadLink::set_steering(SteerMode mode, const TargetPlacement& target)
 {
     Impl& s = *impl_;
-    if (!(std::isfinite(target_distance_mm) && target_distance_mm > 0.0))
+    if (!(std::isfinite(target.distance_mm) && target.distance_mm > 0.0))
         throw std::invalid_argument("head link: target distance must be finite and > 0 mm");
-    s.config.target_distance_mm = target_distance_mm;
-    s.config.target_plane = target_plane;
+    s.config.target = target;
     if (mode == s.config.steer) return;
     s.config.steer = mode;
     s.steer_time.reset();

@@ -9,7 +9,7 @@
 #include "headctl/steering/manual_move_watch.hpp"
 #include "headctl/steering/point_director.hpp"
 #include "stereo/calibration.hpp"
-#include "stereo/ray_geometry.hpp"
+#include "stereo/pointing_dwell.hpp"
 #include "tracker/pointing_tracker.hpp"
 
 #include <chrono>
@@ -23,7 +23,7 @@ namespace gc::headctl {
 
 // off: only read the pose; fixate: keep the hand in the middle of the left view and verge on
 // its depth; point: as fixate, and a pointing held for the dwell time turns the head to
-// target_distance_mm along its ray for the look time, then back to the hand.
+// its target (HeadLinkConfig::target) for the look time, then back to the hand.
 enum class SteerMode { Off, Fixate, Point };
 
 std::string_view to_string(SteerMode mode);
@@ -52,9 +52,8 @@ struct HeadLinkConfig {
     std::string uri;  // e.g. tcp://127.0.0.1:5050 (headctl/uri.hpp)
     std::string token;
     SteerMode steer = SteerMode::Fixate;
-    double target_distance_mm = 2000.0;  // point mode: how far along the ray to look...
-    std::optional<Plane> target_plane;   // ...unless the ray meets this plane (head frame, mm) ahead
-    double nominal_depth_mm = 1000.0;    // C_t's depth while the 3D position is unknown
+    gc::TargetPlacement target;        // point mode: where along the ray to look
+    double nominal_depth_mm = 1000.0;  // C_t's depth while the 3D position is unknown
     // Fixate-mode pan/tilt law; its limits are replaced by the head's once it reports them.
     headctl::FixateConfig fixate;
     double vergence_gain_per_s = 6.0;  // vergence velocity per degree of error
@@ -103,10 +102,10 @@ public:
     HeadAtCapture begin_frame(headctl::Timestamp capture_time);
     // After tracking that frame: remembers where the hand is and submits the steering command.
     void end_frame(const FrameResult& result);
-    // Changes the steering mode and the point-mode target distance and plane while running
-    // (the connection stays); a new mode starts from rest: the fixate law's memory and the
-    // last aim are forgotten. Throws std::invalid_argument for a distance that is not > 0.
-    void set_steering(SteerMode mode, double target_distance_mm, const std::optional<Plane>& target_plane);
+    // Changes the steering mode and where point mode's target lies while running (the
+    // connection stays); a new mode starts from rest: the fixate law's memory and the last
+    // aim are forgotten. Throws std::invalid_argument for a distance that is not > 0.
+    void set_steering(SteerMode mode, const gc::TargetPlacement& target);
     // Changes the dwell, look and manual-pause times while running (std::invalid_argument for
     // bad ones); a look under way keeps the time it started with.
     void set_times(const SteeringTimes& times);

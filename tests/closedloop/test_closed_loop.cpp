@@ -25,13 +25,13 @@ namespace gc {
 namespace {
 
 using namespace std::chrono_literals;
-using loopback::eventually;
-using loopback::loopback_head;
-using loopback::RunningHead;
 using headctl::HeadAtCapture;
 using headctl::HeadLink;
 using headctl::HeadLinkConfig;
 using headctl::SteerMode;
+using loopback::eventually;
+using loopback::loopback_head;
+using loopback::RunningHead;
 
 constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 
@@ -308,7 +308,7 @@ PointFigures run_point(sim::Preset preset, std::uint64_t seed, double max_second
     // The sim's room is a wall 3 m ahead that the head may not look past, and its hands point
     // obliquely upwards to the side: at the default 2000 mm their targets lie 45 to 70 deg
     // off. At 600 mm they are 20 to 35 deg off, a move the room allows.
-    lc.target_distance_mm = 600.0;
+    lc.target.distance_mm = 600.0;
     lc.times.look_s = 30.0;  // the run ends while the head looks
     bool looking = false;    // the link turned the head to a picked target
     lc.on_steering = [&](headctl::SteeringEvent e, const std::string&) {
@@ -341,7 +341,7 @@ PointFigures run_point(sim::Preset preset, std::uint64_t seed, double max_second
         if (f.first_tracked < 0 && r.left.valid()) f.first_tracked = i;
         if (r.pointing.valid && i >= still_from) {
             last_pointing = r.pointing;
-            targets.push_back(r.pointing.fingertip_head_mm + lc.target_distance_mm * r.pointing.direction_head);
+            targets.push_back(r.pointing.fingertip_head_mm + lc.target.distance_mm * r.pointing.direction_head);
         }
         if (previous) {
             const bool still = std::abs(pose.pan_deg - previous->pan_deg) < 1e-3 &&
@@ -361,7 +361,7 @@ PointFigures run_point(sim::Preset preset, std::uint64_t seed, double max_second
     if (const auto latest = link.client().latest()) f.pose = latest->state.pose;
 
     const sim::HandTruth truth = scene.hand_truth(scene.hand_pose(std::min(i, last_frame - 1)));
-    const cv::Vec3d target = truth.fingertip_mm + lc.target_distance_mm * truth.direction;
+    const cv::Vec3d target = truth.fingertip_mm + lc.target.distance_mm * truth.direction;
     f.eye_error_deg[0] = off_axis_deg(cal, f.pose, Eye::Left, target);
     f.eye_error_deg[1] = off_axis_deg(cal, f.pose, Eye::Right, target);
     f.aim_pan_deg = std::atan2(target[0], target[2]) * kRadToDeg;
@@ -369,7 +369,7 @@ PointFigures run_point(sim::Preset preset, std::uint64_t seed, double max_second
     f.aim_tilt_deg = std::atan2(-unpanned[1], unpanned[2]) * kRadToDeg;
     if (last_pointing) {
         const cv::Vec3d estimate =
-            last_pointing->fingertip_head_mm + lc.target_distance_mm * last_pointing->direction_head;
+            last_pointing->fingertip_head_mm + lc.target.distance_mm * last_pointing->direction_head;
         const RigidTransform to_left = camera_to_head(cal.head, f.pose, Eye::Left).inverse();
         const cv::Vec3d a = to_left.apply(estimate), b = to_left.apply(target);
         f.estimate_error_deg = std::acos(std::clamp(a.dot(b) / (cv::norm(a) * cv::norm(b)), -1.0, 1.0)) * kRadToDeg;

@@ -270,7 +270,7 @@ TEST(HeadLink, PointLooksAtAHeldPointingForTheLookTimeAndComesBack)
 {
     RunningHead head(loopback_head());
     HeadLinkConfig config = link_config(head.uri(), SteerMode::Point);
-    config.target_distance_mm = 1000.0;
+    config.target.distance_mm = 1000.0;
     config.times.dwell_s = 1.0;
     config.times.look_s = 1.5;
     Recorded recorded;
@@ -313,7 +313,7 @@ TEST(HeadLink, PointLooksWhereTheRayMeetsTheTargetPlane)
     HeadLinkConfig config = link_config(head.uri(), SteerMode::Point);
     config.times.dwell_s = 1.0;
     HeadLink link(config, calibration());
-    link.set_steering(SteerMode::Point, 1000.0, plane_from_coefficients(1.0, 0.0, 0.0, -500.0));
+    link.set_steering(SteerMode::Point, {1000.0, plane_from_coefficients(1.0, 0.0, 0.0, -500.0)});
     ASSERT_TRUE(eventually([&] { return link.client().latest().has_value(); }, 2000ms));
     const cv::Vec3d direction = cv::normalize(cv::Vec3d(1.0, -0.2, 0.0));
     const auto held = [&](const HeadAtCapture& at) { return pointing_along(at, direction); };
@@ -327,7 +327,7 @@ TEST(HeadLink, PointMovesNothingForATalkingHand)
 {
     RunningHead head(loopback_head());
     HeadLinkConfig config = link_config(head.uri(), SteerMode::Point);
-    config.target_distance_mm = 1000.0;
+    config.target.distance_mm = 1000.0;
     Recorded recorded;
     recorded.attach(config);
     HeadLink link(config, calibration());
@@ -519,7 +519,7 @@ TEST(HeadLink, RejectsBadConfiguration)
     EXPECT_THROW(HeadLink(link_config("", SteerMode::Fixate), calibration()), std::invalid_argument);
     EXPECT_THROW(HeadLink(link_config("carrier-pigeon://x", SteerMode::Fixate), calibration()), std::invalid_argument);
     HeadLinkConfig c = link_config("tcp://127.0.0.1:1", SteerMode::Point);
-    c.target_distance_mm = 0.0;
+    c.target.distance_mm = 0.0;
     try {
         HeadLink link(c, calibration());
         ADD_FAILURE() << "a zero target distance was accepted";

@@ -43,22 +43,22 @@ TEST(PointingDwell, AHeldPointingPicksThePointAlongItsRayAfterTheDwell)
 TEST(PointingDwell, ATargetPlaneHoldsTheTargetWhereTheRayMeetsIt)
 {
     gc::DwellParams params;
-    params.target_plane = gc::plane_from_coefficients(0.0, 0.0, 2.0, -6000.0);  // scaled: made unit
-    ASSERT_TRUE(params.target_plane);
-    const cv::Vec3d on_wall = gc::pointed_target(pointing_at(20.0), params);
+    params.target.plane = gc::plane_from_coefficients(0.0, 0.0, 2.0, -6000.0);  // scaled: made unit
+    ASSERT_TRUE(params.target.plane);
+    const cv::Vec3d on_wall = gc::pointed_target(pointing_at(20.0), params.target);
     EXPECT_NEAR(on_wall[0], 2400.0 * std::tan(20.0 * std::numbers::pi / 180.0), 1e-6);
     EXPECT_NEAR(on_wall[1], 100.0, 1e-9);
     EXPECT_NEAR(on_wall[2], 3000.0, 1e-9);
 
     const auto along = [](const gc::Pointing3D& p) { return p.fingertip_head_mm + 2000.0 * p.direction_head; };
-    params.target_plane = gc::plane_from_coefficients(1.0, 0.0, 0.0, -5000.0);  // a side wall 5 m to the right
-    EXPECT_LT(cv::norm(gc::pointed_target(pointing_at(0.0), params) - along(pointing_at(0.0))), 1e-9);
-    EXPECT_LT(cv::norm(gc::pointed_target(pointing_at(-30.0), params) - along(pointing_at(-30.0))), 1e-9);
-    EXPECT_LT(cv::norm(gc::pointed_target(pointing_at(0.001), params) - along(pointing_at(0.001))), 1e-9);
-    EXPECT_NEAR(gc::pointed_target(pointing_at(30.0), params)[0], 5000.0, 1e-9);
+    params.target.plane = gc::plane_from_coefficients(1.0, 0.0, 0.0, -5000.0);  // a side wall 5 m to the right
+    EXPECT_LT(cv::norm(gc::pointed_target(pointing_at(0.0), params.target) - along(pointing_at(0.0))), 1e-9);
+    EXPECT_LT(cv::norm(gc::pointed_target(pointing_at(-30.0), params.target) - along(pointing_at(-30.0))), 1e-9);
+    EXPECT_LT(cv::norm(gc::pointed_target(pointing_at(0.001), params.target) - along(pointing_at(0.001))), 1e-9);
+    EXPECT_NEAR(gc::pointed_target(pointing_at(30.0), params.target)[0], 5000.0, 1e-9);
 
     // The dwell picks the wall point.
-    params.target_plane = gc::plane_from_coefficients(0.0, 0.0, 1.0, -3000.0);
+    params.target.plane = gc::plane_from_coefficients(0.0, 0.0, 1.0, -3000.0);
     gc::PointingDwell dwell;
     std::optional<cv::Vec3d> target;
     for (int i = 0; i < 40; ++i) target = dwell.update(i / kFps, pointing_at(20.0), params);

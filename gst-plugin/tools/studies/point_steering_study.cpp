@@ -164,7 +164,7 @@ struct Run {
             look_middle_s.reset();
         }
         DwellParams params;
-        params.target_distance_mm = kTargetDistanceMm;
+        params.target.distance_mm = kTargetDistanceMm;
         dwell.update(t_s, r.pointing, params);
         f.picks = dwell.picks();
         if (!r.pointing.valid) return;
@@ -191,7 +191,7 @@ Figures run(bool talking, Gesture gesture, double seconds, std::uint64_t seed, c
     headctl::HeadLinkConfig lc;
     lc.uri = head.uri();
     lc.steer = steer;
-    lc.target_distance_mm = kTargetDistanceMm;
+    lc.target.distance_mm = kTargetDistanceMm;
     Run* state = nullptr;  // set before the first frame; events come from end_frame
     int frame = 0;
     lc.on_steering = [&](headctl::SteeringEvent e, const std::string& detail) {
