@@ -41,9 +41,14 @@ constexpr double kSameHandCover = 0.25;
 void HandTracker::Impl::watch_for_moving_hand(const cv::Mat& bgr, bool view_moved)
 {
     const double size = std::max(estimate.bbox.width, estimate.bbox.height);
+    // The detector left unfed forgets its last frame: fed again, it starts afresh.
+    const auto rest_detector = [this] {
+        if (watch_fed) detector.reset();
+        watch_fed = false;
+    };
     if (estimate.state != TrackState::Tracking || !has_key_points || size <= 0.0) {
         still_frames = unsettled_frames = 0;
-        watch_fed = false;
+        rest_detector();
         return;
     }
     // A turn of the view moves the room by the head's motion, which only says where a point
@@ -65,8 +70,7 @@ void HandTracker::Impl::watch_for_moving_hand(const cv::Mat& bgr, bool view_move
     // Doubt grows by at most one a frame: far from a look, the motion detector is spared
     // (most tracked frames), and it starts afresh kWarmUpFrames before one could come.
     if (doubt < -kWarmUpFrames) {
-        if (watch_fed) detector.reset();
-        watch_fed = false;
+        rest_detector();
         return;
     }
     watch_fed = true;
