@@ -415,8 +415,14 @@ int frame_noise_threshold(const cv::Mat1b& difference)
 
 void MotionDetector::reset()
 {
-    previous_.release();
-    history_.release();
+    primed_ = false;
+    motion_frames_ = 0;
+}
+
+const cv::Mat1b& MotionDetector::recent_motion() const
+{
+    static const cv::Mat1b none;
+    return primed_ ? history_ : none;
 }
 
 std::optional<Detection> MotionDetector::process(const cv::Mat& bgr, const SkinModel& prior, bool segment,
@@ -433,11 +439,14 @@ bool MotionDetector::difference(const cv::Mat& bgr)
 {
     check_frame(bgr);
     cv::cvtColor(bgr, grey_, cv::COLOR_BGR2GRAY);
-    if (previous_.empty() || previous_.size() != grey_.size()) {
+    if (!primed_ || previous_.size() != grey_.size()) {
         grey_.copyTo(previous_);
-        history_ = cv::Mat1b(grey_.size(), uchar(0));
-        changed_ = cv::Mat1b(grey_.size(), uchar(0));
+        history_.create(grey_.size());
+        history_.setTo(0);
+        changed_.create(grey_.size());
+        changed_.setTo(0);
         motion_frames_ = 0;
+        primed_ = true;
         return false;
     }
     cv::absdiff(grey_, previous_, changed_);

@@ -76,17 +76,20 @@ public:
     int changed_outside(const cv::Rect& box) const;
     // The least change process() looks for a hand in.
     int min_changed_pixels() const { return p_.min_changed_pixels; }
+    // Forgets the frames seen; the next one only primes the detector. Its buffers are kept,
+    // so a tracker that rests the detector and feeds it again allocates nothing.
     void reset();
 
     // Non-zero where the image changed in the last history_frames frames (the frames'
-    // size; empty before the first frame).
-    const cv::Mat1b& recent_motion() const { return history_; }
+    // size; empty before the first frame and after a reset).
+    const cv::Mat1b& recent_motion() const;
 
 private:
     DetectionParams p_;
     cv::Mat1b previous_, grey_, changed_;
     cv::Mat1b history_;      // frames since each pixel last changed, counting down to 0
     int motion_frames_ = 0;  // consecutive frames with motion
+    bool primed_ = false;    // previous_ holds the last frame seen
 };
 
 // Three standard deviations of the noise in an absolute frame difference (CV_8UC1),

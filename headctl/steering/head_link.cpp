@@ -44,6 +44,13 @@ cv::Vec3d in_unverged_eye(const HeadGeometry& g, const HeadPose& pose, Eye eye, 
     return camera_to_head(g, p, eye).inverse().apply(point);
 }
 
+// Point mode's target placement, checked where the configuration is made and where it changes.
+void check_target(const TargetPlacement& target)
+{
+    if (!(std::isfinite(target.distance_mm) && target.distance_mm > 0.0))
+        throw std::invalid_argument("head link: target distance must be finite and > 0 mm");
+}
+
 }  // namespace
 
 std::string_view to_string(SteerMode mode)
@@ -97,8 +104,7 @@ void HeadLinkConfig::validate() const
 {
     auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
     if (uri.empty()) throw std::invalid_argument("head link: the head URI is empty");
-    if (!positive(target.distance_mm))
-        throw std::invalid_argument("head link: target distance must be finite and > 0 mm");
+    check_target(target);
     if (!positive(nominal_depth_mm)) throw std::invalid_argument("head link: nominal depth must be finite and > 0 mm");
     if (!positive(vergence_gain_per_s)) throw std::invalid_argument("head link: vergence gain must be finite and > 0");
     if (!std::isfinite(vergence_dead_band_deg) || vergence_dead_band_deg < 0.0)
@@ -492,8 +498,7 @@ void HeadLink::end_frame(const FrameResult& result) { impl_->end_frame(result); 
 void HeadLink::set_steering(SteerMode mode, const TargetPlacement& target)
 {
     Impl& s = *impl_;
-    if (!(std::isfinite(target.distance_mm) && target.distance_mm > 0.0))
-        throw std::invalid_argument("head link: target distance must be finite and > 0 mm");
+    check_target(target);
     s.config.target = target;
     if (mode == s.config.steer) return;
     s.config.steer = mode;
