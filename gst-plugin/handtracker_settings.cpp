@@ -40,8 +40,9 @@ enum {
     PROP_DIRECTOR_HOME_PRESET,
     PROP_DIRECTOR_TOKEN_FILE,
     PROP_TARGET_PLANE,
+    PROP_TRACKING_WIDTH,
 };
-static_assert(kStatsProperty > PROP_TARGET_PLANE, "the stats property's id follows the settings'");
+static_assert(kStatsProperty > PROP_TRACKING_WIDTH, "the stats property's id follows the settings'");
 
 #define GST_TYPE_HAND_TRACKER_OUTPUT (gst_hand_tracker_output_get_type())
 static GType gst_hand_tracker_output_get_type()
@@ -118,6 +119,13 @@ void install_tracking_properties(GObjectClass* gobject_class)
         g_param_spec_int("particles", "Particles",
                          "Sample-set size N of each eye's particle filter; a change restarts tracking", 1,
                          kMaxParticles, kDefaultParticles, kMutablePlaying));
+    g_object_class_install_property(
+        gobject_class, PROP_TRACKING_WIDTH,
+        g_param_spec_int("tracking-width", "Tracking width",
+                         "Track views wider than this many pixels scaled down to it (aspect kept, at least 64): "
+                         "less CPU for HD cameras; every position reported stays in the views' pixels. "
+                         "0: track at the views' own size; a change restarts tracking",
+                         0, kMaxTrackingWidth, 0, kMutablePlaying));
     g_object_class_install_property(
         gobject_class, PROP_SEED,
         g_param_spec_uint64("seed", "Seed",
@@ -408,6 +416,10 @@ bool set_tracker_setting(TrackerSettings& s, guint prop_id, const GValue* value,
         s.seed = g_value_get_uint64(value);
         rebuild = true;
         break;
+    case PROP_TRACKING_WIDTH:
+        s.tracking_width = g_value_get_int(value);
+        rebuild = true;
+        break;
     case PROP_CALIBRATION:
         s.calibration = string_value(value);
         rebuild = true;
@@ -519,6 +531,9 @@ bool get_tracker_setting(const TrackerSettings& s, guint prop_id, GValue* value)
         break;
     case PROP_SEED:
         g_value_set_uint64(value, s.seed);
+        break;
+    case PROP_TRACKING_WIDTH:
+        g_value_set_int(value, s.tracking_width);
         break;
     case PROP_CALIBRATION:
         set_string_value(value, s.calibration);

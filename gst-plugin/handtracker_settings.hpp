@@ -18,6 +18,7 @@ namespace gc::gst {
 constexpr int kDefaultParticles = 1000;
 constexpr int kMaxParticles = 100000;
 constexpr guint64 kDefaultSeed = 1;
+constexpr int kMaxTrackingWidth = 8192;
 constexpr double kDefaultLostThreshold = 0.6;
 constexpr int kDefaultLostFrames = 3;
 constexpr GstHandTrackerOutput kDefaultOutput = GST_HAND_TRACKER_OUTPUT_LEFT;
@@ -32,6 +33,7 @@ constexpr double kDefaultManualPauseS = 10.0;
 // Property values, read and written under the object lock.
 struct TrackerSettings {
     int particles = kDefaultParticles;
+    int tracking_width = 0;  // views wider than this are tracked scaled down to it; 0: at their size
     guint64 seed = kDefaultSeed;
     std::string calibration;  // empty: the nominal rig for the stream's size
     GstHandTrackerOutput output = kDefaultOutput;

@@ -41,6 +41,7 @@ bool build_tracker(GstHandTracker* self, const Settings& settings)
     }
     gc::TrackerParams params;
     params.particles = settings.particles;
+    params.tracking_width = settings.tracking_width;
     params.seed = settings.seed;
     params.lost_ratio = settings.lost_threshold;
     params.lost_frames = settings.lost_frames;

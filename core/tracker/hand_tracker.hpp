@@ -32,6 +32,9 @@ struct TrackerParams {
     HandDetector detector = HandDetector::Learned;
     std::string model_dir;       // learned models' folder; empty: found without configuration
     int max_model_interval = 8;  // frames between landmark checks while the contour agrees
+    // PointingTracker: frames wider than this are tracked scaled down to it (aspect kept),
+    // their results given in the frame's pixels; 0 tracks every frame at its own size.
+    int tracking_width = 0;
 };
 
 // A weighted hypothesis, exposed for drawing the marginal distributions.

@@ -3,6 +3,9 @@
 #include "tracker/pointing_tracker.hpp"
 
 #include "common/json_text.hpp"
+#include "tracker/analysis_scale.hpp"
+
+#include <opencv2/imgproc.hpp>
 
 #include <array>
 #include <charconv>
@@ -59,6 +62,9 @@ struct PointingTracker::Impl {
     std::optional<PointingEstimator> estimator;  // created on the first stereo frame
     Mode mode = Mode::Unset;
     cv::Size frame_size;
+    AnalysisScale scale;
+    cv::Mat analysed[2];                       // the views at the analysed size, when smaller
+    std::vector<Particle> frame_particles[2];  // the eyes' particles in the frame's pixels
     FrameResult result;
     std::int64_t next_frame = 0;
 
@@ -82,17 +88,40 @@ struct PointingTracker::Impl {
     {
         mode = m;
         frame_size = size;
+        scale = analysis_scale(size, params.tracking_width);
     }
 
+    // The calibration is the frames' (checked at their size), scaled to the analysed size.
     PointingEstimator& estimator_for(const cv::Size& size)
     {
         if (!estimator) {
             if (calibration && calibration->image_size != size)
                 throw std::invalid_argument("frames are " + size_text(size) + " but the calibration '" +
                                             calibration->source + "' is for " + size_text(calibration->image_size));
-            estimator.emplace(calibration ? *calibration : default_calibration(size));
+            const StereoCalibration frames = calibration ? *calibration : default_calibration(size);
+            const AnalysisScale a = analysis_scale(size, params.tracking_width);
+            estimator.emplace(a.active() ? scaled_calibration(frames, a) : frames);
         }
         return *estimator;
+    }
+
+    // The view the eye's tracker sees: the frame itself, or its copy at the analysed size.
+    const cv::Mat& analysed_view(const cv::Mat& frame, int eye)
+    {
+        if (!scale.active()) return frame;
+        cv::resize(frame, analysed[eye], scale.analysed, 0.0, 0.0, cv::INTER_AREA);
+        return analysed[eye];
+    }
+
+    // The estimates and particles back in the frame's pixels.
+    void results_to_frame(std::initializer_list<std::pair<EyeEstimate*, std::span<const Particle>>> eyes)
+    {
+        if (!scale.active()) return;
+        int i = 0;
+        for (const auto& [estimate, particles] : eyes) {
+            to_frame(*estimate, scale);
+            to_frame(particles, scale, frame_particles[i++]);
+        }
     }
 
     void stamp(std::int64_t pts_ns)
@@ -124,7 +153,10 @@ const FrameResult& PointingTracker::process_stereo(const cv::Mat& left_bgr, cons
     PointingEstimator& estimator = d.estimator_for(left_bgr.size());
     d.begin_frame(Impl::Mode::Stereo, left_bgr.size());
 
-    StereoEstimate eyes = d.stereo.process(left_bgr, right_bgr, left_motion, right_motion);
+    const cv::Mat& left = d.analysed_view(left_bgr, 0);
+    const cv::Mat& right = d.analysed_view(right_bgr, 1);
+    StereoEstimate eyes =
+        d.stereo.process(left, right, to_analysed(left_motion, d.scale), to_analysed(right_motion, d.scale));
     FrameResult& r = d.result;
     d.stamp(pts_ns);
     r.stereo = true;
@@ -133,8 +165,10 @@ const FrameResult& PointingTracker::process_stereo(const cv::Mat& left_bgr, cons
     r.state = overall_state({r.left.state, r.right.state});
     r.head = head;
     r.pointing = points_in_both(r.left, r.right)
-                     ? estimator.estimate(left_bgr, right_bgr, r.left, r.right, head.value_or(HeadPose{}))
+                     ? estimator.estimate(left, right, r.left, r.right, head.value_or(HeadPose{}))
                      : Pointing3D{};
+    d.results_to_frame(
+        {{&r.left, d.stereo.eye(Eye::Left).particles()}, {&r.right, d.stereo.eye(Eye::Right).particles()}});
     return r;
 }
 
@@ -146,7 +180,8 @@ const FrameResult& PointingTracker::process_mono(const cv::Mat& bgr, std::int64_
     d.begin_frame(Impl::Mode::Mono, bgr.size());
     if (!d.mono) d.mono.emplace(d.params);
     FrameResult& r = d.result;
-    r.left = d.mono->process(bgr, motion);
+    r.left = d.mono->process(d.analysed_view(bgr, 0), to_analysed(motion, d.scale));
+    d.results_to_frame({{&r.left, d.mono->particles()}});
     d.stamp(pts_ns);
     r.stereo = false;
     r.right = EyeEstimate{};
@@ -163,6 +198,7 @@ void PointingTracker::reset()
     d.mono.reset();  // destroyed; re-created by the next mono frame
     d.mode = Impl::Mode::Unset;
     d.frame_size = {};
+    d.scale = {};
     d.next_frame = 0;
     d.result = FrameResult{};
     // A new stream may have another frame size: the estimator is re-created and the size
@@ -175,6 +211,10 @@ const FrameResult& PointingTracker::last() const { return impl_->result; }
 std::span<const Particle> PointingTracker::particles(Eye eye) const
 {
     const Impl& d = *impl_;
+    if (d.scale.active() && d.mode != Impl::Mode::Unset) {
+        if (d.mode == Impl::Mode::Mono && eye == Eye::Right) return {};
+        return d.frame_particles[static_cast<int>(eye)];
+    }
     switch (d.mode) {
     case Impl::Mode::Mono:
         return eye == Eye::Left && d.mono ? d.mono->particles() : std::span<const Particle>{};

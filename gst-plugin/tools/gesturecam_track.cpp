@@ -32,6 +32,9 @@ options:
   --calibration FILE    stereo calibration (OpenCV YAML/XML); default: the nominal rig
                         for the frame size
   --particles N         particles per eye, 1..100000 (default 1000)
+  --tracking-width W    track frames wider than W pixels scaled down to W (aspect kept),
+                        64..8192; the output stays in the input's pixels (default: track
+                        at the input's size)
   --seed S              random seed; same seed and input give the same output (default 1)
   --detector D          how the hand is found: learned (the palm and landmark models,
                         default) or motion (the thesis's waving skin blob, nothing learned)
@@ -67,7 +70,7 @@ struct Options {
 
 // The values as given, checked and converted once CLI11 has parsed the command line.
 struct GivenText {
-    std::string particles, seed, detector, fps, max_frames, progress;
+    std::string particles, tracking_width, seed, detector, fps, max_frames, progress;
 };
 
 // CLI11 reads the command line into `o` and `t`; throws gc::cli::UsageError for a value that
@@ -78,6 +81,7 @@ void add_options(CLI::App& app, Options& o, GivenText& t)
     app.add_option("--right", o.right);
     app.add_option("--calibration", o.calibration);
     app.add_option("--particles", t.particles);
+    app.add_option("--tracking-width", t.tracking_width);
     app.add_option("--seed", t.seed);
     app.add_option("--detector", t.detector);
     app.add_option("--model-dir", o.params.model_dir);
@@ -92,6 +96,8 @@ void convert(const GivenText& t, Options& o)
 {
     using gc::cli::parse_number;
     if (!t.particles.empty()) o.params.particles = parse_number<int>("--particles", t.particles, 1, 100000);
+    if (!t.tracking_width.empty())
+        o.params.tracking_width = parse_number<int>("--tracking-width", t.tracking_width, 64, 8192);
     if (!t.seed.empty()) o.params.seed = parse_number<std::uint64_t>("--seed", t.seed);
     if (!t.detector.empty()) {
         if (t.detector != "learned" && t.detector != "motion")

@@ -324,6 +324,7 @@ TEST_F(TrackTool, BadCommandLinesExitWithStatusTwo)
         {left + " --particles 0", "--particles"},
         {left + " --particles 12abc", "--particles"},
         {left + " --fps -5", "--fps"},
+        {left + " --tracking-width 10", "--tracking-width"},
         {left + " --seed", "--seed"},
         {left + " --frobnicate 1", "--frobnicate"},
         {"--particles 10", "--left"},
