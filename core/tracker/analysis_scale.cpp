@@ -1,5 +1,7 @@
 #include "tracker/analysis_scale.hpp"
 
+#include <opencv2/imgproc.hpp>
+
 #include <algorithm>
 #include <cmath>
 
@@ -71,18 +73,15 @@ ImageMotion to_analysed(const ImageMotion& motion, const AnalysisScale& scale)
 
 void to_frame(EyeEstimate& e, const AnalysisScale& a)
 {
-    if (!a.active()) return;
+    // Without a contour the estimate is none (acquiring, lost): its fields stay as they are.
+    if (!a.active() || e.contour.empty()) return;
     to_frame(e.mean, a);
     to_frame(e.best, a);
     for (cv::Point2f& p : e.contour) p = to_frame(p, a);
     for (cv::Point2f& p : e.landmarks) p = to_frame(p, a);
     e.fingertip = to_frame(e.fingertip, a);
     e.palm = to_frame(e.palm, a);
-    // The box in the frame's pixels: the analysed box's pixel edges carried over.
-    const double x0 = e.bbox.x / a.sx, y0 = e.bbox.y / a.sy;
-    const double x1 = (e.bbox.x + e.bbox.width) / a.sx, y1 = (e.bbox.y + e.bbox.height) / a.sy;
-    e.bbox = cv::Rect(cv::Point(static_cast<int>(std::floor(x0)), static_cast<int>(std::floor(y0))),
-                      cv::Point(static_cast<int>(std::ceil(x1)), static_cast<int>(std::ceil(y1))));
+    e.bbox = cv::boundingRect(e.contour);  // as the tracker makes it, from the contour
 }
 
 void to_frame(std::span<const Particle> particles, const AnalysisScale& scale, std::vector<Particle>& out)

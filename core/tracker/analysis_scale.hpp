@@ -39,7 +39,8 @@ StereoCalibration scaled_calibration(const StereoCalibration& calibration, const
 // The head's image motion in the frame's pixels, in the analysed ones.
 ImageMotion to_analysed(const ImageMotion& motion, const AnalysisScale& scale);
 
-// Every pixel quantity of an estimate made at the analysed size, in the frame's pixels.
+// Every pixel quantity of an estimate made at the analysed size, in the frame's pixels; an
+// estimate without a contour (none) is left alone.
 void to_frame(EyeEstimate& estimate, const AnalysisScale& scale);
 
 // The particles' positions in the frame's pixels, into `out` (its storage reused).

@@ -164,11 +164,19 @@ const FrameResult& PointingTracker::process_stereo(const cv::Mat& left_bgr, cons
     r.right = std::move(eyes.right);
     r.state = overall_state({r.left.state, r.right.state});
     r.head = head;
-    r.pointing = points_in_both(r.left, r.right)
-                     ? estimator.estimate(left, right, r.left, r.right, head.value_or(HeadPose{}))
-                     : Pointing3D{};
-    d.results_to_frame(
-        {{&r.left, d.stereo.eye(Eye::Left).particles()}, {&r.right, d.stereo.eye(Eye::Right).particles()}});
+    const auto back_to_frame = [&] {
+        d.results_to_frame(
+            {{&r.left, d.stereo.eye(Eye::Left).particles()}, {&r.right, d.stereo.eye(Eye::Right).particles()}});
+    };
+    try {
+        r.pointing = points_in_both(r.left, r.right)
+                         ? estimator.estimate(left, right, r.left, r.right, head.value_or(HeadPose{}))
+                         : Pointing3D{};
+    } catch (...) {
+        back_to_frame();  // whatever the caller does next, last() speaks in the frame's pixels
+        throw;
+    }
+    back_to_frame();
     return r;
 }
 

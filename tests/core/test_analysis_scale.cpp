@@ -6,9 +6,12 @@
 #include "tracker/pointing_tracker.hpp"
 
 #include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <span>
 #include <vector>
 
 namespace {
@@ -50,6 +53,7 @@ TEST(AnalysisScale, ScaledCalibrationProjectsWhereTheFramesPixelLands)
 {
     gc::StereoCalibration frame = gc::default_calibration({1280, 720});
     frame.M1(0, 2) = 650.3;  // off-centre, as a real calibration has it
+    frame.M1(0, 1) = 0.8;    // and skewed
     frame.M2(1, 2) = 351.7;
     frame.D1 = (cv::Mat_<double>(1, 5) << -0.1, 0.02, 0.0, 0.0, 0.0);
     const gc::AnalysisScale a = gc::analysis_scale(frame.image_size, 640);
@@ -77,8 +81,10 @@ TEST(AnalysisScale, EstimatesAndMotionGoBackToTheFramesPixels)
     e.fingertip = {199.5f, 9.5f};
     e.palm = {-0.5f, -0.5f};
     e.landmarks.assign(21, cv::Point2f(49.5f, 99.5f));
-    e.bbox = cv::Rect(10, 20, 30, 40);
+    e.bbox = cv::Rect(0, 0, 100, 50);
     e.pointing_deg = 33.0;
+    gc::EyeEstimate none = e;
+    none.contour.clear();
     gc::to_frame(e, a);
     EXPECT_DOUBLE_EQ(e.mean.x, 199.5);
     EXPECT_DOUBLE_EQ(e.mean.y, 99.5);
@@ -89,7 +95,9 @@ TEST(AnalysisScale, EstimatesAndMotionGoBackToTheFramesPixels)
     EXPECT_EQ(e.fingertip, cv::Point2f(399.5f, 19.5f));
     EXPECT_EQ(e.palm, cv::Point2f(-0.5f, -0.5f));  // the corner of the grid stays the corner
     EXPECT_EQ(e.landmarks[20], cv::Point2f(99.5f, 199.5f));
-    EXPECT_EQ(e.bbox, cv::Rect(20, 40, 60, 80));
+    EXPECT_EQ(e.bbox, cv::boundingRect(e.contour));  // the box of the contour, as the tracker's
+    gc::to_frame(none, a);
+    EXPECT_EQ(none.fingertip, cv::Point2f(199.5f, 9.5f)) << "an estimate without a contour is none: left alone";
 
     const gc::ImageMotion m = gc::to_analysed({8.0, -6.0, 0.1, 1.05}, a);
     EXPECT_DOUBLE_EQ(m.dx, 4.0);
@@ -98,18 +106,110 @@ TEST(AnalysisScale, EstimatesAndMotionGoBackToTheFramesPixels)
     EXPECT_DOUBLE_EQ(m.scale_factor, 1.05);
 }
 
-// A rendered 1280x960 stereo pair tracked at 640 wide: the fingertip, the box and the
-// particles come back in the frame's pixels, and the 3D ray from the scaled calibration
-// points where the hand does.
-TEST(AnalysisScale, HdStereoPairTrackedAtHalfWidth)
+gc::sim::SceneConfig hd_scene(std::uint64_t seed)
 {
     gc::sim::SceneConfig config;
     config.preset = gc::sim::Preset::Clean;
     config.motion = gc::sim::Motion::Translate;
     config.width = 1280;
     config.height = 960;
-    config.seed = 2;
-    const gc::sim::Scene scene(config);
+    config.seed = seed;
+    return config;
+}
+
+// The head's motion on a few frames, in the frame's pixels.
+gc::ImageMotion head_motion(int f)
+{
+    return f >= 30 && f < 34 ? gc::ImageMotion{6.0, -4.0, 0.01, 1.0} : gc::ImageMotion{};
+}
+
+void expect_same_estimate(const gc::EyeEstimate& scaled, gc::EyeEstimate analysed, const gc::AnalysisScale& a, int f)
+{
+    gc::to_frame(analysed, a);
+    EXPECT_EQ(scaled.state, analysed.state) << "frame " << f;
+    EXPECT_EQ(scaled.contour, analysed.contour) << "frame " << f;
+    EXPECT_EQ(scaled.fingertip, analysed.fingertip) << "frame " << f;
+    EXPECT_EQ(scaled.landmarks, analysed.landmarks) << "frame " << f;
+    EXPECT_EQ(scaled.bbox, analysed.bbox) << "frame " << f;
+}
+
+void expect_same_particles(std::span<const gc::Particle> scaled, std::span<const gc::Particle> analysed,
+                           const gc::AnalysisScale& a, int f)
+{
+    std::vector<gc::Particle> mapped;
+    gc::to_frame(analysed, a, mapped);
+    ASSERT_EQ(scaled.size(), mapped.size()) << "frame " << f;
+    for (std::size_t i = 0; i < mapped.size(); ++i) {
+        ASSERT_EQ(scaled[i].state.x, mapped[i].state.x) << "frame " << f;
+        ASSERT_EQ(scaled[i].state.y, mapped[i].state.y) << "frame " << f;
+    }
+}
+
+// With tracking_width the pipeline gives exactly what it gives on frames scaled beforehand
+// with the scaled calibration and motion, mapped back to the frame's pixels: stereo.
+TEST(AnalysisScale, StereoTrackingWidthIsTheScaledFramesTrackedAndMappedBack)
+{
+    const gc::sim::Scene scene(hd_scene(2));
+    const gc::AnalysisScale a = gc::analysis_scale({1280, 960}, 640);
+    gc::TrackerParams params;
+    params.particles = 200;
+    gc::TrackerParams narrow = params;
+    narrow.tracking_width = 640;
+    gc::PointingTracker scaled(narrow, scene.calibration());
+    gc::PointingTracker analysed(params, gc::scaled_calibration(scene.calibration(), a));
+    cv::Mat left, right, small_left, small_right;
+    int rays = 0;
+    for (int f = 0; f < 45; ++f) {
+        scene.render(f, gc::Eye::Left, {}, left);
+        scene.render(f, gc::Eye::Right, {}, right);
+        cv::resize(left, small_left, a.analysed, 0, 0, cv::INTER_AREA);
+        cv::resize(right, small_right, a.analysed, 0, 0, cv::INTER_AREA);
+        const gc::ImageMotion m = head_motion(f);
+        const gc::FrameResult& r = scaled.process_stereo(left, right, -1, std::nullopt, m, m);
+        const gc::FrameResult& s = analysed.process_stereo(small_left, small_right, -1, std::nullopt,
+                                                           gc::to_analysed(m, a), gc::to_analysed(m, a));
+        expect_same_estimate(r.left, s.left, a, f);
+        expect_same_estimate(r.right, s.right, a, f);
+        expect_same_particles(scaled.particles(gc::Eye::Left), analysed.particles(gc::Eye::Left), a, f);
+        expect_same_particles(scaled.particles(gc::Eye::Right), analysed.particles(gc::Eye::Right), a, f);
+        ASSERT_EQ(r.pointing.valid, s.pointing.valid) << "frame " << f;
+        if (r.pointing.valid) EXPECT_EQ(r.pointing.direction, s.pointing.direction) << "frame " << f;
+        rays += r.pointing.valid ? 1 : 0;
+    }
+    EXPECT_GT(rays, 10);
+}
+
+// The same in mono.
+TEST(AnalysisScale, MonoTrackingWidthIsTheScaledFramesTrackedAndMappedBack)
+{
+    const gc::sim::Scene scene(hd_scene(3));
+    const gc::AnalysisScale a = gc::analysis_scale({1280, 960}, 640);
+    gc::TrackerParams params;
+    params.particles = 200;
+    gc::TrackerParams narrow = params;
+    narrow.tracking_width = 640;
+    gc::PointingTracker scaled(narrow), analysed(params);
+    cv::Mat frame, small;
+    int tracked = 0;
+    for (int f = 0; f < 45; ++f) {
+        scene.render(f, gc::Eye::Left, {}, frame);
+        cv::resize(frame, small, a.analysed, 0, 0, cv::INTER_AREA);
+        const gc::EyeEstimate& r = scaled.process_mono(frame, -1, head_motion(f)).left;
+        const gc::EyeEstimate& s = analysed.process_mono(small, -1, gc::to_analysed(head_motion(f), a)).left;
+        expect_same_estimate(r, s, a, f);
+        expect_same_particles(scaled.particles(gc::Eye::Left), analysed.particles(gc::Eye::Left), a, f);
+        EXPECT_TRUE(scaled.particles(gc::Eye::Right).empty());
+        tracked += r.valid() ? 1 : 0;
+    }
+    EXPECT_GT(tracked, 10);
+}
+
+// A rendered 1280x960 stereo pair tracked at 640 wide: the fingertip, the box and the
+// particles come back in the frame's pixels, and the 3D ray from the scaled calibration
+// points where the hand does.
+TEST(AnalysisScale, HdStereoPairTrackedAtHalfWidth)
+{
+    const gc::sim::Scene scene(hd_scene(2));
     gc::TrackerParams params;
     params.particles = 300;
     params.tracking_width = 640;

@@ -125,40 +125,56 @@ TEST(ScenePipeline, MetaAndMessagesFollowTheGroundTruth)
     EXPECT_EQ(captured.roi_with_params, captured.with_roi);
 }
 
-// HD views tracked at 640 wide (tracking-width): the meta and the messages still speak in
-// the views' own pixels, near the rendered truth.
+// handscenesrc x2 at 1280x720 -> handtracker tracking-width=W: the metas and the left
+// view's truth.
+struct HdRun {
+    Captured captured;
+    std::vector<const GstStructure*> truths;
+    gc::test::RunResult result;
+};
+
+void run_hd(int tracking_width, HdRun& run)
+{
+    gc::test::ElementPtr pipeline = gc::test::parse_pipeline(
+        scene_sources("! video/x-raw,width=1280,height=720") +
+        "handtracker name=t tracking-width=" + std::to_string(tracking_width) + " ! fakesink sync=false");
+    ASSERT_TRUE(pipeline);
+    gc::test::probe_buffers(pipeline.get(), "t", "src", capture_meta, &run.captured);
+    run.result = gc::test::run_pipeline(pipeline.get(), 60 * GST_SECOND);
+    ASSERT_TRUE(run.result.eos) << run.result.error;
+    run.truths = run.result.named("hand-truth", "l");
+    ASSERT_EQ(run.captured.metas.size(), size_t(kFrames));
+    ASSERT_EQ(run.truths.size(), size_t(kFrames));
+}
+
+// HD views tracked at 640 wide (tracking-width): the meta still speaks in the views' own
+// pixels, near the rendered truth, and differs from tracking at the views' size.
 TEST(ScenePipeline, HdViewsTrackedNarrowerReportInTheirOwnPixels)
 {
     gc::test::init_gstreamer();
-    gc::test::ElementPtr pipeline =
-        gc::test::parse_pipeline(scene_sources("! video/x-raw,width=1280,height=720") +
-                                 "handtracker name=t tracking-width=640 ! fakesink sync=false");
-    ASSERT_TRUE(pipeline);
-    Captured captured;
-    gc::test::probe_buffers(pipeline.get(), "t", "src", capture_meta, &captured);
-    const gc::test::RunResult r = gc::test::run_pipeline(pipeline.get(), 60 * GST_SECOND);
-    ASSERT_TRUE(r.eos) << r.error;
-    const auto truths = r.named("hand-truth", "l");
-    ASSERT_EQ(captured.metas.size(), size_t(kFrames));
-    ASSERT_EQ(truths.size(), size_t(kFrames));
+    HdRun narrow, full;
+    ASSERT_NO_FATAL_FAILURE(run_hd(640, narrow));
+    ASSERT_NO_FATAL_FAILURE(run_hd(0, full));
     std::vector<double> errors;
-    int with_3d = 0;
+    int with_3d = 0, differing = 0;
     for (int i = 0; i < kFrames; ++i) {
-        const GstHandPointingMeta& meta = captured.metas[size_t(i)];
+        const GstHandPointingMeta& meta = narrow.captured.metas[size_t(i)];
         EXPECT_EQ(meta.view_width, 1280);
         EXPECT_EQ(meta.view_height, 720);
         gboolean visible = FALSE;
-        gst_structure_get_boolean(truths[size_t(i)], "visible", &visible);
+        const GstStructure* truth = narrow.truths[size_t(i)];
+        gst_structure_get_boolean(truth, "visible", &visible);
         if (meta.left.state == GST_HAND_POINTING_STATE_TRACKING && visible)
-            errors.push_back(
-                std::hypot(meta.left.fingertip_x - gc::test::get_double(truths[size_t(i)], "fingertip-x"),
-                           meta.left.fingertip_y - gc::test::get_double(truths[size_t(i)], "fingertip-y")));
+            errors.push_back(std::hypot(meta.left.fingertip_x - gc::test::get_double(truth, "fingertip-x"),
+                                        meta.left.fingertip_y - gc::test::get_double(truth, "fingertip-y")));
         with_3d += (meta.flags & GST_HAND_POINTING_FLAG_HAS_3D) ? 1 : 0;
+        differing += meta.left.fingertip_x != full.captured.metas[size_t(i)].left.fingertip_x ? 1 : 0;
     }
     ASSERT_GE(errors.size(), size_t(kFrames / 2)) << "tracked frames";
     std::nth_element(errors.begin(), errors.begin() + long(errors.size() / 2), errors.end());
     EXPECT_LT(errors[errors.size() / 2], 25.0) << "median fingertip error, pixels of the 1280x720 views";
     EXPECT_GT(with_3d, 0);
+    EXPECT_GT(differing, kFrames / 2) << "tracking-width changed nothing";
 }
 
 // The two views of the scene, pulled from handscenesrc into memory.
