@@ -52,6 +52,19 @@ AnalysisScale analysis_scale(cv::Size frame, int max_width)
     return a;
 }
 
+void downscale(const cv::Mat& frame, cv::Size to, DownscaleBuffers& buffers, cv::Mat& out)
+{
+    const cv::Mat* current = &frame;
+    int next = 0;
+    while (current->cols >= 2 * to.width && current->rows >= 2 * to.height) {
+        cv::Mat& half = buffers.halves[next];
+        cv::resize(*current, half, cv::Size(current->cols / 2, current->rows / 2), 0.0, 0.0, cv::INTER_AREA);
+        current = &half;
+        next = 1 - next;
+    }
+    cv::resize(*current, out, to, 0.0, 0.0, cv::INTER_LINEAR);
+}
+
 StereoCalibration scaled_calibration(const StereoCalibration& calibration, const AnalysisScale& scale)
 {
     StereoCalibration out = calibration;

@@ -31,6 +31,17 @@ inline constexpr int kMinTrackingHeight = 32;
 // wider) leaves them as they are.
 AnalysisScale analysis_scale(cv::Size frame, int max_width);
 
+// Scratch images for downscale(), kept from frame to frame so that it allocates nothing
+// once their sizes are set.
+struct DownscaleBuffers {
+    cv::Mat halves[2];
+};
+
+// `frame` at `to` (no larger): halved by pixel averaging while it is at least twice as large,
+// then linearly interpolated the rest of the way (less than twice). Averaging by the whole
+// factor (OpenCV's INTER_AREA) costs five times as much at factors between 2 and 4.
+void downscale(const cv::Mat& frame, cv::Size to, DownscaleBuffers& buffers, cv::Mat& out);
+
 // The calibration of the same cameras at the analysed size: focal lengths and principal
 // point scaled (pixel centres kept at integer coordinates), the distortion's normalised
 // coefficients and every millimetre unchanged.

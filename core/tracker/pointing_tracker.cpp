@@ -63,7 +63,8 @@ struct PointingTracker::Impl {
     Mode mode = Mode::Unset;
     cv::Size frame_size;
     AnalysisScale scale;
-    cv::Mat analysed[2];                       // the views at the analysed size, when smaller
+    cv::Mat analysed[2];  // the views at the analysed size, when smaller
+    DownscaleBuffers downscaling[2];
     std::vector<Particle> frame_particles[2];  // the eyes' particles in the frame's pixels
     FrameResult result;
     std::int64_t next_frame = 0;
@@ -109,7 +110,7 @@ struct PointingTracker::Impl {
     const cv::Mat& analysed_view(const cv::Mat& frame, int eye)
     {
         if (!scale.active()) return frame;
-        cv::resize(frame, analysed[eye], scale.analysed, 0.0, 0.0, cv::INTER_AREA);
+        downscale(frame, scale.analysed, downscaling[eye], analysed[eye]);
         return analysed[eye];
     }
 

@@ -49,6 +49,28 @@ TEST(AnalysisScale, NeverBelowTheTrackersSmallestFrame)
     EXPECT_FALSE(gc::analysis_scale({100, 32}, 64).active());
 }
 
+// Fine detail averages out rather than aliasing into false edges: a one-pixel checkerboard
+// becomes an even grey at every factor, a flat colour stays itself.
+TEST(AnalysisScale, DownscaleAveragesFineDetail)
+{
+    gc::DownscaleBuffers buffers;
+    cv::Mat out;
+    for (const cv::Size& frame : {cv::Size(1920, 1080), cv::Size(2560, 1440), cv::Size(720, 720)}) {
+        cv::Mat3b board(frame);
+        for (int y = 0; y < frame.height; ++y)
+            for (int x = 0; x < frame.width; ++x) board(y, x) = cv::Vec3b::all((x + y) % 2 ? 255 : 0);
+        const cv::Size to = gc::analysis_scale(frame, frame.width == 720 ? 300 : 640).analysed;
+        gc::downscale(board, to, buffers, out);
+        ASSERT_EQ(out.size(), to);
+        double lo = 0.0, hi = 0.0;
+        cv::minMaxLoc(out.reshape(1), &lo, &hi);
+        EXPECT_GE(lo, 120.0) << frame;
+        EXPECT_LE(hi, 135.0) << frame;
+        gc::downscale(cv::Mat3b(frame, cv::Vec3b(30, 140, 220)), to, buffers, out);
+        EXPECT_EQ(cv::norm(out, cv::Mat3b(to, cv::Vec3b(30, 140, 220)), cv::NORM_INF), 0.0) << frame;
+    }
+}
+
 TEST(AnalysisScale, ScaledCalibrationProjectsWhereTheFramesPixelLands)
 {
     gc::StereoCalibration frame = gc::default_calibration({1280, 720});
@@ -158,12 +180,13 @@ TEST(AnalysisScale, StereoTrackingWidthIsTheScaledFramesTrackedAndMappedBack)
     gc::PointingTracker scaled(narrow, scene.calibration());
     gc::PointingTracker analysed(params, gc::scaled_calibration(scene.calibration(), a));
     cv::Mat left, right, small_left, small_right;
+    gc::DownscaleBuffers buffers;
     int rays = 0;
     for (int f = 0; f < 45; ++f) {
         scene.render(f, gc::Eye::Left, {}, left);
         scene.render(f, gc::Eye::Right, {}, right);
-        cv::resize(left, small_left, a.analysed, 0, 0, cv::INTER_AREA);
-        cv::resize(right, small_right, a.analysed, 0, 0, cv::INTER_AREA);
+        gc::downscale(left, a.analysed, buffers, small_left);
+        gc::downscale(right, a.analysed, buffers, small_right);
         const gc::ImageMotion m = head_motion(f);
         const gc::FrameResult& r = scaled.process_stereo(left, right, -1, std::nullopt, m, m);
         const gc::FrameResult& s = analysed.process_stereo(small_left, small_right, -1, std::nullopt,
@@ -190,10 +213,11 @@ TEST(AnalysisScale, MonoTrackingWidthIsTheScaledFramesTrackedAndMappedBack)
     narrow.tracking_width = 640;
     gc::PointingTracker scaled(narrow), analysed(params);
     cv::Mat frame, small;
+    gc::DownscaleBuffers buffers;
     int tracked = 0;
     for (int f = 0; f < 45; ++f) {
         scene.render(f, gc::Eye::Left, {}, frame);
-        cv::resize(frame, small, a.analysed, 0, 0, cv::INTER_AREA);
+        gc::downscale(frame, a.analysed, buffers, small);
         const gc::EyeEstimate& r = scaled.process_mono(frame, -1, head_motion(f)).left;
         const gc::EyeEstimate& s = analysed.process_mono(small, -1, gc::to_analysed(head_motion(f), a)).left;
         expect_same_estimate(r, s, a, f);
