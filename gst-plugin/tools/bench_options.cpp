@@ -37,6 +37,10 @@ options:
                      255 F (v / 255)^2.2, F in (0, 1] (default 1: as it is)
   --real-window      a window in both views of the pair, blown out to white after the
                      dimming, where the hand never goes (not in the windows' rows)
+  --real-tracking-width W
+                     track the pair's views scaled down to W pixels wide (64..8192),
+                     as handtracker tracking-width does (not in the windows' rows;
+                     default: at their own size)
   --no-real          skip the real pair
   --quick            a small smoke run: particles 50,200, scenes clean,heavy, 40 frames,
                      1 run, seed 1, 200 particles for the comparisons, the real pair's
@@ -83,7 +87,7 @@ gc::HandDetector parse_detector(std::string_view opt, std::string_view item)
 // The options' texts as CLI11 read them; converted afterwards with the messages above.
 struct GivenText {
     std::optional<std::string> particles, scenes, motion, detectors, frames, runs, seeds, peer_particles, real_frames,
-        real_noise, real_dim;
+        real_noise, real_dim, real_tracking_width;
 };
 
 void add_options(CLI::App& app, BenchOptions& o, Given& g, GivenText& t)
@@ -98,7 +102,8 @@ void add_options(CLI::App& app, BenchOptions& o, Given& g, GivenText& t)
                               {"--peer-particles", &t.peer_particles},
                               {"--real-frames", &t.real_frames},
                               {"--real-noise", &t.real_noise},
-                              {"--real-dim", &t.real_dim}})
+                              {"--real-dim", &t.real_dim},
+                              {"--real-tracking-width", &t.real_tracking_width}})
         app.add_option(name, *text);
     app.add_option("--real", g.real_dir);
     app.add_flag("--json", o.json);
@@ -130,6 +135,8 @@ void convert(const GivenText& t, BenchOptions& o, Given& g)
     if (t.real_frames) g.real_frames = parse_number<int>("--real-frames", *t.real_frames, 1, 1 << 30);
     if (t.real_noise) o.real_noise = parse_number<double>("--real-noise", *t.real_noise, 0.0, 255.0);
     if (t.real_dim) o.real_dim = parse_number<double>("--real-dim", *t.real_dim, 0.01, 1.0);
+    if (t.real_tracking_width)
+        o.real_tracking_width = parse_number<int>("--real-tracking-width", *t.real_tracking_width, 64, 8192);
 }
 
 void apply(const Given& g, BenchOptions& o)

@@ -33,6 +33,7 @@ struct BenchOptions {
     double real_noise = 0.0;          // camera noise added to the real pair's frames (grey levels, sd)
     double real_dim = 1.0;            // the real pair's frames dimmed (RealPairOptions::dim)
     bool real_bright_window = false;  // RealPairOptions::bright_window
+    int real_tracking_width = 0;      // the pair's views tracked at this width (TrackerParams::tracking_width)
     bool json = false;
 };
 

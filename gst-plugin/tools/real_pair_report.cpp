@@ -12,16 +12,19 @@ namespace gc::tools {
 namespace {
 
 // The fields every real row starts with: what was measured and how its frames were changed
-// (the bright window is painted into the pair's views only, not into the windows').
-JsonObject real_row(std::string_view kind, const BenchOptions& o, const RealPairRow& row, bool bright_window)
+// (the bright window is painted into the pair's views only, not into the windows', and only
+// the pair's views are tracked at a smaller width).
+JsonObject real_row(std::string_view kind, const BenchOptions& o, const RealPairRow& row, bool pair_views)
 {
+    const bool bright_window = pair_views && o.real_bright_window;
     JsonObject j;
     j.add("kind", kind)
         .add("detector", detector_name(row.detector))
         .add("seeds", seeds_text(o.seeds))
         .add("noise_sd", o.real_noise, 1)
         .add("dim", o.real_dim, 2)
-        .add("bright_window", bright_window);
+        .add("bright_window", bright_window)
+        .add("tracking_width", pair_views ? o.real_tracking_width : 0);
     return j;
 }
 
@@ -29,7 +32,7 @@ void print_view(const BenchOptions& o, const RealPairRow& row, std::string_view 
                 std::ostream& out)
 {
     if (o.json) {
-        out << real_row("real_view", o, row, o.real_bright_window)
+        out << real_row("real_view", o, row, true)
                    .add("view", view)
                    .add("reference_frames", v.reference_frames)
                    .add("coverage", v.coverage, 3)
@@ -57,7 +60,7 @@ void print_3d(const BenchOptions& o, const RealPairRow& row, std::ostream& out)
     const RealPairFigures& f = row.figures;
     const double fps = row.ms_per_frame > 0.0 ? 1000.0 / row.ms_per_frame : std::nan("");
     if (o.json) {
-        out << real_row("real_pair", o, row, o.real_bright_window)
+        out << real_row("real_pair", o, row, true)
                    .add("particles", o.peer_particles)
                    .add("frames", f.frames)
                    .add("pointing_frames", f.pointing_frames)
@@ -121,6 +124,9 @@ void print_real_pair(const BenchOptions& o, const std::vector<RealPairRow>& rows
             << (o.real_dim < 1.0 ? ", dimmed to " + fixed(o.real_dim, 2) : "")
             << (o.real_bright_window ? ", a bright window in view" : "")
             << (o.real_noise > 0.0 ? ", camera noise of " + fixed(o.real_noise, 1) + " grey levels added" : "")
+            << (o.real_tracking_width > 0
+                    ? ", tracked " + std::to_string(o.real_tracking_width) + " pixels wide (not the windows)"
+                    : "")
             << ")\n\n"
             << "Each figure is the mean of the per-seed figures: one seed's move with the tracker's random "
                "path alone.\n\n"

@@ -88,6 +88,7 @@ std::vector<RealPairRow> measure_real_pair_rows(const BenchOptions& o)
     options.dim = o.real_dim;
     options.bright_window = o.real_bright_window;
     options.params.particles = o.peer_particles;
+    options.params.tracking_width = o.real_tracking_width;
     for (gc::HandDetector detector : o.detectors) {
         options.params.detector = detector;
         RealPairRow row;

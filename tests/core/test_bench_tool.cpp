@@ -291,9 +291,9 @@ TEST(BenchTool, OneDetectorAndNoRealPair)
 
 TEST(BenchTool, RejectsBadOptions)
 {
-    for (const char* args :
-         {"--particles 0", "--scenes clean,nowhere", "--runs x", "--particles 20,,50", "--bogus",
-          "--detectors learned,blob", "--real-frames 0", "--no-real=1", "--real-noise -1", "--real-noise x"}) {
+    for (const char* args : {"--particles 0", "--scenes clean,nowhere", "--runs x", "--particles 20,,50", "--bogus",
+                             "--detectors learned,blob", "--real-frames 0", "--no-real=1", "--real-noise -1",
+                             "--real-noise x", "--real-tracking-width 10"}) {
         const RunResult r = run_bench(args);
         EXPECT_EQ(r.status, 2) << args;
         EXPECT_FALSE(r.err.empty()) << args;
