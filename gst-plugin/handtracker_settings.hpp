@@ -4,6 +4,7 @@
 
 #include "gsthandtracker.hpp"
 
+#include "common/frame_limits.hpp"
 #include "headctl/steering/head_link.hpp"
 #include "tracker/hand_tracker.hpp"
 
@@ -18,7 +19,7 @@ namespace gc::gst {
 constexpr int kDefaultParticles = 1000;
 constexpr int kMaxParticles = 100000;
 constexpr guint64 kDefaultSeed = 1;
-constexpr int kMaxTrackingWidth = 8192;
+constexpr int kMaxTrackingWidth = gc::kMaxFrameSide;
 constexpr double kDefaultLostThreshold = 0.6;
 constexpr int kDefaultLostFrames = 3;
 constexpr GstHandTrackerOutput kDefaultOutput = GST_HAND_TRACKER_OUTPUT_LEFT;

@@ -5,8 +5,6 @@
 #include "common/json_text.hpp"
 #include "tracker/analysis_scale.hpp"
 
-#include <opencv2/imgproc.hpp>
-
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -61,8 +59,7 @@ struct PointingTracker::Impl {
     std::optional<HandTracker> mono;             // created on the first mono frame
     std::optional<PointingEstimator> estimator;  // created on the first stereo frame
     Mode mode = Mode::Unset;
-    cv::Size frame_size;
-    AnalysisScale scale;
+    AnalysisScale scale;  // the frames' size and the one they are tracked at
     cv::Mat analysed[2];  // the views at the analysed size, when smaller
     DownscaleBuffers downscaling[2];
     std::vector<Particle> frame_particles[2];  // the eyes' particles in the frame's pixels
@@ -80,15 +77,14 @@ struct PointingTracker::Impl {
         if (mode != Mode::Unset && mode != m)
             throw std::logic_error(std::string("PointingTracker: a ") + name(m) + " frame after " + name(mode) +
                                    " frames; call reset() to change mode");
-        if (mode == m && size != frame_size)
-            throw std::invalid_argument("frame size changed from " + size_text(frame_size) + " to " + size_text(size) +
+        if (mode == m && size != scale.frame)
+            throw std::invalid_argument("frame size changed from " + size_text(scale.frame) + " to " + size_text(size) +
                                         " without reset()");
     }
 
     void begin_frame(Mode m, const cv::Size& size)
     {
         mode = m;
-        frame_size = size;
         scale = analysis_scale(size, params.tracking_width);
     }
 
@@ -206,7 +202,6 @@ void PointingTracker::reset()
     d.stereo.reset();
     d.mono.reset();  // destroyed; re-created by the next mono frame
     d.mode = Impl::Mode::Unset;
-    d.frame_size = {};
     d.scale = {};
     d.next_frame = 0;
     d.result = FrameResult{};

@@ -3,9 +3,11 @@
 //
 // Exit status: 0 success (warnings may be printed), 1 an input, calibration or output problem
 // (an undecodable frame included, unless --skip-bad-frames), 2 a wrong command line.
+#include "common/frame_limits.hpp"
 #include "common/line_output.hpp"
 #include "tools/cli_app.hpp"
 #include "tools/frame_source.hpp"
+#include "tracker/analysis_scale.hpp"
 #include "tracker/pointing_tracker.hpp"
 
 #include <chrono>
@@ -97,7 +99,8 @@ void convert(const GivenText& t, Options& o)
     using gc::cli::parse_number;
     if (!t.particles.empty()) o.params.particles = parse_number<int>("--particles", t.particles, 1, 100000);
     if (!t.tracking_width.empty())
-        o.params.tracking_width = parse_number<int>("--tracking-width", t.tracking_width, 64, 8192);
+        o.params.tracking_width =
+            parse_number<int>("--tracking-width", t.tracking_width, gc::kMinTrackingWidth, gc::kMaxFrameSide);
     if (!t.seed.empty()) o.params.seed = parse_number<std::uint64_t>("--seed", t.seed);
     if (!t.detector.empty()) {
         if (t.detector != "learned" && t.detector != "motion")

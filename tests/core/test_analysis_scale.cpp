@@ -139,6 +139,15 @@ gc::sim::SceneConfig hd_scene(std::uint64_t seed)
     return config;
 }
 
+// A small sample set, tracking at the frames' size or (`tracking_width`) scaled down.
+gc::TrackerParams few_particles(int tracking_width = 0)
+{
+    gc::TrackerParams params;
+    params.particles = 200;
+    params.tracking_width = tracking_width;
+    return params;
+}
+
 // The head's motion on a few frames, in the frame's pixels.
 gc::ImageMotion head_motion(int f)
 {
@@ -173,12 +182,8 @@ TEST(AnalysisScale, StereoTrackingWidthIsTheScaledFramesTrackedAndMappedBack)
 {
     const gc::sim::Scene scene(hd_scene(2));
     const gc::AnalysisScale a = gc::analysis_scale({1280, 960}, 640);
-    gc::TrackerParams params;
-    params.particles = 200;
-    gc::TrackerParams narrow = params;
-    narrow.tracking_width = 640;
-    gc::PointingTracker scaled(narrow, scene.calibration());
-    gc::PointingTracker analysed(params, gc::scaled_calibration(scene.calibration(), a));
+    gc::PointingTracker scaled(few_particles(640), scene.calibration());
+    gc::PointingTracker analysed(few_particles(), gc::scaled_calibration(scene.calibration(), a));
     cv::Mat left, right, small_left, small_right;
     gc::DownscaleBuffers buffers;
     int rays = 0;
@@ -207,11 +212,7 @@ TEST(AnalysisScale, MonoTrackingWidthIsTheScaledFramesTrackedAndMappedBack)
 {
     const gc::sim::Scene scene(hd_scene(3));
     const gc::AnalysisScale a = gc::analysis_scale({1280, 960}, 640);
-    gc::TrackerParams params;
-    params.particles = 200;
-    gc::TrackerParams narrow = params;
-    narrow.tracking_width = 640;
-    gc::PointingTracker scaled(narrow), analysed(params);
+    gc::PointingTracker scaled(few_particles(640)), analysed(few_particles());
     cv::Mat frame, small;
     gc::DownscaleBuffers buffers;
     int tracked = 0;
