@@ -117,7 +117,9 @@ struct HandTracker::Impl : TrackerSession {
     // hand_tracker.cpp: the per-frame loop and the estimate it reports.
     void reset();
     const EyeEstimate& process(const cv::Mat& bgr, const ImageMotion& motion);
-    void start_tracking(const HandState& x0);
+    // Kept: a template made again on the tracked hand keeps the spread its motion has taught.
+    enum class MotionNoise { Reset, Kept };
+    void start_tracking(const HandState& x0, MotionNoise noise_start = MotionNoise::Reset);
     void lose();
     void report(const HandState& s);
 
@@ -144,7 +146,8 @@ struct HandTracker::Impl : TrackerSession {
     // template_custody.cpp: which template is tracked.
     void acquire(const cv::Mat& bgr);
     bool capture(const Detection& found, CaptureQuality quality, const cv::Mat1b& memb, const cv::Mat& bgr);
-    void adopt(HandTemplate&& t, const SkinModel& model, CaptureQuality quality, const HandState& at);
+    void adopt(HandTemplate&& t, const SkinModel& model, CaptureQuality quality, const HandState& at,
+               MotionNoise noise_start = MotionNoise::Reset);
     bool recapture(const cv::Mat& bgr, bool weak_edges);
     bool replace_from_watch(const cv::Mat& bgr, const Detection& found, CaptureQuality quality, bool everywhere,
                             bool still_twice);
@@ -164,7 +167,8 @@ struct HandTracker::Impl : TrackerSession {
     std::optional<FoundHand> confirm_detection(const cv::Mat& bgr, const Detection& found);
     void check_with_models(const cv::Mat& bgr, bool in_doubt);
     void take_gesture(Gesture read);
-    bool adopt_found(const cv::Mat& bgr, const FoundHand& hand);
+    bool adopt_found(const cv::Mat& bgr, const FoundHand& hand, MotionNoise noise_start = MotionNoise::Reset);
+    bool remake_template(const cv::Mat& bgr, const FoundHand& hand);
     void place_key_points(const HandState& s);
     bool carry_key_points(const cv::Mat& bgr);  // true: the flow bent the index finger
     void keep_key_points(const cv::Mat& bgr, bool carried);

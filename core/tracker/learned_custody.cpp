@@ -49,6 +49,10 @@ constexpr double kFlowReach = 0.3;
 // wrist key point may lie above (docs/adr/0034).
 constexpr double kWristReach = 0.6;
 constexpr double kWristWidth = 1.2;
+// A template the hand has outgrown is made again only once it has been tracked this many
+// frames: where camera noise keeps the contour's confidence low, remakes on every check
+// would each be made of that frame's noise (docs/adr/0047).
+constexpr int kLeastRemadeAge = 4;
 // The width of the line along each bone whose pixels teach the skin model, in finger widths.
 constexpr double kSureBoneWidth = 0.15;
 
@@ -240,10 +244,31 @@ void HandTracker::Impl::check_with_models(const cv::Mat& bgr, bool in_doubt)
     }
     // A template made of a hand the border cut is made again once the hand is whole in view.
     if (template_cut && !touches_border(hand_region(hand->points, bgr.size())) && adopt_found(bgr, *hand)) return;
-    check_interval = error < kAgreedError ? std::min(2 * check_interval, params.max_model_interval) : 1;
-    for (std::size_t i = 0; i < key_points.size(); ++i) key_points[i] = unplace(previous, hand->points[i]);
+    const int interval = error < kAgreedError ? std::min(2 * check_interval, params.max_model_interval) : 1;
+    // Edges that fit far worse than when the template was made, on a hand whose key points
+    // the model confirms: the real hand has turned or flexed out of the rigid outline, and
+    // low confidence would call a check on every frame. The template is made again from
+    // this hand (P_init measured again) and the schedule goes on (docs/adr/0047).
+    const bool outgrown = !in_doubt && estimate.confidence < params.lost_ratio && error < kAgreedError &&
+                          tracked_frames >= kLeastRemadeAge;
+    if (!outgrown || !remake_template(bgr, *hand))
+        for (std::size_t i = 0; i < key_points.size(); ++i) key_points[i] = unplace(previous, hand->points[i]);
+    check_interval = interval;
     take_gesture(hand->gesture);
     report(previous);
+}
+
+// A new template from a hand a check found on the tracked one: as adopt_found, but the
+// particles spread as the hand's motion has taught (not as for a hand just found), and the
+// gesture is read as on any check (twice before a change is taken). False when none can be made.
+bool HandTracker::Impl::remake_template(const cv::Mat& bgr, const FoundHand& hand)
+{
+    const Gesture read_before = gesture;
+    const std::optional<Gesture> pending = new_gesture;
+    if (!adopt_found(bgr, hand, MotionNoise::Kept)) return false;
+    gesture = read_before;
+    new_gesture = pending;
+    return true;
 }
 
 // A gesture one check reads differently from the last is taken when the next check, a frame
@@ -264,7 +289,7 @@ void HandTracker::Impl::take_gesture(Gesture read)
 // the skin inside the region its key points span. False (nothing changed) when the border
 // cuts the index finger or no template can be made of it; a hand entering from the border
 // (its wrist or palm cut) is taken as far as it is in view.
-bool HandTracker::Impl::adopt_found(const cv::Mat& bgr, const FoundHand& hand)
+bool HandTracker::Impl::adopt_found(const cv::Mat& bgr, const FoundHand& hand, MotionNoise noise_start)
 {
     if (index_finger_cut(hand.points, bgr.size())) return false;
     const cv::Mat1b region = hand_region(hand.points, bgr.size());
@@ -293,7 +318,7 @@ bool HandTracker::Impl::adopt_found(const cv::Mat& bgr, const FoundHand& hand)
     new_gesture.reset();
     frames_since_check = 0;
     check_interval = 1;
-    adopt(std::move(*shaped), model, CaptureQuality::Clean, at);
+    adopt(std::move(*shaped), model, CaptureQuality::Clean, at, noise_start);
     estimate.models_ran = true;
     return true;
 }

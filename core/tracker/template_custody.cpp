@@ -84,7 +84,8 @@ bool HandTracker::Impl::capture(const Detection& found, CaptureQuality quality, 
     return true;
 }
 
-void HandTracker::Impl::adopt(HandTemplate&& t, const SkinModel& model, CaptureQuality quality, const HandState& at)
+void HandTracker::Impl::adopt(HandTemplate&& t, const SkinModel& model, CaptureQuality quality, const HandState& at,
+                              MotionNoise noise_start)
 {
     shape = std::move(t);
     skin = model;
@@ -92,7 +93,7 @@ void HandTracker::Impl::adopt(HandTemplate&& t, const SkinModel& model, CaptureQ
     for (const auto& p : shape->outline) template_radius = std::max(template_radius, double(std::hypot(p.x, p.y)));
     const cv::Rect extent = cv::boundingRect(shape->outline);
     template_side = std::max(extent.width, extent.height);
-    start_tracking(at);
+    start_tracking(at, noise_start);
     template_quality = quality;
     report(at);
 }

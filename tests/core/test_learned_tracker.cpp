@@ -62,13 +62,14 @@ TEST(LearnedTracker, FollowsARealPointingHandInBothViews)
 }
 
 // The same frames: between the landmark model's checks the fingertip is carried about as
-// well as where the model ran, so that the model need not run on most frames.
+// well as where the model ran (within 2 px), so that the model need not run on most frames:
+// a template the real hand has outgrown is made again rather than checked on every frame.
 TEST(LearnedTracker, CarriesTheRealFingertipBetweenModelChecks)
 {
     const gc::tools::RealPairFigures f = real_pair(14, 110);
     for (const gc::tools::ViewFigures* view : {&f.left, &f.right}) {
-        EXPECT_LE(view->models_share, 0.7);
-        EXPECT_LE(view->median_px_carried, view->median_px_models + 2.5);
+        EXPECT_LE(view->models_share, 0.4);
+        EXPECT_LE(view->median_px_carried, view->median_px_models + 2.0);
     }
 }
 
