@@ -104,9 +104,9 @@ const EyeEstimate& HandTracker::Impl::process(const cv::Mat& bgr, const ImageMot
 }
 
 // Spreads the particles around x0 (x0 itself kept among them) and starts tracking there.
-void HandTracker::Impl::start_tracking(const HandState& x0, MotionNoise noise_start)
+void HandTracker::Impl::start_tracking(const HandState& x0, TrackStart start)
 {
-    if (noise_start == MotionNoise::Reset) noise.reset();
+    if (start == TrackStart::NewHand) noise.reset();
     const NoiseVector& sd = noise.sigma();
     std::normal_distribution<double> z;
     const double w = 1.0 / particles.size();

@@ -117,9 +117,10 @@ struct HandTracker::Impl : TrackerSession {
     // hand_tracker.cpp: the per-frame loop and the estimate it reports.
     void reset();
     const EyeEstimate& process(const cv::Mat& bgr, const ImageMotion& motion);
-    // Kept: a template made again on the tracked hand keeps the spread its motion has taught.
-    enum class MotionNoise { Reset, Kept };
-    void start_tracking(const HandState& x0, MotionNoise noise_start = MotionNoise::Reset);
+    // SameHand: a template made again on the tracked hand, which keeps the motion noise the
+    // hand has taught and its gesture reading; NewHand: a hand just found.
+    enum class TrackStart { NewHand, SameHand };
+    void start_tracking(const HandState& x0, TrackStart start = TrackStart::NewHand);
     void lose();
     void report(const HandState& s);
 
@@ -147,7 +148,7 @@ struct HandTracker::Impl : TrackerSession {
     void acquire(const cv::Mat& bgr);
     bool capture(const Detection& found, CaptureQuality quality, const cv::Mat1b& memb, const cv::Mat& bgr);
     void adopt(HandTemplate&& t, const SkinModel& model, CaptureQuality quality, const HandState& at,
-               MotionNoise noise_start = MotionNoise::Reset);
+               TrackStart start = TrackStart::NewHand);
     bool recapture(const cv::Mat& bgr, bool weak_edges);
     bool replace_from_watch(const cv::Mat& bgr, const Detection& found, CaptureQuality quality, bool everywhere,
                             bool still_twice);
@@ -167,8 +168,7 @@ struct HandTracker::Impl : TrackerSession {
     std::optional<FoundHand> confirm_detection(const cv::Mat& bgr, const Detection& found);
     void check_with_models(const cv::Mat& bgr, bool in_doubt);
     void take_gesture(Gesture read);
-    bool adopt_found(const cv::Mat& bgr, const FoundHand& hand, MotionNoise noise_start = MotionNoise::Reset);
-    bool remake_template(const cv::Mat& bgr, const FoundHand& hand);
+    bool adopt_found(const cv::Mat& bgr, const FoundHand& hand, TrackStart start = TrackStart::NewHand);
     void place_key_points(const HandState& s);
     bool carry_key_points(const cv::Mat& bgr);  // true: the flow bent the index finger
     void keep_key_points(const cv::Mat& bgr, bool carried);

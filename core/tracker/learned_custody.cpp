@@ -251,24 +251,11 @@ void HandTracker::Impl::check_with_models(const cv::Mat& bgr, bool in_doubt)
     // this hand (P_init measured again) and the schedule goes on (docs/adr/0047).
     const bool outgrown = !in_doubt && estimate.confidence < params.lost_ratio && error < kAgreedError &&
                           tracked_frames >= kLeastRemadeAge;
-    if (!outgrown || !remake_template(bgr, *hand))
+    if (!outgrown || !adopt_found(bgr, *hand, TrackStart::SameHand))
         for (std::size_t i = 0; i < key_points.size(); ++i) key_points[i] = unplace(previous, hand->points[i]);
     check_interval = interval;
     take_gesture(hand->gesture);
     report(previous);
-}
-
-// A new template from a hand a check found on the tracked one: as adopt_found, but the
-// particles spread as the hand's motion has taught (not as for a hand just found), and the
-// gesture is read as on any check (twice before a change is taken). False when none can be made.
-bool HandTracker::Impl::remake_template(const cv::Mat& bgr, const FoundHand& hand)
-{
-    const Gesture read_before = gesture;
-    const std::optional<Gesture> pending = new_gesture;
-    if (!adopt_found(bgr, hand, MotionNoise::Kept)) return false;
-    gesture = read_before;
-    new_gesture = pending;
-    return true;
 }
 
 // A gesture one check reads differently from the last is taken when the next check, a frame
@@ -288,8 +275,10 @@ void HandTracker::Impl::take_gesture(Gesture read)
 // A template from a hand the models found: the skin model learnt from its palm, the mask
 // the skin inside the region its key points span. False (nothing changed) when the border
 // cuts the index finger or no template can be made of it; a hand entering from the border
-// (its wrist or palm cut) is taken as far as it is in view.
-bool HandTracker::Impl::adopt_found(const cv::Mat& bgr, const FoundHand& hand, MotionNoise noise_start)
+// (its wrist or palm cut) is taken as far as it is in view. The same hand made again keeps
+// its motion noise and its gesture, which the check then reads as any check does (twice
+// before a change is taken).
+bool HandTracker::Impl::adopt_found(const cv::Mat& bgr, const FoundHand& hand, TrackStart start)
 {
     if (index_finger_cut(hand.points, bgr.size())) return false;
     const cv::Mat1b region = hand_region(hand.points, bgr.size());
@@ -314,11 +303,13 @@ bool HandTracker::Impl::adopt_found(const cv::Mat& bgr, const FoundHand& hand, M
     for (std::size_t i = 0; i < key_points.size(); ++i) key_points[i] = unplace(at, hand.points[i]);
     has_key_points = true;
     template_cut = touches_border(region);
-    gesture = hand.gesture;
-    new_gesture.reset();
+    if (start == TrackStart::NewHand) {
+        gesture = hand.gesture;
+        new_gesture.reset();
+    }
     frames_since_check = 0;
     check_interval = 1;
-    adopt(std::move(*shaped), model, CaptureQuality::Clean, at, noise_start);
+    adopt(std::move(*shaped), model, CaptureQuality::Clean, at, start);
     estimate.models_ran = true;
     return true;
 }

@@ -85,7 +85,7 @@ bool HandTracker::Impl::capture(const Detection& found, CaptureQuality quality, 
 }
 
 void HandTracker::Impl::adopt(HandTemplate&& t, const SkinModel& model, CaptureQuality quality, const HandState& at,
-                              MotionNoise noise_start)
+                              TrackStart start)
 {
     shape = std::move(t);
     skin = model;
@@ -93,7 +93,7 @@ void HandTracker::Impl::adopt(HandTemplate&& t, const SkinModel& model, CaptureQ
     for (const auto& p : shape->outline) template_radius = std::max(template_radius, double(std::hypot(p.x, p.y)));
     const cv::Rect extent = cv::boundingRect(shape->outline);
     template_side = std::max(extent.width, extent.height);
-    start_tracking(at, noise_start);
+    start_tracking(at, start);
     template_quality = quality;
     report(at);
 }
