@@ -122,6 +122,16 @@ cv::Mat1b hand_region(const std::array<cv::Point2f, 21>& p, cv::Size size)
     return region;
 }
 
+// Where a template made from `region` reads the skin map: the region's box, widened by the
+// mask's closing (2 px), the outline's snap to the skin edge and its bilinear reads (1 px).
+cv::Rect around_region(const cv::Mat1b& region)
+{
+    const int margin = 2 + int(std::ceil(TemplateOptions{}.snap_range)) + 1;
+    const cv::Rect box = cv::boundingRect(region);
+    const cv::Rect wide(box.x - margin, box.y - margin, box.width + 2 * margin, box.height + 2 * margin);
+    return wide & cv::Rect(0, 0, region.cols, region.rows);
+}
+
 // The skin of the region's connected part that holds the palm centre; empty if the skin
 // model does not see most of the region as skin (then the region itself stands in).
 cv::Mat1b skin_of_hand(const cv::Mat1b& region, const cv::Mat1b& membership, cv::Point palm)
@@ -289,7 +299,7 @@ bool HandTracker::Impl::adopt_found(const cv::Mat& bgr, const FoundHand& hand, T
         return false;  // too few or too uniform palm pixels to learn from
     }
     cv::Mat1b membership_map(bgr.size(), uchar(0));
-    model.membership(bgr, cv::Rect(0, 0, bgr.cols, bgr.rows), membership_map);
+    model.membership(bgr, around_region(region), membership_map);
     const cv::Point centre = palm_centre(hand.points);
     cv::Mat1b mask = skin_of_hand(region, membership_map, centre);
     if (mask.empty()) mask = region;
