@@ -32,10 +32,6 @@ constexpr int kWidth = 640, kHeight = 480;
 // the hand (degrees: right, up): both sides, above and below, inside the 60 x 47 deg view.
 constexpr double kDirections[][2] = {{22, 6}, {-22, 6}, {20, -5}, {-20, -5}, {24, 0}, {-24, 0}};
 
-// With a director: where the finger points from the palm (degrees right of straight ahead,
-// up), across the views to either side, so that the target lies outside them.
-constexpr double kSideDirections[][2] = {{55, 8}, {-55, 8}, {45, -8}, {-45, -8}, {65, 0}, {-65, 0}};
-
 // The director of the study: 300 mm above the head's neck axis and 200 mm behind it, facing
 // ahead, a 1920x1080 picture 60 deg across at its widest.
 DirectorMount study_director()

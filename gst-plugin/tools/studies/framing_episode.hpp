@@ -12,6 +12,10 @@
 
 namespace gc::study {
 
+// With a director: where the finger points from the palm (degrees right of straight ahead,
+// up), across the views to either side, so that the target lies outside them.
+inline constexpr double kSideDirections[6][2] = {{55, 8}, {-55, 8}, {45, -8}, {-45, -8}, {65, 0}, {-65, 0}};
+
 struct Episode {
     unsigned seed = 1;
     double target_distance_mm = 2000.0;

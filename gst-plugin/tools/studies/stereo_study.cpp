@@ -7,9 +7,15 @@
 //       the default pipeline (learned detector, 1000 particles) on the stereo `mixed`
 //       sequences of seeds FIRST-LAST: per seed, the frames where the hand points and is in
 //       both views, the share with a 3D ray, and the ray's angle to the truth (median, p90)
+//   stereo_study held
+//       framing_study director's six held hands, offline at the head's rest pose: the ray's
+//       median angle over frames 30-89, and with the renderer's 2D fingertip and palm (the
+//       outline's extreme point and centroid) put in for the tracked ones
+#include "framing_episode.hpp"
 #include "sim_pairs.hpp"
 
 #include "sim/scene.hpp"
+#include "stereo/head_geometry.hpp"
 #include "stereo/pointing.hpp"
 #include "tracker/pointing_tracker.hpp"
 #include "tracker/stereo_tracker.hpp"
@@ -267,6 +273,73 @@ int pointing_rays(int argc, char** argv)
 
 }  // namespace
 
+// A held hand's rays, and the same frames' rays with the renderer's 2D points in place of
+// the tracked ones: both, the fingertip only, the palm only.
+struct HeldRays {
+    std::vector<double> tracked, true_points, true_tip, true_palm;
+};
+
+// The angle to `truth` of the ray the 3D step gives with the tracked estimates, the renderer's
+// fingertip and palm put in where asked; -1 when it gives none.
+double ray_with(gc::PointingEstimator& step, const cv::Mat& left, const cv::Mat& right, const gc::FrameResult& r,
+                const gc::sim::EyeTruth (&eye)[2], bool true_tip, bool true_palm, const cv::Vec3d& truth)
+{
+    gc::EyeEstimate e[2] = {r.left, r.right};
+    for (int i = 0; i < 2; ++i) {
+        if (true_tip) e[i].fingertip = cv::Point2f(eye[i].fingertip_px);
+        if (true_palm) e[i].palm = cv::Point2f(eye[i].palm_px);
+    }
+    const gc::Pointing3D p = step.estimate(left, right, e[0], e[1]);
+    return p.valid ? gc::test::angle_between_deg(p.direction_head, truth) : -1.0;
+}
+
+// One held hand of framing_study director (light scene, static, head at rest), frames 30-89.
+HeldRays held_rays(int seed)
+{
+    gc::sim::SceneConfig c;
+    c.preset = gc::sim::Preset::Light;
+    c.motion = gc::sim::Motion::Static;
+    c.seed = static_cast<std::uint64_t>(seed);
+    const cv::Vec3d palm = gc::sim::Scene(c).hand_pose(60).palm_mm;
+    const auto& d = gc::study::kSideDirections[std::size_t(seed - 1) % std::size(gc::study::kSideDirections)];
+    // Any point along the direction aims the hand alike.
+    c.aim_mm = palm + 2000.0 * (gc::rotation_about_y(d[0]) * gc::rotation_about_x(d[1]) * cv::Vec3d(0, 0, 1));
+    const gc::sim::Scene scene(c);
+    gc::TrackerParams params;
+    params.seed = c.seed;
+    gc::PointingTracker pipeline(params, scene.calibration());
+    gc::PointingEstimator step(scene.calibration());
+    cv::Mat left, right;
+    gc::sim::EyeTruth eye[2];
+    HeldRays rays;
+    for (int f = 0; f < 90; ++f) {
+        scene.render(f, gc::Eye::Left, {}, left, &eye[0]);
+        scene.render(f, gc::Eye::Right, {}, right, &eye[1]);
+        const gc::FrameResult r = pipeline.process_stereo(left, right);
+        if (f < 30 || !r.pointing.valid) continue;
+        const cv::Vec3d truth = scene.hand_truth(scene.hand_pose(f)).direction;
+        rays.tracked.push_back(gc::test::angle_between_deg(r.pointing.direction_head, truth));
+        rays.true_points.push_back(ray_with(step, left, right, r, eye, true, true, truth));
+        rays.true_tip.push_back(ray_with(step, left, right, r, eye, true, false, truth));
+        rays.true_palm.push_back(ray_with(step, left, right, r, eye, false, true, truth));
+    }
+    return rays;
+}
+
+// The director study's held hands offline: where each seed's ray error comes from.
+void held_hands()
+{
+    std::printf("| seed, finger (right, up) | rays of 60 | median angle | with the true fingertip and palm | "
+                "fingertip only | palm only |\n|---|---|---|---|---|---|\n");
+    for (int seed = 1; seed <= 6; ++seed) {
+        const HeldRays r = held_rays(seed);
+        const auto& d = gc::study::kSideDirections[std::size_t(seed - 1)];
+        std::printf("| %d (%+.0f, %+.0f) | %zu | %.1f deg | %.1f deg | %.1f deg | %.1f deg |\n", seed, d[0], d[1],
+                    r.tracked.size(), percentile(r.tracked, 0.5), percentile(r.true_points, 0.5),
+                    percentile(r.true_tip, 0.5), percentile(r.true_palm, 0.5));
+    }
+}
+
 int main(int argc, char** argv)
 {
     const std::string mode = argc > 1 ? argv[1] : "truth";
@@ -277,10 +350,12 @@ int main(int argc, char** argv)
             placed_hands(0.5);
         else if (mode == "tracker")
             tracked_scenes();
+        else if (mode == "held")
+            held_hands();
         else if (mode == "pointing")
             return pointing_rays(argc, argv);
         else {
-            std::fprintf(stderr, "usage: stereo_study truth|motor|tracker|pointing\n");
+            std::fprintf(stderr, "usage: stereo_study truth|motor|tracker|pointing|held\n");
             return 2;
         }
     } catch (const std::exception& e) {
