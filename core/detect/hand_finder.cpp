@@ -50,8 +50,6 @@ struct HandFinder::Impl {
     HandFinderParams params;
     PalmDetector palms;
     LandmarkModel landmarks;
-    int palm_calls = 0;
-    int landmark_calls = 0;
 
     explicit Impl(const HandFinderParams& p)
         : params(p), palms(find_model(kPalmModelFile, p.model_dir)),
@@ -62,7 +60,6 @@ struct HandFinder::Impl {
     std::optional<HandKeyPoints> run(const cv::Mat& bgr, const HandCrop& crop)
     {
         if (!crop.usable()) return std::nullopt;  // shows no hand: the model is not asked
-        ++landmark_calls;
         HandKeyPoints hand = landmarks.run(bgr, crop);
         if (hand.presence < params.min_presence) return std::nullopt;
         return hand;
@@ -108,7 +105,6 @@ std::optional<FoundHand> HandFinder::find_in(const cv::Mat& bgr, const cv::Rect&
 {
     const cv::Rect inside = region & cv::Rect(0, 0, bgr.cols, bgr.rows);
     if (inside.empty()) return std::nullopt;
-    ++impl_->palm_calls;
     std::vector<PalmDetection> palms = impl_->palms.detect(bgr(inside), impl_->params.min_palm_score);
     const cv::Point2f offset(inside.tl());
     std::optional<SettledHand> best;
@@ -152,8 +148,5 @@ std::optional<FoundHand> HandFinder::confirm(const cv::Mat& bgr, cv::Point2f pal
     if (!hand) return std::nullopt;
     return hand->hand;
 }
-
-int HandFinder::palm_calls() const { return impl_->palm_calls; }
-int HandFinder::landmark_calls() const { return impl_->landmark_calls; }
 
 }  // namespace gc

@@ -61,9 +61,6 @@ public:
     // and the tip of its longest finger, in frame pixels. The landmark model alone decides.
     std::optional<FoundHand> confirm(const cv::Mat& bgr, cv::Point2f palm, cv::Point2f fingertip);
 
-    int palm_calls() const;
-    int landmark_calls() const;
-
 private:
     struct Impl;
     std::unique_ptr<Impl> impl_;

@@ -35,9 +35,9 @@ constexpr int kMinInliers = 12;
 constexpr double kMinPlaneToleranceMm = 6.0;
 constexpr double kPlaneToleranceDisparityPx = 1.0;  // inlier band: this much disparity error
 constexpr int kPlaneIterations = 96;
-constexpr double kMinHandLengthMm = 10.0;
+constexpr double kMinHandLengthMm = 10.0;  // palm to fingertip, below which H is noise
 // Cameras turned more than this from each other: correlation windows no longer match.
-constexpr double kMaxCorrelatedTurn = 15.0 * std::numbers::pi / 180.0;  // palm to fingertip, below which H is noise
+constexpr double kMaxCorrelatedTurn = 15.0 * std::numbers::pi / 180.0;
 
 Eigen::Vector3d to_eigen(const cv::Vec3d& v) { return {v[0], v[1], v[2]}; }
 cv::Vec3d to_cv(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }

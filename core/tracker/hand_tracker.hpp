@@ -45,6 +45,7 @@ struct Particle {
 
 class HandTracker {
 public:
+    // Throws std::runtime_error when the learned models cannot be loaded.
     explicit HandTracker(const TrackerParams& params = {});
     ~HandTracker();
     HandTracker(HandTracker&&) noexcept;
@@ -53,7 +54,6 @@ public:
     // Processes one frame (CV_8UC3, BGR, any size >= 32x32; the size must stay the same
     // until reset()). `camera_motion` is C_t: the image motion the head caused since the
     // previous frame. Throws std::invalid_argument on an empty or wrongly typed frame.
-    // The constructor throws std::runtime_error when the learned models cannot be loaded.
     const EyeEstimate& process(const cv::Mat& bgr, const ImageMotion& camera_motion = {});
 
     // Forgets the hand: the next frame starts acquisition again.

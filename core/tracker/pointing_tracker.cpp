@@ -5,9 +5,6 @@
 #include "common/json_text.hpp"
 #include "tracker/analysis_scale.hpp"
 
-#include <array>
-#include <charconv>
-#include <cmath>
 #include <initializer_list>
 #include <numbers>
 #include <stdexcept>
@@ -231,15 +228,14 @@ std::span<const Particle> PointingTracker::particles(Eye eye) const
 }
 
 // ---------------------------------------------------------------------------------------
-// JSON. Numbers are written with std::to_chars (locale-independent, shortest exact digits of
-// the rounded value); non-finite values become null so every line stays valid JSON.
+// JSON. Numbers are written by json::append_number (std::to_chars: locale-independent, the
+// shortest exact digits of the rounded value); non-finite values become null so every line
+// stays valid JSON.
 namespace {
 
 class JsonLine {
 public:
     explicit JsonLine(std::string& out) : out_(out) {}
-
-    void raw(std::string_view s) { out_.append(s); }
 
     void key(std::string_view k)
     {

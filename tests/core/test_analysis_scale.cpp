@@ -201,7 +201,9 @@ TEST(AnalysisScale, StereoTrackingWidthIsTheScaledFramesTrackedAndMappedBack)
         expect_same_particles(scaled.particles(gc::Eye::Left), analysed.particles(gc::Eye::Left), a, f);
         expect_same_particles(scaled.particles(gc::Eye::Right), analysed.particles(gc::Eye::Right), a, f);
         ASSERT_EQ(r.pointing.valid, s.pointing.valid) << "frame " << f;
-        if (r.pointing.valid) EXPECT_EQ(r.pointing.direction, s.pointing.direction) << "frame " << f;
+        if (r.pointing.valid) {
+            EXPECT_EQ(r.pointing.direction, s.pointing.direction) << "frame " << f;
+        }
         rays += r.pointing.valid ? 1 : 0;
     }
     EXPECT_GT(rays, 10);
