@@ -52,7 +52,8 @@ public:
     virtual std::optional<HeadLimits> query_limits(Deadline deadline) = 0;
     // The limits the backend itself works within, without asking the head (its URI's
     // parameters: an ONVIF range, a lens's zoom_max): what a caller may use for a head that
-    // does not report its own. Unbounded pan and tilt, no zoom, unless a backend knows better.
+    // does not report its own. Pan -180..180 and tilt -90..90 deg, no zoom, unless a backend
+    // knows better.
     virtual HeadLimits assumed_limits() const;
     // The axes the head has; commands naming others are rejected before they are sent.
     virtual std::array<bool, kAxisCount> axes() const = 0;
@@ -63,12 +64,13 @@ public:
 // `zoom_speed` magnification per second.
 HeadLimits limits_with_zoom(const HeadBackend& backend, double zoom_max, double zoom_speed);
 
-// For heads that report positions only (VISCA, Pelco-D): marks the axes whose position
+// For heads that report positions without motion (VISCA, Pelco-D; ONVIF adds its own flags
+// to these): marks the axes whose position
 // changed since `last` as moving, then remembers this state's pose in `last`.
 void flag_motion_since(HeadState& state, std::optional<HeadPose>& last);
 
-// The backend for a URI's scheme (tcp: GCHP; visca-udp, visca-tcp: VISCA; onvif: ONVIF PTZ,
-// the token being the password). The token argument overrides a token in the URI. Throws std::invalid_argument for bad parameters.
+// The backend for a URI's scheme (tcp: GCHP; visca-udp, visca-tcp, visca-serial: VISCA;
+// pelco-d: Pelco-D; onvif: ONVIF PTZ, the token being the password). The token argument overrides a token in the URI. Throws std::invalid_argument for bad parameters.
 std::unique_ptr<HeadBackend> make_backend(const HeadUri& uri, const std::string& token = {});
 
 }  // namespace gc::headctl

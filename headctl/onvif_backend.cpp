@@ -1,7 +1,6 @@
 #include "headctl/onvif_backend.hpp"
 
 #include <algorithm>
-#include <cmath>
 
 namespace gc::headctl {
 
@@ -23,7 +22,8 @@ void check_range(const char* what, double lo, double hi)
         throw std::invalid_argument(std::string("head URI: ") + what + " minimum must be below its maximum");
 }
 
-// A generic value within [lo, hi], or HeadRejected naming the command, the axis and the assumed range.
+// A generic value within [lo, hi], or HeadRejected with `what` (the axis, the value and the
+// assumed range).
 double within(double generic, double lo, double hi, const std::string& what)
 {
     if (generic < lo - kSlack || generic > hi + kSlack) throw HeadRejected(what);

@@ -40,10 +40,11 @@ void on_read(GObject* source, GAsyncResult* result, gpointer data)
     if (!bytes) return finish(t, e);
     gsize n = 0;
     const auto* chunk = static_cast<const char*>(g_bytes_get_data(bytes, &n));
-    if (n > 0 && t.body.size() + n <= t.max_body) t.body.append(chunk, n);
+    const bool fits = t.body.size() + n <= t.max_body;
+    if (fits) t.body.append(chunk, n);
     g_bytes_unref(bytes);
     if (n == 0) return finish(t, nullptr);
-    if (t.body.size() + n > t.max_body) {
+    if (!fits) {
         t.error = "a reply longer than " + std::to_string(t.max_body) + " bytes";
         t.done = true;
         return;

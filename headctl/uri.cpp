@@ -72,13 +72,6 @@ std::string_view scheme_name(HeadScheme scheme)
     return "?";
 }
 
-std::uint16_t default_port(HeadScheme scheme)
-{
-    for (const auto& s : kSchemes)
-        if (s.scheme == scheme) return s.port;
-    return 0;
-}
-
 std::optional<std::string> HeadUri::param(std::string_view key) const
 {
     for (const auto& [k, v] : params)
@@ -129,8 +122,8 @@ void parse_query(HeadUri& uri, std::string_view query, std::string_view scheme)
         case HeadScheme::Onvif:
             known = among(kOnvifKeys);
             break;
-        default:
-            known = among(kViscaKeys);
+        default:  // a baud rate only where there is a serial line
+            known = among(kViscaKeys) && (key != "baud" || uri.scheme == HeadScheme::ViscaSerial);
         }
         if (!known) fail("parameter " + shown(key) + " is not known for " + std::string(scheme) + "://");
         if (uri.param(key)) fail("parameter " + shown(key) + " given twice");
@@ -145,7 +138,8 @@ void split_service_path(HeadUri& uri, std::string_view& rest)
     if (slash == std::string_view::npos) return;
     const std::string_view path = rest.substr(slash);
     if (!is_plain_path(path))
-        fail("service path " + shown(path) + " is not like /onvif/PTZ (letters, digits, '-', '_', '.' between single '/')");
+        fail("service path " + shown(path) +
+             " is not like /onvif/PTZ (letters, digits, '-', '_', '.' between single '/')");
     uri.path = std::string(path);
     rest = rest.substr(0, slash);
 }
@@ -178,8 +172,7 @@ HeadUri parse_head_uri(std::string_view text)
     std::string_view port;
     if (is_serial(uri.scheme)) {
         // visca-serial:///dev/ttyUSB0: an absolute device path of plain characters.
-        if (!is_plain_path(rest))
-            fail("device " + shown(rest) + " is not an absolute path like /dev/ttyUSB0");
+        if (!is_plain_path(rest)) fail("device " + shown(rest) + " is not an absolute path like /dev/ttyUSB0");
         uri.path = std::string(rest);
     } else if (!rest.empty() && rest.front() == '[') {
         const auto close = rest.find(']');

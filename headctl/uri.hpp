@@ -1,5 +1,5 @@
 // Head addresses: "tcp://host:port" (GCHP), "visca-udp://host[:port]", "visca-tcp://host[:port]",
-// "onvif://host[:port][/path]".
+// "visca-serial:///dev/ttyUSB0", "pelco-d:///dev/ttyUSB0", "onvif://host[:port][/path]".
 #pragma once
 
 #include <cstdint>
@@ -31,7 +31,6 @@ struct HeadUri {
 };
 
 std::string_view scheme_name(HeadScheme scheme);
-std::uint16_t default_port(HeadScheme scheme);
 
 // Throws std::invalid_argument naming the offending part. Query keys are checked
 // against those the scheme knows (tcp: token; visca-*: address, pan_units_per_deg,

@@ -1,5 +1,5 @@
 // A PTZ camera's pan-tilt head over VISCA: VISCA over IP (UDP, 8-byte header with sequence
-// numbers) or raw VISCA over a TCP stream. Pan, tilt and (when the URI says how far the lens
+// numbers), raw VISCA over a TCP stream, or over a serial line. Pan, tilt and (when the URI says how far the lens
 // magnifies) zoom.
 #pragma once
 

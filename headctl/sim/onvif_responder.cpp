@@ -7,7 +7,6 @@
 #include <sys/socket.h>
 
 #include <charconv>
-#include <cmath>
 #include <stdexcept>
 
 namespace gc::headctl {

@@ -45,14 +45,14 @@ AxisValues pan_tilt(double pan_deg, double tilt_deg)
     return v;
 }
 
-// A drive's speed codes as velocities: the fastest code is the axis's top speed. Zoom code 0
-// is the slowest, half of code 1's speed.
+// A drive's speed codes as velocities: the fastest code is the axis's top speed.
 AxisValues drive_velocities(const visca::Message& m, const HeadLimits& l)
 {
     return pan_tilt(sign(m.pan) * m.pan_speed / visca::kMaxPanSpeed * l[Axis::Pan].max_velocity_dps,
                     sign(m.tilt) * m.tilt_speed / visca::kMaxTiltSpeed * l[Axis::Tilt].max_velocity_dps);
 }
 
+// The zoom's speed code as a velocity: code 0 is the slowest, half of code 1's speed.
 AxisValues zoom_velocity(const visca::Message& m, const HeadLimits& l)
 {
     AxisValues v;

@@ -1,7 +1,6 @@
 #include "headctl/steering/director_camera.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 

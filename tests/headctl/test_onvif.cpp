@@ -154,6 +154,16 @@ TEST(Onvif, GarbageIsAnErrorNamingWhatCame)
     EXPECT_NE(big.find("a reply longer than 65536 bytes"), std::string::npos) << big;
 }
 
+// A reply just under the limit is read whole, whatever size its last chunk has.
+TEST(Onvif, AReplyJustUnderTheLimitIsTaken)
+{
+    std::string soap = onvif::status_response({});
+    soap.resize(onvif::kMaxMessageBytes - 1500, ' ');  // white space after the envelope
+    HttpScriptedServer near_limit("HTTP/1.1 200 OK\r\nContent-Length: " + std::to_string(soap.size()) + "\r\n\r\n" +
+                                  soap);
+    EXPECT_EQ(net_error_of([&] { open_backend(near_limit.uri()); }), "<no NetError>");
+}
+
 TEST(Onvif, SilentAndOversizedRequestsDoNotHoldOthersUp)
 {
     OnvifHead head;

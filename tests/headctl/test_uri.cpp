@@ -87,6 +87,8 @@ TEST(HeadUri, RejectsMalformedUris)
              "tcp://host?token=a&token=b",
              "visca-udp://h?colour=red",
              "visca-udp://h?address=1 2",
+             "visca-udp://h?baud=9600",
+             "visca-tcp://h?baud=9600",
              "tcp://h\x01st:1",
              "visca-serial://///",
              "visca-serial:///dev//ttyUSB0",
