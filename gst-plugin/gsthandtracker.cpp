@@ -86,7 +86,7 @@ static GstFlowReturn process_slot(GstHandTracker* self, GstBuffer* outbuf, bool&
             packed_pad
                 ? gc::gst::packed_layout(packed_pad->info, settings.input_mode_override, settings.input_flags_override)
                 : gc::gst::PackedLayout{};
-        gc::gst::read_views(e.readers, e.halves, packed_pad ? packed : nullptr, layout, left, right, in);
+        gc::gst::read_views(e.readers, e.halves, packed, layout, left, right, in);
     } catch (const std::exception& err) {
         GST_ELEMENT_ERROR(self, STREAM, FORMAT, ("Cannot read an input frame."), ("%s", err.what()));
         return GST_FLOW_ERROR;

@@ -34,6 +34,7 @@ bool ensure_director(GstHandTracker* self, const TrackerSettings& settings)
     try {
         e.director = std::make_unique<gc::headctl::DirectorCamera>(std::move(config));
     } catch (const std::exception& err) {
+        e.director_failed = true;
         GST_ELEMENT_ERROR(
             self, RESOURCE, SETTINGS,
             ("Cannot use the director camera at \"%s\".", gc::headctl::redact_uri(settings.director).c_str()),

@@ -4,7 +4,6 @@
 #include "string_property.hpp"
 #include "target_plane_property.hpp"
 #include "headctl/head_backend.hpp"
-#include "headctl/token.hpp"
 
 namespace gc::gst {
 
@@ -226,7 +225,8 @@ void install_head_properties(GObjectClass* gobject_class)
                             0.0, 3600.0, kDefaultManualPauseS, kMutablePlaying));
 }
 
-// How the hand is found.
+// The loss behaviour's timing, how the hand is found, the dwell and the target region, and
+// the packed input's layout.
 void install_detector_properties(GObjectClass* gobject_class)
 {
     g_object_class_install_property(

@@ -11,7 +11,6 @@
 #include <glib-object.h>
 #include <gst/video/video.h>
 
-#include <optional>
 #include <string>
 
 namespace gc::gst {

@@ -3,7 +3,6 @@
 #include "meta_enums.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <numbers>
 
 namespace gc::gst {

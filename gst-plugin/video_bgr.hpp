@@ -10,7 +10,8 @@
 
 namespace gc::gst {
 
-// The raw formats handtracker and handscenesrc accept (caps string list, no braces).
+// The raw formats handtracker accepts, and those handscenesrc produces (caps string lists,
+// no braces).
 #define GC_INPUT_FORMATS "YUY2, NV12, I420, RGB, BGR, RGBx, BGRx, xRGB, xBGR, RGBA, BGRA"
 #define GC_OUTPUT_FORMATS "BGR, RGB, BGRx, RGBx, xRGB, xBGR, BGRA, RGBA, I420, NV12"
 

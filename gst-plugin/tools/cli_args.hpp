@@ -3,7 +3,6 @@
 #pragma once
 
 #include <charconv>
-#include <cstdint>
 #include <limits>
 #include <stdexcept>
 #include <string>

@@ -13,7 +13,6 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -237,7 +236,7 @@ int run(const Options& o)
                                  " are needed");
 
     // Each camera alone first; the joint refinement then starts from good intrinsics.
-    cv::Mat M1, D1, M2, D2, R, T, E, F, per_view;
+    cv::Mat M1, D1, M2, D2, R, T, E, F;
     std::vector<cv::Mat> rv, tv;
     const double rms1 = cv::calibrateCamera(object, left_corners, size, M1, D1, rv, tv);
     const double rms2 = cv::calibrateCamera(object, right_corners, size, M2, D2, rv, tv);

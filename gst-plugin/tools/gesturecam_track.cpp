@@ -75,8 +75,7 @@ struct GivenText {
     std::string particles, tracking_width, seed, detector, fps, max_frames, progress;
 };
 
-// CLI11 reads the command line into `o` and `t`; throws gc::cli::UsageError for a value that
-// does not convert.
+// The options CLI11 reads into `o` and `t` (convert() then checks and converts them).
 void add_options(CLI::App& app, Options& o, GivenText& t)
 {
     app.add_option("--left", o.left)->required();

@@ -22,7 +22,6 @@ namespace {
 // the element; otherwise it picks the same format the element's caps would make it pick.
 constexpr const char* kRawCaps = "video/x-raw, format = (string) { " GC_INPUT_FORMATS " }";
 
-// The first error on the bus as text ("" when none); pops it.
 // The first error on the bus, waiting up to `wait` for it (an element that fails the state
 // change may post its error just after). "Internal data stream error." says little: then the
 // debug text's last line, or "no video stream" when the stream found nothing to link to.

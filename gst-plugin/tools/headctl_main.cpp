@@ -1,6 +1,5 @@
-// headctl: command-line client of a head (GCHP/1 or VISCA).
+// headctl: command-line client of a head (GCHP/1, VISCA over IP or serial, Pelco-D, ONVIF).
 #include "headctl/head_backend.hpp"
-#include "headctl/protocol.hpp"
 #include "headctl/token.hpp"
 #include "tools/cli_app.hpp"
 #include "tools/json_writer.hpp"
@@ -247,7 +246,7 @@ int main(int argc, char** argv)
     try {
         check_arguments(c);
         head = open_backend(c);
-    } catch (const std::invalid_argument& e) {  // UsageError, and a URI or token file that will not do
+    } catch (const std::invalid_argument& e) {  // a URI or token file that will not do
         return gc::cli::usage_hint("headctl", e.what());
     } catch (const UsageError& e) {
         return gc::cli::usage_hint("headctl", e.what());

@@ -93,7 +93,6 @@ std::vector<RealPairRow> measure_real_pair_rows(const BenchOptions& o)
         options.params.detector = detector;
         RealPairRow row;
         row.detector = detector;
-        row.seeds = int(o.seeds.size());
         std::vector<RealPairFigures> per_seed;
         std::vector<std::vector<RealCropFigures>> windows(std::size(kEdgeWindows));
         std::vector<double> ms, cpu_ms;

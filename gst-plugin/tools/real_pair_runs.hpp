@@ -14,7 +14,6 @@ namespace gc::tools {
 
 struct RealPairRow {
     gc::HandDetector detector = gc::HandDetector::Learned;
-    int seeds = 0;                         // the figures below are means over this many seeds
     RealPairFigures figures;               // of each seed's first run (a seed's runs track alike)
     std::vector<RealCropFigures> windows;  // one per kEdgeWindows, the view tracked alone
     double ms_per_frame = 0.0;             // median over all runs of each run's median stereo frame
