@@ -57,7 +57,7 @@ def main():
 
     if args.build:
         csv_path = HERE / "step_response.csv"
-        exe = pathlib.Path(args.build) / "core" / "tools" / "studies" / "step_response"
+        exe = pathlib.Path(args.build) / "gst-plugin" / "tools" / "studies" / "step_response"
         if not exe.is_absolute():
             exe = ROOT / exe
         subprocess.run([str(exe), "--csv", str(csv_path)], check=True)
