@@ -18,17 +18,12 @@ public:
     static ClosedBSpline interpolate(std::span<const cv::Point2d> through);
 
     int size() const { return static_cast<int>(control_.size()); }
-    const std::vector<cv::Point2d>& control_points() const { return control_; }
 
     // u is taken modulo size().
     cv::Point2d point(double u) const;
     cv::Point2d derivative(double u) const;
     // Unit normal pointing from the interior to the exterior of the closed curve.
     cv::Point2d outward_normal(double u) const;
-
-    // True when the interpolated ring has a positive shoelace area in image axes
-    // (x right, y down), i.e. it runs clockwise on screen.
-    bool clockwise_on_screen() const { return orientation_ > 0; }
 
 private:
     cv::Point2d blend(double u, void (*weights)(double, double*)) const;

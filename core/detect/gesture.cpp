@@ -1,7 +1,6 @@
 #include "detect/gesture.hpp"
 
 #include <algorithm>
-#include <cmath>
 
 namespace gc {
 

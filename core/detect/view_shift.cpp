@@ -22,22 +22,14 @@ constexpr double kCutChange = 25.0;
 
 }  // namespace
 
-void ViewShift::reset()
-{
-    previous_spectrum_.release();
-    previous_level_.release();
-}
+void ViewShift::reset() { has_previous_ = false; }
 
 bool ViewShift::prepare(const cv::Mat& bgr)
 {
     const int rows = std::max(8, cvRound(double(bgr.rows) * kSmallWidth / bgr.cols));
     const cv::Size size(kSmallWidth, rows);
-    const bool fresh = window_.size() != size || previous_spectrum_.empty();
-    if (window_.size() != size) {
-        cv::createHanningWindow(window_, size, CV_32F);
-        previous_spectrum_.release();
-        previous_level_.release();
-    }
+    const bool fresh = window_.size() != size || !has_previous_;
+    if (window_.size() != size) cv::createHanningWindow(window_, size, CV_32F);
     scale_ = double(bgr.cols) / kSmallWidth;
     // Bilinear to twice the small size, then area: nearly the area average's smoothing at a
     // fifth of its cost on a full frame.
@@ -52,6 +44,7 @@ bool ViewShift::prepare(const cv::Mat& bgr)
     cv::multiply(plane_, window_, plane_);
     std::swap(spectrum_, previous_spectrum_);
     cv::dft(plane_, spectrum_, cv::DFT_COMPLEX_OUTPUT);
+    has_previous_ = true;
     return !fresh;
 }
 

@@ -25,6 +25,7 @@ public:
 
 private:
     bool prepare(const cv::Mat& bgr);  // false when there is no previous frame to compare with
+    bool has_previous_ = false;        // a frame of this size since the start or reset()
 
     cv::Mat half_bgr_, small_bgr_;
     cv::Mat1b small_grey_;

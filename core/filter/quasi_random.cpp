@@ -123,7 +123,7 @@ void QuasiNormalSampler::next_frame(std::span<double> out)
     // A random start each frame: continuing the sequence would hand slot i points with
     // the same leading digits frame after frame (when the count has factors of the base),
     // and the noise of a particle lineage would add up coherently.
-    const std::uint64_t start = 1 + (rng_() >> 44);  // below 2^20: few digits to compute
+    const std::uint64_t start = 1 + (rng_() >> 44);  // at most 2^20: few digits to compute
     const std::size_t count = out.size() / dims_;
     const double* table = quantile_table().data();
     // One dimension at a time, so that its base is a constant in the inner loop.

@@ -26,8 +26,6 @@ public:
     // Throws std::invalid_argument unless 1 <= dims <= kMaxDims.
     QuasiNormalSampler(int dims, std::uint64_t seed);
 
-    int dims() const { return dims_; }
-
     // Fills out[i * dims + d] with standard normal deviates for points i = 0 .. count-1
     // of this frame's rotated sequence; out.size() must be a multiple of dims.
     void next_frame(std::span<double> out);

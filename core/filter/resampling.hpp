@@ -16,7 +16,7 @@ double normalise_log_weights(std::span<double> log_weights);
 
 // Systematic resampling in O(N): one uniform offset u0 in [0, 1), then ancestors at the
 // strata (u0 + k) / N of the cumulative weights. `weights` must be normalised; `ancestors`
-// receives out.size() indices into weights, in non-decreasing order. Throws
+// receives ancestors.size() indices into weights, in non-decreasing order. Throws
 // std::invalid_argument on empty spans or u0 outside [0, 1).
 void systematic_resample(std::span<const double> weights, double u0, std::span<std::uint32_t> ancestors);
 

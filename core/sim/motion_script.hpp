@@ -21,7 +21,6 @@ public:
     // (x / z, y / z) is blended towards `target` and back (sin^2), so at the middle the
     // palm is exactly on that ray, whatever the motion does. The speed limit is re-applied.
     void set_pass(double start, double duration, cv::Vec2d target);
-    double pass_middle() const { return pass_start_ + 0.5 * pass_duration_; }
 
     static constexpr double kWaveSeconds = 1.2;
     static constexpr double kMaxSpeedMmS = 480.0;

@@ -128,7 +128,10 @@ void SkinModel::set_brightness_band(double mean, double sd)
         throw std::invalid_argument("SkinModel: brightness band needs 0 < mean <= 765, sd > 0");
     brightness_mean_ = mean;
     brightness_sd_ = sd;
-    if (!tables_ || tables_.use_count() > 1) tables_ = std::make_shared<Tables>(*tables_);
+    if (!tables_)
+        rebuild();  // a model moved from: its tables made again from its parameters
+    else if (tables_.use_count() > 1)
+        tables_ = std::make_shared<Tables>(*tables_);
     rebuild_brightness();
 }
 

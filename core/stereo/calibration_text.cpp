@@ -70,7 +70,6 @@ std::string quoted(std::string_view token)
     return s;
 }
 
-// A decimal number as FileStorage writes one ("640", "-3.5e-07", "1.", ".Nan", "-.Inf").
 // A double-quoted text value without inner quotes, as FileStorage writes strings.
 bool is_quoted_text(std::string_view token)
 {
@@ -78,6 +77,7 @@ bool is_quoted_text(std::string_view token)
            token.substr(1, token.size() - 2).find('"') == std::string_view::npos;
 }
 
+// A decimal number as FileStorage writes one ("640", "-3.5e-07", "1.", ".Nan", "-.Inf").
 std::optional<CalibrationScalar> parse_number(std::string_view token)
 {
     std::string_view body = token;

@@ -41,8 +41,6 @@ public:
     // to.mask count. Sub-pixel by a parabola through the peak and its two neighbours.
     NccMatch search(const NccView& to, cv::Point2d a, cv::Point2d b) const;
 
-    int radius() const { return radius_; }
-
 private:
     double score_at(const NccView& to, int x, int y) const;  // region pixels
 

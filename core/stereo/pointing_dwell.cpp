@@ -82,7 +82,7 @@ std::optional<ImageRegion> region_in_left_view(const cv::Vec3d& centre_mm, doubl
 {
     const cv::Vec3d p = camera_to_head(calibration.head, pose, Eye::Left).inverse().apply(centre_mm);
     if (p[2] <= 1.0) return std::nullopt;
-    const cv::Matx33d& K = calibration.M1;
+    const cv::Matx33d K = zoomed_intrinsics(calibration.M1, pose.zoom);
     ImageRegion r;
     r.centre = {K(0, 0) * p[0] / p[2] + K(0, 2), K(1, 1) * p[1] / p[2] + K(1, 2)};
     r.width_px = K(0, 0) * size_mm / p[2];

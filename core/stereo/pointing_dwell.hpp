@@ -58,8 +58,9 @@ private:
     int picks_ = 0;
 };
 
-// A head-frame region of `size_mm` around `centre_mm` as the left camera sees it at `pose`:
-// where its centre lands (pixels, lens distortion left out) and how wide it looks.
+// A head-frame region of `size_mm` around `centre_mm` as the left camera sees it at `pose`
+// (its zoom included): where its centre lands (pixels, lens distortion left out) and how wide
+// it looks.
 struct ImageRegion {
     cv::Point2d centre;
     double width_px = 0.0;

@@ -360,24 +360,47 @@ TEST(MotionDetector, NoiseThresholdFollowsTheSensorNoise)
 
 // The view moving as a whole is told from a hand moving in front of a still view, and its
 // shift is measured to within the small copy's pixel (here 3 frame pixels).
+// The drawn scene with the hand at `hand` (`size` across), seen through a 240x180 view moved
+// by `moved` from its place.
+cv::Mat3b drawn_view(const DrawnScene& scene, cv::Point2d hand, double size, cv::Point moved = {})
+{
+    cv::Mat3b frame;
+    cv::Mat1b mask;
+    scene.render(hand, size, frame, mask);
+    return frame(cv::Rect(40, 30, 240, 180) - moved).clone();
+}
+
 TEST(ViewShift, TellsAMovedViewFromAHandMovingInFrontOfIt)
 {
     const DrawnScene scene(11);
     cv::setRNGSeed(11);
-    const cv::Rect view(40, 30, 240, 180);
     gc::ViewShift shift;
-    cv::Mat3b frame;
-    cv::Mat1b mask;
     for (int i = 0; i < 8; ++i) {
-        scene.render({150.0 + 12.0 * (i % 2), 130.0 - 6.0 * (i % 3)}, 35.0 + 20.0 * (i % 3), frame, mask);
-        const gc::ViewChange c = shift.update(frame(view).clone());
+        const gc::ViewChange c =
+            shift.update(drawn_view(scene, {150.0 + 12.0 * (i % 2), 130.0 - 6.0 * (i % 3)}, 35.0 + 20.0 * (i % 3)));
         EXPECT_FALSE(c.shifted || c.cut) << "frame " << i;
     }
-    scene.render({150.0, 130.0}, 35.0, frame, mask);
-    const gc::ViewChange moved = shift.update(frame(view - cv::Point(24, -16)).clone());
+    const gc::ViewChange moved = shift.update(drawn_view(scene, {150.0, 130.0}, 35.0, {24, -16}));
     ASSERT_TRUE(moved.shifted);
     EXPECT_NEAR(moved.dx, 24.0, 3.0);
     EXPECT_NEAR(moved.dy, -16.0, 3.0);
+}
+
+// The second frame is compared with the first, and the first after reset() with nothing.
+TEST(ViewShift, ComparesFromTheSecondFrame)
+{
+    const DrawnScene scene(12);
+    cv::setRNGSeed(12);
+    const cv::Mat3b still = drawn_view(scene, {150.0, 130.0}, 35.0);
+    const cv::Mat3b moved = drawn_view(scene, {150.0, 130.0}, 35.0, {24, -16});
+    gc::ViewShift shift;
+    EXPECT_FALSE(shift.update(still).shifted);
+    const gc::ViewChange second = shift.update(moved);
+    ASSERT_TRUE(second.shifted);
+    EXPECT_NEAR(second.dx, 24.0, 3.0);
+    shift.reset();
+    EXPECT_FALSE(shift.update(still).shifted);
+    EXPECT_TRUE(shift.update(moved).shifted);
 }
 
 TEST(MotionDetector, BadInputsThrow)

@@ -180,6 +180,24 @@ TEST(SkinModel, CopiesAreIndependent)
     EXPECT_GT(pa(0, 0), pb(0, 0));
 }
 
+// A model moved from takes a brightness band as a fresh model with its parameters does (its
+// tables were gone, and setting the band read through a null pointer).
+TEST(SkinModel, AModelMovedFromTakesABrightnessBand)
+{
+    gc::SkinModel a({0.45, 0.30}, {4e-4, 0, 0, 2e-4});
+    const gc::SkinModel taken = std::move(a);
+    a.set_brightness_band(300.0, 10.0);
+    gc::SkinModel fresh({0.45, 0.30}, {4e-4, 0, 0, 2e-4});
+    fresh.set_brightness_band(300.0, 10.0);
+    const cv::Mat3b img(10, 10, pixel_from_rg(0.45, 0.30, 300));
+    cv::Mat1b ma, mf;
+    a.probability(img, ma);
+    fresh.probability(img, mf);
+    EXPECT_EQ(cv::norm(ma, mf, cv::NORM_INF), 0.0);
+    EXPECT_GT(mf(0, 0), 200);
+    EXPECT_EQ(taken.has_brightness_band(), false);
+}
+
 TEST(SkinModel, BadInputsThrowClearErrors)
 {
     const auto m = gc::SkinModel::generic();

@@ -147,6 +147,13 @@ TEST(RegionInLeftView, AHeadFramePointLandsWhereTheTurnedCameraSeesIt)
     const auto moved = gc::region_in_left_view(ahead, 500.0, cal, panned);
     ASSERT_TRUE(moved);
     EXPECT_LT(moved->centre.x, cal.M1(0, 2) - 0.8 * fx * std::tan(10.0 * std::numbers::pi / 180.0));
+    // Zoomed in 2x, the panned view magnifies both the region and its offset from the centre.
+    gc::HeadPose zoomed = panned;
+    zoomed.zoom = 2.0;
+    const auto closer = gc::region_in_left_view(ahead, 500.0, cal, zoomed);
+    ASSERT_TRUE(closer);
+    EXPECT_NEAR(closer->width_px, 2.0 * moved->width_px, 1e-6);
+    EXPECT_NEAR(closer->centre.x - cal.M1(0, 2), 2.0 * (moved->centre.x - cal.M1(0, 2)), 1e-6);
     // Behind the camera: nowhere in the view.
     EXPECT_FALSE(gc::region_in_left_view(cal.head.left_eye_mm - cv::Vec3d(0.0, 0.0, 500.0), 500.0, cal, {}));
 }
