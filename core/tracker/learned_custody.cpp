@@ -53,6 +53,8 @@ constexpr double kWristWidth = 1.2;
 // frames: where camera noise keeps the contour's confidence low, remakes on every check
 // would each be made of that frame's noise (docs/adr/0047).
 constexpr int kLeastRemadeAge = 4;
+// The closing that joins the found hand's skin across small gaps, in pixels.
+constexpr int kHandCloseSize = 5;
 // The width of the line along each bone whose pixels teach the skin model, in finger widths.
 constexpr double kSureBoneWidth = 0.15;
 
@@ -123,10 +125,10 @@ cv::Mat1b hand_region(const std::array<cv::Point2f, 21>& p, cv::Size size)
 }
 
 // Where a template made from `region` reads the skin map: the region's box, widened by the
-// mask's closing (2 px), the outline's snap to the skin edge and its bilinear reads (1 px).
+// mask's closing, the outline's snap to the skin edge and its bilinear reads (1 px).
 cv::Rect around_region(const cv::Mat1b& region)
 {
-    const int margin = 2 + int(std::ceil(TemplateOptions{}.snap_range)) + 1;
+    const int margin = kHandCloseSize / 2 + int(std::ceil(TemplateOptions{}.snap_range)) + 1;
     const cv::Rect box = cv::boundingRect(region);
     const cv::Rect wide(box.x - margin, box.y - margin, box.width + 2 * margin, box.height + 2 * margin);
     return wide & cv::Rect(0, 0, region.cols, region.rows);
@@ -137,7 +139,8 @@ cv::Rect around_region(const cv::Mat1b& region)
 cv::Mat1b skin_of_hand(const cv::Mat1b& region, const cv::Mat1b& membership, cv::Point palm)
 {
     cv::Mat1b mask = (membership >= kSkinEdgeLevel) & region;
-    cv::morphologyEx(mask, mask, cv::MORPH_CLOSE, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(5, 5)));
+    cv::morphologyEx(mask, mask, cv::MORPH_CLOSE,
+                     cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(kHandCloseSize, kHandCloseSize)));
     cv::Mat1i labels;
     cv::connectedComponents(mask, labels, 8, CV_32S);
     const cv::Rect frame(0, 0, mask.cols, mask.rows);

@@ -25,6 +25,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -280,9 +281,10 @@ struct HeldRays {
 };
 
 // The angle to `truth` of the ray the 3D step gives with the tracked estimates, the renderer's
-// fingertip and palm put in where asked; -1 when it gives none.
-double ray_with(gc::PointingEstimator& step, const cv::Mat& left, const cv::Mat& right, const gc::FrameResult& r,
-                const gc::sim::EyeTruth (&eye)[2], bool true_tip, bool true_palm, const cv::Vec3d& truth)
+// fingertip and palm put in where asked; nothing when it gives no ray.
+std::optional<double> ray_with(gc::PointingEstimator& step, const cv::Mat& left, const cv::Mat& right,
+                               const gc::FrameResult& r, const gc::sim::EyeTruth (&eye)[2], bool true_tip,
+                               bool true_palm, const cv::Vec3d& truth)
 {
     gc::EyeEstimate e[2] = {r.left, r.right};
     for (int i = 0; i < 2; ++i) {
@@ -290,7 +292,8 @@ double ray_with(gc::PointingEstimator& step, const cv::Mat& left, const cv::Mat&
         if (true_palm) e[i].palm = cv::Point2f(eye[i].palm_px);
     }
     const gc::Pointing3D p = step.estimate(left, right, e[0], e[1]);
-    return p.valid ? gc::test::angle_between_deg(p.direction_head, truth) : -1.0;
+    if (!p.valid) return std::nullopt;
+    return gc::test::angle_between_deg(p.direction_head, truth);
 }
 
 // One held hand of framing_study director (light scene, static, head at rest), frames 30-89.
@@ -319,9 +322,12 @@ HeldRays held_rays(int seed)
         if (f < 30 || !r.pointing.valid) continue;
         const cv::Vec3d truth = scene.hand_truth(scene.hand_pose(f)).direction;
         rays.tracked.push_back(gc::test::angle_between_deg(r.pointing.direction_head, truth));
-        rays.true_points.push_back(ray_with(step, left, right, r, eye, true, true, truth));
-        rays.true_tip.push_back(ray_with(step, left, right, r, eye, true, false, truth));
-        rays.true_palm.push_back(ray_with(step, left, right, r, eye, false, true, truth));
+        const auto add = [](std::vector<double>& to, std::optional<double> angle) {
+            if (angle) to.push_back(*angle);
+        };
+        add(rays.true_points, ray_with(step, left, right, r, eye, true, true, truth));
+        add(rays.true_tip, ray_with(step, left, right, r, eye, true, false, truth));
+        add(rays.true_palm, ray_with(step, left, right, r, eye, false, true, truth));
     }
     return rays;
 }
