@@ -416,7 +416,8 @@ struct HeadLink::Impl {
         return false;
     }
 
-    // Whether steering waits because someone else moved the head; starts and ends the pause.
+    // Whether steering waits because someone else moved the head (or may be starting to);
+    // starts and ends the pause.
     bool manual_pause(double t_s)
     {
         const std::optional<headctl::StateSample> latest = client->latest();
@@ -432,7 +433,9 @@ struct HeadLink::Impl {
             watch.reset();
             still_sent = {};
         }
-        if (!paused_until_s) return false;
+        // A held axis that starts moving on no command of ours is not steered this frame:
+        // the next sample tells whether someone else is moving it.
+        if (!paused_until_s) return config.times.manual_pause_s > 0.0 && watch.stirring();
         if (t_s < *paused_until_s) return true;
         paused_until_s.reset();
         restart_steering();

@@ -16,6 +16,7 @@ void ManualMoveWatch::release(AxisWatch& axis, double t_s, bool driven, std::opt
     axis.driven = driven;
     axis.commanded_s = t_s;
     axis.destination_deg = destination;
+    axis.stirring_since_s.reset();
 }
 
 // Whether a released axis has come to rest where the link's commands leave it.
@@ -61,12 +62,20 @@ void ManualMoveWatch::commanded(const HeadCommand& command, double t_s)
 bool ManualMoveWatch::moved_by_someone_else(const HeadState& state, double t_s)
 {
     bool moved = false;
+    stirring_ = false;
     for (std::size_t i = 0; i < kAxes.size(); ++i) {
         AxisWatch& axis = axes_[i];
         const double angle = axis_angle(state.pose, kAxes[i]);
+        const bool moving = state.moving_axis(kAxes[i]);
         if (axis.held) {
-            moved = moved || std::abs(angle - axis.rest_deg) > config_.tolerance_deg;
-        } else if (may_hold(axis, angle, state.moving_axis(kAxes[i]), t_s)) {
+            const bool away = std::abs(angle - axis.rest_deg) > config_.tolerance_deg;
+            moved = moved || away;
+            if (!moving || away)
+                axis.stirring_since_s.reset();
+            else if (!axis.stirring_since_s)
+                axis.stirring_since_s = t_s;
+            stirring_ = stirring_ || (axis.stirring_since_s && t_s - *axis.stirring_since_s < config_.settle_s);
+        } else if (may_hold(axis, angle, moving, t_s)) {
             axis.held = true;
             axis.rest_deg = angle;
         }
@@ -77,6 +86,7 @@ bool ManualMoveWatch::moved_by_someone_else(const HeadState& state, double t_s)
 void ManualMoveWatch::reset()
 {
     for (AxisWatch& axis : axes_) axis = AxisWatch{};
+    stirring_ = false;
 }
 
 }  // namespace gc::headctl

@@ -31,6 +31,11 @@ public:
     // A state the head reported at `t_s`: true when pan or tilt moved away from where the
     // link's commands hold it at rest (someone else moved the head).
     bool moved_by_someone_else(const HeadState& state, double t_s);
+    // Whether the last state showed a held axis moving, still within the tolerance, for
+    // less than settle_s: the first sample of someone else's move. Its picture may already
+    // have shifted; a command sent on it would release the axis and cancel the move before
+    // the next sample shows it. Longer than settle_s it is taken for the reading's noise.
+    bool stirring() const { return stirring_; }
     // Forgets where the axes were held: they are held again once at rest.
     void reset();
 
@@ -42,7 +47,8 @@ private:
         bool driven = false;  // a velocity other than 0 is in force
         double rest_deg = 0.0;
         double commanded_s = -std::numeric_limits<double>::infinity();
-        std::optional<double> destination_deg;  // where the last command sends it, when it says
+        std::optional<double> destination_deg;   // where the last command sends it, when it says
+        std::optional<double> stirring_since_s;  // held, reported moving, not yet beyond the tolerance
     };
     static constexpr std::array<Axis, 2> kAxes{Axis::Pan, Axis::Tilt};
 
@@ -51,6 +57,7 @@ private:
 
     ManualMoveConfig config_;
     std::array<AxisWatch, 2> axes_{};
+    bool stirring_ = false;
 };
 
 }  // namespace gc::headctl

@@ -9,6 +9,7 @@
 #include "headctl/head_client.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -40,6 +41,30 @@ GstClockTime timestamp_of(const GstStructure* s)
     guint64 t = GST_CLOCK_TIME_NONE;
     gst_structure_get_uint64(s, "timestamp", &t);
     return t;
+}
+
+// Counts the buffers that reach the sink named `sink` (frames the element has finished).
+void count_buffers(GstElement* pipeline, const char* sink, std::atomic<int>& count)
+{
+    GstElement* element = gst_bin_get_by_name(GST_BIN(pipeline), sink);
+    GstPad* pad = gst_element_get_static_pad(element, "sink");
+    gst_pad_add_probe(
+        pad, GST_PAD_PROBE_TYPE_BUFFER,
+        [](GstPad*, GstPadProbeInfo*, gpointer data) {
+            ++*static_cast<std::atomic<int>*>(data);
+            return GST_PAD_PROBE_OK;
+        },
+        &count, nullptr);
+    gst_object_unref(pad);
+    gst_object_unref(element);
+}
+
+// The simulated head's own state, read under the server's lock (no network in between).
+gc::headctl::HeadState head_state(RunningHead& head)
+{
+    gc::headctl::HeadState state;
+    head.server().with_model([&](gc::headctl::HeadModel& model, double now_s) { state = model.state(now_s); });
+    return state;
 }
 
 struct LoopFigures {
@@ -172,46 +197,57 @@ TEST(HeadLoop, AHeadRestartedMidStreamIsBackWithinTwoSeconds)
 
 TEST(HeadLoop, AManualMoveIsLeftAloneForManualPauseAndReported)
 {
-    // The hand waves and holds still; the element keeps it in view with the head at rest.
-    // Once the head has rested for half a second (looked for from 3 s in until 9 s), someone
-    // moves it with another client (as `headctl move pan=15` does). A move made while the
-    // element itself turns the head is overridden by its next command (docs/steering.md), so
-    // the test waits for rest. The motion detector's
-    // contour holds a still hand steadier than the learned key points, whose frame-to-frame
-    // jitter can take the offset past the release band and twitch the head.
+    // The hand holds still; the element keeps it in view with the head at rest. Once the
+    // head has rested for half a second and 15 frames (looked for from the stream's 3rd
+    // second until its 9th, counted in frames that passed the element, so that a slow start
+    // under load cannot put the move before the element has seen the head), someone moves
+    // it with another client (as `headctl move pan=15` does). A move made while the element
+    // itself turns the head is overridden by its next command (docs/steering.md), so the
+    // test waits for rest. The motion detector's contour holds a still hand steadier than
+    // the learned key points, whose frame-to-frame jitter can take the offset past the
+    // release band and twitch the head.
     gc::test::init_gstreamer();
     RunningHead head(loopback_head(0, 0.02));
     const std::string common = " is-live=true scene=light motion=static seed=3 head=" + head.uri() +
                                " num-buffers=" + std::to_string(12 * kFps) + " ";
+    gc::test::ElementPtr pipeline = gc::test::parse_pipeline(
+        "handscenesrc name=l eye=left" + common + "! t.sink_left handscenesrc name=r eye=right truth-messages=false" +
+        common + "! t.sink_right handtracker name=t particles=500 seed=7 head=" + head.uri() +
+        " steer=fixate detector=motion manual-pause=1.5 message-updates=none ! fakesink name=out");
+    ASSERT_TRUE(pipeline);
+    std::atomic<int> frames{0};
+    count_buffers(pipeline.get(), "out", frames);
     gc::headctl::HeadClientConfig driver_config;
     driver_config.uri = head.uri();
     gc::headctl::HeadClient driver(driver_config);
+    std::atomic<bool> done{false};
     bool moved = false;
-    double moved_at_s = 0.0;
+    int moved_at_frame = 0;
     std::thread mover([&] {
-        const auto start = std::chrono::steady_clock::now();
-        std::this_thread::sleep_for(3000ms);
-        for (int resting = 0; resting < 25 && std::chrono::steady_clock::now() - start < 9000ms;) {
+        while (!done && frames < 3 * kFps) std::this_thread::sleep_for(20ms);
+        for (int resting = 0, rest_from = frames; !done && frames < 9 * kFps;) {
             std::this_thread::sleep_for(20ms);
-            const auto s = driver.latest();
-            const bool still =
-                s && std::none_of(s->state.moving.begin(), s->state.moving.end(), [](bool m) { return m; });
+            const gc::headctl::HeadState s = head_state(head);
+            const bool still = std::none_of(s.moving.begin(), s.moving.end(), [](bool m) { return m; });
+            if (!still || resting == 0) rest_from = frames;
             resting = still ? resting + 1 : 0;
-            moved = resting == 25;
+            if (resting >= 25 && frames - rest_from >= 15) break;
         }
-        if (!moved) return;
+        if (done || frames >= 9 * kFps) return;
         gc::headctl::HeadCommand turn{gc::headctl::CommandKind::Absolute, {}};
         turn.values.set(gc::headctl::Axis::Pan, 15.0);
         driver.submit(turn);
-        moved_at_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        moved_at_frame = frames;
+        // The element must not cancel a move it sees starting (it turned the head back when
+        // the picture shifted before the first samples' 0.1-0.4 deg were taken for a move).
+        moved = gc::loopback::eventually([&] { return head_state(head).pose.pan_deg > 10.0; }, 2000ms);
     });
-    const gc::test::RunResult r = gc::test::run_pipeline(
-        "handscenesrc name=l eye=left" + common + "! t.sink_left handscenesrc name=r eye=right truth-messages=false" +
-        common + "! t.sink_right handtracker name=t particles=500 seed=7 head=" + head.uri() +
-        " steer=fixate detector=motion manual-pause=1.5 message-updates=none ! fakesink");
+    const gc::test::RunResult r = gc::test::run_pipeline(pipeline.get());
+    done = true;
     mover.join();
     ASSERT_TRUE(r.eos) << r.error;
-    ASSERT_TRUE(moved) << "the element never held the head still for half a second";
+    ASSERT_GT(moved_at_frame, 0) << "the element never held the head still for half a second";
+    EXPECT_TRUE(moved) << "the move did not reach pan 10 deg; the other client: '" << driver.last_error() << "'";
     std::vector<std::string> events;
     for (size_t i = 0; i < r.messages.size(); ++i)
         if (r.sources[i] == "t" && gst_structure_has_name(r.messages[i].get(), "head-steering")) {
@@ -219,7 +255,7 @@ TEST(HeadLoop, AManualMoveIsLeftAloneForManualPauseAndReported)
             std::printf("%.2f s: %s: %s\n", r.received_s[i], events.back().c_str(),
                         gst_structure_get_string(r.messages[i].get(), "detail"));
         }
-    std::printf("moved to pan 15 deg %.2f s after the test started (before PLAYING)\n", moved_at_s);
+    std::printf("moved to pan 15 deg after %d frames had passed the element\n", moved_at_frame);
     for (size_t i = 0; i < r.warnings.size(); ++i)
         std::printf("%.2f s: warning: %s\n", r.warnings_s[i], r.warnings[i].c_str());
     ASSERT_EQ(events.size(), 2u);

@@ -68,5 +68,29 @@ TEST(ManualMoveWatch, HomeGoesToZeroAndAPresetOnlySettles)
     EXPECT_TRUE(watch.moved_by_someone_else(at(25.0), 3.6));
 }
 
+TEST(ManualMoveWatch, AHeldAxisThatStartsMovingIsStirringUntilItLeavesOrSettles)
+{
+    ManualMoveWatch watch;
+    watch.commanded(absolute_pan_tilt(10.0, 0.0), 0.0);
+    EXPECT_FALSE(watch.moved_by_someone_else(at(10.0), 0.5));  // held at 10 deg
+    EXPECT_FALSE(watch.stirring());
+    // Someone starts to turn it: the first sample is still within the readings' wander.
+    EXPECT_FALSE(watch.moved_by_someone_else(at(10.1, 0.0, true), 1.0));
+    EXPECT_TRUE(watch.stirring());
+    EXPECT_TRUE(watch.moved_by_someone_else(at(10.8, 0.0, true), 1.04));
+    EXPECT_FALSE(watch.stirring());
+    // A reading that flags motion at rest for longer than settle_s is noise, not a move.
+    watch.reset();
+    EXPECT_FALSE(watch.moved_by_someone_else(at(10.0), 2.0));
+    EXPECT_FALSE(watch.moved_by_someone_else(at(10.1, 0.0, true), 2.1));
+    EXPECT_TRUE(watch.stirring());
+    EXPECT_FALSE(watch.moved_by_someone_else(at(10.0, 0.0, true), 2.4));
+    EXPECT_FALSE(watch.stirring());
+    // A command of the link's own releases the axis: its motion is not stirring.
+    watch.commanded(absolute_pan_tilt(20.0, 0.0), 2.5);
+    EXPECT_FALSE(watch.moved_by_someone_else(at(10.1, 0.0, true), 2.55));
+    EXPECT_FALSE(watch.stirring());
+}
+
 }  // namespace
 }  // namespace gc::headctl
