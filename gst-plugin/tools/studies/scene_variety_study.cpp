@@ -9,11 +9,13 @@
 //   scene_variety_study clutter PRESET VARIETY FIRST_SEED LAST_SEED
 //       per seed: the skin-pixel fraction of the background (Scene::measured_skin_fraction,
 //       frame 0) and the hand's size (longest side of the mask) over 200 frames of the left eye
-//   scene_variety_study track PRESET VARIETY FIRST_SEED LAST_SEED learned|motion [FRAMES]
+//   scene_variety_study track PRESET VARIETY FIRST_SEED LAST_SEED learned|motion [FRAMES [DIR]]
 //       the default tracker (or the motion-only one) on the left eye of `mixed` sequences:
 //       share of the frames with the hand in view that are tracked on the hand (mask IoU
 //       >= 0.5 or fingertip within 20 px), median fingertip error of the tracked frames (and
-//       of those on the hand), and the sequence's SNR (as tracking_study)
+//       of those on the hand), and the sequence's SNR (as tracking_study); with DIR, every
+//       10th frame as DIR/track-<seed>-<frame>.png: the truth's outline and fingertip in
+//       green, the tracked contour and fingertip in red
 #include "metrics/metrics.hpp"
 #include "sim/scene.hpp"
 #include "tracker/hand_tracker.hpp"
@@ -139,7 +141,23 @@ int clutter(const gc::sim::SceneConfig& base, int first, int last)
     return 0;
 }
 
-int track(const gc::sim::SceneConfig& base, int first, int last, bool learned, int frames)
+// The frame with the truth's outline and fingertip in green, the tracked ones in red.
+void write_overlay(const std::string& path, const cv::Mat& bgr, const gc::sim::EyeTruth& truth,
+                   const gc::EyeEstimate& e, const cv::Mat1b& tracked)
+{
+    cv::Mat out = bgr.clone();
+    std::vector<std::vector<cv::Point>> outlines;
+    cv::findContours(truth.mask.clone(), outlines, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
+    cv::drawContours(out, outlines, -1, cv::Scalar(0, 255, 0), 1);
+    cv::circle(out, truth.fingertip_px, 4, cv::Scalar(0, 255, 0), 2);
+    outlines.clear();
+    cv::findContours(tracked.clone(), outlines, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
+    cv::drawContours(out, outlines, -1, cv::Scalar(0, 0, 255), 1);
+    if (e.valid()) cv::circle(out, cv::Point2d(e.fingertip), 4, cv::Scalar(0, 0, 255), 2);
+    cv::imwrite(path, out);
+}
+
+int track(const gc::sim::SceneConfig& base, int first, int last, bool learned, int frames, const std::string& dir)
 {
     std::vector<double> all_errors, all_on_errors;
     long on_hand_total = 0, in_view_total = 0;
@@ -164,6 +182,9 @@ int track(const gc::sim::SceneConfig& base, int first, int last, bool learned, i
             const cv::Mat1b tracked =
                 e.valid() ? gc::contour_mask(e.contour, bgr.size()) : cv::Mat1b(bgr.size(), std::uint8_t{0});
             snr.add(truth.mask, tracked);
+            if (!dir.empty() && f % 10 == 0)
+                write_overlay(dir + "/track-" + std::to_string(seed) + "-" + std::to_string(f) + ".png", bgr, truth, e,
+                              tracked);
             if (!truth.visible) continue;
             ++in_view;
             if (!e.valid()) continue;
@@ -210,7 +231,8 @@ int main(int argc, char** argv)
     if (mode == "clutter" && argc == 6) return clutter(base, first, last);
     const std::string detector = argc > 6 ? argv[6] : "";
     if (mode == "track" && (detector == "learned" || detector == "motion"))
-        return track(base, first, last, detector == "learned", argc > 7 ? std::atoi(argv[7]) : 200);
+        return track(base, first, last, detector == "learned", argc > 7 ? std::atoi(argv[7]) : 200,
+                     argc > 8 ? argv[8] : "");
     std::fprintf(stderr, "%s: bad arguments\n", argv[0]);
     return 2;
 }
