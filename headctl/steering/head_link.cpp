@@ -51,6 +51,12 @@ void check_target(const TargetPlacement& target)
         throw std::invalid_argument("head link: target distance must be finite and > 0 mm");
 }
 
+// Commands that move named axes (velocity, absolute, relative), as against home, stop and presets.
+bool is_move(CommandKind kind)
+{
+    return kind == CommandKind::Velocity || kind == CommandKind::Absolute || kind == CommandKind::Relative;
+}
+
 }  // namespace
 
 std::string_view to_string(SteerMode mode)
@@ -256,6 +262,11 @@ struct HeadLink::Impl {
             command.values.clear(Axis::VergeLeft);
             command.values.clear(Axis::VergeRight);
         }
+        // A held axis that has just begun to move on no command of ours is left alone: the
+        // next samples tell whether someone else is moving it (ManualMoveWatch::stirring).
+        if (config.times.manual_pause_s > 0.0 && is_move(command.kind))
+            for (Axis a : {Axis::Pan, Axis::Tilt})
+                if (watch.stirring(a)) command.values.clear(a);
         if (command.values.empty() && command.kind != CommandKind::Home && command.kind != CommandKind::Stop &&
             !headctl::is_preset(command.kind))
             return;
@@ -416,8 +427,7 @@ struct HeadLink::Impl {
         return false;
     }
 
-    // Whether steering waits because someone else moved the head (or may be starting to);
-    // starts and ends the pause.
+    // Whether steering waits because someone else moved the head; starts and ends the pause.
     bool manual_pause(double t_s)
     {
         const std::optional<headctl::StateSample> latest = client->latest();
@@ -433,9 +443,7 @@ struct HeadLink::Impl {
             watch.reset();
             still_sent = {};
         }
-        // A held axis that starts moving on no command of ours is not steered this frame:
-        // the next sample tells whether someone else is moving it.
-        if (!paused_until_s) return config.times.manual_pause_s > 0.0 && watch.stirring();
+        if (!paused_until_s) return false;
         if (t_s < *paused_until_s) return true;
         paused_until_s.reset();
         restart_steering();

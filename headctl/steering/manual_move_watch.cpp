@@ -16,7 +16,8 @@ void ManualMoveWatch::release(AxisWatch& axis, double t_s, bool driven, std::opt
     axis.driven = driven;
     axis.commanded_s = t_s;
     axis.destination_deg = destination;
-    axis.stirring_since_s.reset();
+    axis.motion_began_s.reset();
+    axis.stirring = false;
 }
 
 // Whether a released axis has come to rest where the link's commands leave it.
@@ -59,10 +60,21 @@ void ManualMoveWatch::commanded(const HeadCommand& command, double t_s)
     }
 }
 
+// A held axis's reported motion within the tolerance: when it began, and whether this
+// sample is still in its first settle_s.
+void ManualMoveWatch::follow_motion(AxisWatch& axis, bool moving, bool away, double t_s) const
+{
+    if (moving) {
+        if (!axis.motion_began_s || t_s - axis.last_moving_s >= config_.settle_s || t_s < *axis.motion_began_s)
+            axis.motion_began_s = t_s;
+        axis.last_moving_s = t_s;
+    }
+    axis.stirring = moving && !away && t_s - *axis.motion_began_s < config_.settle_s;
+}
+
 bool ManualMoveWatch::moved_by_someone_else(const HeadState& state, double t_s)
 {
     bool moved = false;
-    stirring_ = false;
     for (std::size_t i = 0; i < kAxes.size(); ++i) {
         AxisWatch& axis = axes_[i];
         const double angle = axis_angle(state.pose, kAxes[i]);
@@ -70,23 +82,26 @@ bool ManualMoveWatch::moved_by_someone_else(const HeadState& state, double t_s)
         if (axis.held) {
             const bool away = std::abs(angle - axis.rest_deg) > config_.tolerance_deg;
             moved = moved || away;
-            if (!moving || away)
-                axis.stirring_since_s.reset();
-            else if (!axis.stirring_since_s)
-                axis.stirring_since_s = t_s;
-            stirring_ = stirring_ || (axis.stirring_since_s && t_s - *axis.stirring_since_s < config_.settle_s);
+            follow_motion(axis, moving, away, t_s);
         } else if (may_hold(axis, angle, moving, t_s)) {
             axis.held = true;
             axis.rest_deg = angle;
+            axis.motion_began_s.reset();
         }
     }
     return moved;
 }
 
+bool ManualMoveWatch::stirring(Axis axis) const
+{
+    for (std::size_t i = 0; i < kAxes.size(); ++i)
+        if (kAxes[i] == axis) return axes_[i].held && axes_[i].stirring;
+    return false;
+}
+
 void ManualMoveWatch::reset()
 {
     for (AxisWatch& axis : axes_) axis = AxisWatch{};
-    stirring_ = false;
 }
 
 }  // namespace gc::headctl

@@ -31,11 +31,14 @@ public:
     // A state the head reported at `t_s`: true when pan or tilt moved away from where the
     // link's commands hold it at rest (someone else moved the head).
     bool moved_by_someone_else(const HeadState& state, double t_s);
-    // Whether the last state showed a held axis moving, still within the tolerance, for
-    // less than settle_s: the first sample of someone else's move. Its picture may already
-    // have shifted; a command sent on it would release the axis and cancel the move before
-    // the next sample shows it. Longer than settle_s it is taken for the reading's noise.
-    bool stirring() const { return stirring_; }
+    // Whether the last state showed the held `axis` (pan or tilt) moving, still within the
+    // tolerance, less than settle_s after its motion began: perhaps the first samples of
+    // someone else's move. Its picture may already have shifted; a command for the axis sent
+    // then would release it and cancel the move before the next sample shows it. A motion
+    // begins when the axis has been reported at rest for settle_s (flags that come and go
+    // on a wobbling reading do not begin it again), and one longer than settle_s is taken
+    // for the reading's noise.
+    bool stirring(Axis axis) const;
     // Forgets where the axes were held: they are held again once at rest.
     void reset();
 
@@ -47,17 +50,19 @@ private:
         bool driven = false;  // a velocity other than 0 is in force
         double rest_deg = 0.0;
         double commanded_s = -std::numeric_limits<double>::infinity();
-        std::optional<double> destination_deg;   // where the last command sends it, when it says
-        std::optional<double> stirring_since_s;  // held, reported moving, not yet beyond the tolerance
+        std::optional<double> destination_deg;  // where the last command sends it, when it says
+        std::optional<double> motion_began_s;   // while held: when the reported motion began...
+        double last_moving_s = 0.0;             // ...and when it was last reported
+        bool stirring = false;
     };
     static constexpr std::array<Axis, 2> kAxes{Axis::Pan, Axis::Tilt};
 
     void release(AxisWatch& axis, double t_s, bool driven, std::optional<double> destination = std::nullopt);
     bool may_hold(const AxisWatch& axis, double angle_deg, bool moving, double t_s) const;
+    void follow_motion(AxisWatch& axis, bool moving, bool away, double t_s) const;
 
     ManualMoveConfig config_;
     std::array<AxisWatch, 2> axes_{};
-    bool stirring_ = false;
 };
 
 }  // namespace gc::headctl

@@ -68,28 +68,60 @@ TEST(ManualMoveWatch, HomeGoesToZeroAndAPresetOnlySettles)
     EXPECT_TRUE(watch.moved_by_someone_else(at(25.0), 3.6));
 }
 
-TEST(ManualMoveWatch, AHeldAxisThatStartsMovingIsStirringUntilItLeavesOrSettles)
+HeadState tilting(double tilt_deg)
+{
+    HeadState s = at(10.0, tilt_deg);
+    s.moving[static_cast<std::size_t>(Axis::Tilt)] = true;
+    return s;
+}
+
+TEST(ManualMoveWatch, AHeldAxisThatBeginsToMoveIsStirringUntilItLeavesOrSettles)
 {
     ManualMoveWatch watch;
     watch.commanded(absolute_pan_tilt(10.0, 0.0), 0.0);
-    EXPECT_FALSE(watch.moved_by_someone_else(at(10.0), 0.5));  // held at 10 deg
-    EXPECT_FALSE(watch.stirring());
-    // Someone starts to turn it: the first sample is still within the readings' wander.
+    EXPECT_FALSE(watch.moved_by_someone_else(at(10.0), 0.5));  // held at 10 deg, 0 deg
+    EXPECT_FALSE(watch.stirring(Axis::Pan));
+    // Someone begins to turn it: the first sample is still within the readings' wander.
     EXPECT_FALSE(watch.moved_by_someone_else(at(10.1, 0.0, true), 1.0));
-    EXPECT_TRUE(watch.stirring());
+    EXPECT_TRUE(watch.stirring(Axis::Pan));
+    EXPECT_FALSE(watch.stirring(Axis::Tilt));
     EXPECT_TRUE(watch.moved_by_someone_else(at(10.8, 0.0, true), 1.04));
-    EXPECT_FALSE(watch.stirring());
-    // A reading that flags motion at rest for longer than settle_s is noise, not a move.
+    EXPECT_FALSE(watch.stirring(Axis::Pan));
+    // Tilt alike, each axis on its own.
     watch.reset();
     EXPECT_FALSE(watch.moved_by_someone_else(at(10.0), 2.0));
-    EXPECT_FALSE(watch.moved_by_someone_else(at(10.1, 0.0, true), 2.1));
-    EXPECT_TRUE(watch.stirring());
-    EXPECT_FALSE(watch.moved_by_someone_else(at(10.0, 0.0, true), 2.4));
-    EXPECT_FALSE(watch.stirring());
+    EXPECT_FALSE(watch.moved_by_someone_else(tilting(0.2), 2.1));
+    EXPECT_TRUE(watch.stirring(Axis::Tilt));
+    EXPECT_FALSE(watch.stirring(Axis::Pan));
+    EXPECT_FALSE(watch.stirring(Axis::Zoom));
     // A command of the link's own releases the axis: its motion is not stirring.
-    watch.commanded(absolute_pan_tilt(20.0, 0.0), 2.5);
-    EXPECT_FALSE(watch.moved_by_someone_else(at(10.1, 0.0, true), 2.55));
-    EXPECT_FALSE(watch.stirring());
+    watch.commanded(absolute_pan_tilt(20.0, 0.0), 2.15);
+    EXPECT_FALSE(watch.moved_by_someone_else(at(10.1, 0.0, true), 2.2));
+    EXPECT_FALSE(watch.stirring(Axis::Pan));
+}
+
+TEST(ManualMoveWatch, AWobblingReadingStirsOnlyForItsFirstQuarterSecond)
+{
+    ManualMoveWatch watch;
+    EXPECT_FALSE(watch.moved_by_someone_else(at(10.0), 0.0));  // held where it first rests
+    // Flags that come and go every other sample (a reading one count apart) do not begin
+    // the motion again: after settle_s it is noise, and steering goes on.
+    for (int i = 1; i <= 20; ++i) {
+        const double t = 0.02 * i;
+        EXPECT_FALSE(watch.moved_by_someone_else(at(i % 2 ? 10.1 : 10.0, 0.0, i % 2 == 1), t));
+        EXPECT_EQ(watch.stirring(Axis::Pan), i % 2 == 1 && t < 0.02 + 0.25) << "at " << t << " s";
+    }
+    // After a quarter of a second at rest a new motion begins.
+    EXPECT_FALSE(watch.moved_by_someone_else(at(10.0), 0.6));
+    EXPECT_FALSE(watch.moved_by_someone_else(at(10.1, 0.0, true), 0.7));
+    EXPECT_TRUE(watch.stirring(Axis::Pan));
+    // A sample stamped before the motion began starts it again rather than holding it.
+    EXPECT_FALSE(watch.moved_by_someone_else(at(10.1, 0.0, true), 0.65));
+    EXPECT_TRUE(watch.stirring(Axis::Pan));
+    EXPECT_FALSE(watch.moved_by_someone_else(at(10.1, 0.0, true), 0.8));
+    EXPECT_TRUE(watch.stirring(Axis::Pan));
+    EXPECT_FALSE(watch.moved_by_someone_else(at(10.1, 0.0, true), 0.92));
+    EXPECT_FALSE(watch.stirring(Axis::Pan));
 }
 
 }  // namespace
