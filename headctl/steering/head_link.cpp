@@ -51,12 +51,6 @@ void check_target(const TargetPlacement& target)
         throw std::invalid_argument("head link: target distance must be finite and > 0 mm");
 }
 
-// Commands that move named axes (velocity, absolute, relative), as against home, stop and presets.
-bool is_move(CommandKind kind)
-{
-    return kind == CommandKind::Velocity || kind == CommandKind::Absolute || kind == CommandKind::Relative;
-}
-
 }  // namespace
 
 std::string_view to_string(SteerMode mode)
@@ -262,9 +256,10 @@ struct HeadLink::Impl {
             command.values.clear(Axis::VergeLeft);
             command.values.clear(Axis::VergeRight);
         }
-        // A held axis that has just begun to move on no command of ours is left alone: the
-        // next samples tell whether someone else is moving it (ManualMoveWatch::stirring).
-        if (config.times.manual_pause_s > 0.0 && is_move(command.kind))
+        // A held axis that has just begun to move on no command of ours gets no velocity (the
+        // reaction to its picture shifting): the next samples tell whether someone else is
+        // moving it (ManualMoveWatch::stirring). Planned moves (looks, returns) go whole.
+        if (config.times.manual_pause_s > 0.0 && command.kind == CommandKind::Velocity)
             for (Axis a : {Axis::Pan, Axis::Tilt})
                 if (watch.stirring(a)) command.values.clear(a);
         if (command.values.empty() && command.kind != CommandKind::Home && command.kind != CommandKind::Stop &&

@@ -17,6 +17,7 @@ void ManualMoveWatch::release(AxisWatch& axis, double t_s, bool driven, std::opt
     axis.commanded_s = t_s;
     axis.destination_deg = destination;
     axis.motion_began_s.reset();
+    axis.rest_began_s.reset();
     axis.stirring = false;
 }
 
@@ -60,14 +61,16 @@ void ManualMoveWatch::commanded(const HeadCommand& command, double t_s)
     }
 }
 
-// A held axis's reported motion within the tolerance: when it began, and whether this
-// sample is still in its first settle_s.
+// A held axis's reported motion: when it began (after settle_s reported at rest, or first
+// since held), and whether this sample, still within the tolerance, is in its first settle_s.
 void ManualMoveWatch::follow_motion(AxisWatch& axis, bool moving, bool away, double t_s) const
 {
     if (moving) {
-        if (!axis.motion_began_s || t_s - axis.last_moving_s >= config_.settle_s || t_s < *axis.motion_began_s)
-            axis.motion_began_s = t_s;
-        axis.last_moving_s = t_s;
+        const bool rested = axis.rest_began_s && t_s - *axis.rest_began_s >= config_.settle_s;
+        if (!axis.motion_began_s || rested || t_s < *axis.motion_began_s) axis.motion_began_s = t_s;
+        axis.rest_began_s.reset();
+    } else if (!axis.rest_began_s) {
+        axis.rest_began_s = t_s;
     }
     axis.stirring = moving && !away && t_s - *axis.motion_began_s < config_.settle_s;
 }
@@ -87,6 +90,7 @@ bool ManualMoveWatch::moved_by_someone_else(const HeadState& state, double t_s)
             axis.held = true;
             axis.rest_deg = angle;
             axis.motion_began_s.reset();
+            axis.rest_began_s = t_s;
         }
     }
     return moved;

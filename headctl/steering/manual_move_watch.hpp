@@ -33,11 +33,11 @@ public:
     bool moved_by_someone_else(const HeadState& state, double t_s);
     // Whether the last state showed the held `axis` (pan or tilt) moving, still within the
     // tolerance, less than settle_s after its motion began: perhaps the first samples of
-    // someone else's move. Its picture may already have shifted; a command for the axis sent
-    // then would release it and cancel the move before the next sample shows it. A motion
-    // begins when the axis has been reported at rest for settle_s (flags that come and go
-    // on a wobbling reading do not begin it again), and one longer than settle_s is taken
-    // for the reading's noise.
+    // someone else's move. Its picture may already have shifted; a velocity for the axis
+    // sent then would release it and cancel the move before the next sample shows it. A
+    // motion begins after the axis has been reported at rest for settle_s (flags that come
+    // and go on a reading that wobbles do not begin it again), and one longer than settle_s
+    // is taken for the reading's noise.
     bool stirring(Axis axis) const;
     // Forgets where the axes were held: they are held again once at rest.
     void reset();
@@ -52,7 +52,7 @@ private:
         double commanded_s = -std::numeric_limits<double>::infinity();
         std::optional<double> destination_deg;  // where the last command sends it, when it says
         std::optional<double> motion_began_s;   // while held: when the reported motion began...
-        double last_moving_s = 0.0;             // ...and when it was last reported
+        std::optional<double> rest_began_s;     // ...and since when it is reported at rest
         bool stirring = false;
     };
     static constexpr std::array<Axis, 2> kAxes{Axis::Pan, Axis::Tilt};

@@ -87,6 +87,13 @@ TEST(ManualMoveWatch, AHeldAxisThatBeginsToMoveIsStirringUntilItLeavesOrSettles)
     EXPECT_FALSE(watch.stirring(Axis::Tilt));
     EXPECT_TRUE(watch.moved_by_someone_else(at(10.8, 0.0, true), 1.04));
     EXPECT_FALSE(watch.stirring(Axis::Pan));
+    // A motion that stays within the tolerance past settle_s is the reading's noise.
+    watch.reset();
+    EXPECT_FALSE(watch.moved_by_someone_else(at(10.0), 1.5));
+    EXPECT_FALSE(watch.moved_by_someone_else(at(10.1, 0.0, true), 1.6));
+    EXPECT_TRUE(watch.stirring(Axis::Pan));
+    EXPECT_FALSE(watch.moved_by_someone_else(at(10.2, 0.0, true), 1.86));
+    EXPECT_FALSE(watch.stirring(Axis::Pan));
     // Tilt alike, each axis on its own.
     watch.reset();
     EXPECT_FALSE(watch.moved_by_someone_else(at(10.0), 2.0));
@@ -122,6 +129,14 @@ TEST(ManualMoveWatch, AWobblingReadingStirsOnlyForItsFirstQuarterSecond)
     EXPECT_TRUE(watch.stirring(Axis::Pan));
     EXPECT_FALSE(watch.moved_by_someone_else(at(10.1, 0.0, true), 0.92));
     EXPECT_FALSE(watch.stirring(Axis::Pan));
+    // At rest again, then flags on every other sample of a slow link (0.15 s apart): only
+    // the first begins a motion.
+    EXPECT_FALSE(watch.moved_by_someone_else(at(10.0), 1.0));
+    for (int i = 1; i <= 6; ++i) {
+        const double t = 1.15 + 0.15 * i;
+        EXPECT_FALSE(watch.moved_by_someone_else(at(10.0, 0.0, i % 2 == 1), t));
+        EXPECT_EQ(watch.stirring(Axis::Pan), i == 1) << "at " << t << " s";
+    }
 }
 
 }  // namespace
