@@ -141,8 +141,13 @@ HeadState OnvifBackend::query_state(Deadline deadline)
     set_axis_value(s.pose, Axis::Tilt, onvif::from_generic(status.pan_tilt.y, c.tilt_min_deg, c.tilt_max_deg));
     set_axis_value(s.pose, Axis::Zoom, has_zoom() ? onvif::zoom_from_generic(status.zoom, c.zoom_max) : 1.0);
     flag_motion_since(s, last_pose_);
-    s.moving[static_cast<std::size_t>(Axis::Pan)] |= status.pan_tilt_moving;
-    s.moving[static_cast<std::size_t>(Axis::Tilt)] |= status.pan_tilt_moving;
+    // One MoveStatus covers pan and tilt: where the positions show which of them moved, it
+    // adds nothing (a pan would otherwise flag a tilt at rest, which steering then leaves
+    // alone as perhaps someone else's move); where neither moved yet, it flags both.
+    if (status.pan_tilt_moving && !s.moving_axis(Axis::Pan) && !s.moving_axis(Axis::Tilt)) {
+        s.moving[static_cast<std::size_t>(Axis::Pan)] = true;
+        s.moving[static_cast<std::size_t>(Axis::Tilt)] = true;
+    }
     s.moving[static_cast<std::size_t>(Axis::Zoom)] |= status.zoom_moving;
     return s;
 }

@@ -71,6 +71,7 @@ TEST(Onvif, EveryOperationReachesTheHead)
     std::this_thread::sleep_for(200ms);
     const HeadState driving = onvif->query_state(net::Clock::now() + 1s);
     EXPECT_TRUE(driving.moving_axis(Axis::Pan));
+    EXPECT_FALSE(driving.moving_axis(Axis::Tilt));  // one MoveStatus for both: the positions tell
     EXPECT_GT(driving.pose.pan_deg, 10.5);
     onvif->send(HeadCommand{CommandKind::Stop, {}}, net::Clock::now() + 1s);
     const double stopped_at = settled(*onvif).pose.pan_deg;
