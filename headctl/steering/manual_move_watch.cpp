@@ -99,7 +99,7 @@ bool ManualMoveWatch::moved_by_someone_else(const HeadState& state, double t_s)
 bool ManualMoveWatch::stirring(Axis axis) const
 {
     for (std::size_t i = 0; i < kAxes.size(); ++i)
-        if (kAxes[i] == axis) return axes_[i].held && axes_[i].stirring;
+        if (kAxes[i] == axis) return axes_[i].stirring;  // cleared whenever the axis is released
     return false;
 }
 

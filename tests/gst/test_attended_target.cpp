@@ -170,12 +170,9 @@ TEST(AttendedTarget, AHeldPointingTurnsTheDirectorToItsTarget)
     gc::HeadPose pose;
     EXPECT_TRUE(gc::loopback::eventually(
         [&] {
-            bool moving = true;
-            director.server().with_model([&](gc::headctl::HeadModel& model, double now_s) {
-                const gc::headctl::HeadState state = model.state(now_s);
-                pose = state.pose;
-                moving = std::any_of(state.moving.begin(), state.moving.end(), [](bool m) { return m; });
-            });
+            const gc::headctl::HeadState state = director.state();
+            pose = state.pose;
+            const bool moving = std::any_of(state.moving.begin(), state.moving.end(), [](bool m) { return m; });
             return !moving && pose.zoom > 1.0;
         },
         std::chrono::milliseconds(5000)));

@@ -43,30 +43,6 @@ GstClockTime timestamp_of(const GstStructure* s)
     return t;
 }
 
-// Counts the buffers that reach the sink named `sink` (frames the element has finished).
-void count_buffers(GstElement* pipeline, const char* sink, std::atomic<int>& count)
-{
-    GstElement* element = gst_bin_get_by_name(GST_BIN(pipeline), sink);
-    GstPad* pad = gst_element_get_static_pad(element, "sink");
-    gst_pad_add_probe(
-        pad, GST_PAD_PROBE_TYPE_BUFFER,
-        [](GstPad*, GstPadProbeInfo*, gpointer data) {
-            ++*static_cast<std::atomic<int>*>(data);
-            return GST_PAD_PROBE_OK;
-        },
-        &count, nullptr);
-    gst_object_unref(pad);
-    gst_object_unref(element);
-}
-
-// The simulated head's own state, read under the server's lock (no network in between).
-gc::headctl::HeadState head_state(RunningHead& head)
-{
-    gc::headctl::HeadState state;
-    head.server().with_model([&](gc::headctl::HeadModel& model, double now_s) { state = model.state(now_s); });
-    return state;
-}
-
 struct LoopFigures {
     GstClockTime acquired = GST_CLOCK_TIME_NONE;  // first output with the left eye tracking
     int scored = 0, centred = 0;                  // truth frames from 1 s after acquisition
@@ -216,7 +192,13 @@ TEST(HeadLoop, AManualMoveIsLeftAloneForManualPauseAndReported)
         " steer=fixate detector=motion manual-pause=1.5 message-updates=none ! fakesink name=out");
     ASSERT_TRUE(pipeline);
     std::atomic<int> frames{0};
-    count_buffers(pipeline.get(), "out", frames);
+    gc::test::probe_buffers(
+        pipeline.get(), "out", "sink",
+        [](GstPad*, GstPadProbeInfo*, gpointer count) {
+            ++*static_cast<std::atomic<int>*>(count);  // a frame the element has finished
+            return GST_PAD_PROBE_OK;
+        },
+        &frames);
     gc::headctl::HeadClientConfig driver_config;
     driver_config.uri = head.uri();
     gc::headctl::HeadClient driver(driver_config);
@@ -227,7 +209,7 @@ TEST(HeadLoop, AManualMoveIsLeftAloneForManualPauseAndReported)
         while (!done && frames < 3 * kFps) std::this_thread::sleep_for(20ms);
         for (int resting = 0, rest_from = frames; !done && frames < 9 * kFps;) {
             std::this_thread::sleep_for(20ms);
-            const gc::headctl::HeadState s = head_state(head);
+            const gc::headctl::HeadState s = head.state();
             const bool still = std::none_of(s.moving.begin(), s.moving.end(), [](bool m) { return m; });
             if (!still || resting == 0) rest_from = frames;
             resting = still ? resting + 1 : 0;
@@ -240,7 +222,7 @@ TEST(HeadLoop, AManualMoveIsLeftAloneForManualPauseAndReported)
         moved_at_frame = frames;
         // The element must not cancel a move it sees starting (it turned the head back when
         // the picture shifted before the first samples' 0.1-0.4 deg were taken for a move).
-        moved = gc::loopback::eventually([&] { return head_state(head).pose.pan_deg > 10.0; }, 2000ms);
+        moved = gc::loopback::eventually([&] { return head.state().pose.pan_deg > 10.0; }, 2000ms);
     });
     const gc::test::RunResult r = gc::test::run_pipeline(pipeline.get());
     done = true;

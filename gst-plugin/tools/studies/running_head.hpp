@@ -31,6 +31,13 @@ public:
     }
     std::uint16_t port() const { return server_->port(); }
     headctl::HeadServer& server() { return *server_; }
+    // The head's own state now, read under the server's lock (no network in between).
+    headctl::HeadState state()
+    {
+        headctl::HeadState s;
+        server_->with_model([&](headctl::HeadModel& model, double now_s) { s = model.state(now_s); });
+        return s;
+    }
     std::string uri() const { return "tcp://127.0.0.1:" + std::to_string(port()); }
 
 private:
